@@ -1,0 +1,28 @@
+// Stage 1, bounds: a world-space box per body covering its motion over the step.
+//
+// Reads: body pose, velocity, shape, motion type. Writes: out.min_*/max_* of every body.
+// Parallel over fixed blocks of bodies; indexed writes only (determinism rule 1).
+#pragma once
+
+#include <span>
+
+#include "core/base/body_store.hpp"
+#include "core/base/column.hpp"
+#include "core/base/shape.hpp"
+
+namespace elan::detail {
+
+struct BoundsColumns {
+  Column<Real> min_x, min_y, min_z, max_x, max_y, max_z;  // m, world
+  void resize(std::size_t n);
+  std::size_t size() const { return min_x.size(); }
+};
+
+// Box of the shape at its current pose, united with the box at the pose it reaches moving for
+// `dt` with its current velocities (the seed's answer to tunneling: the box covers before and
+// after), grown by `margin` on every side. Planes get an infinite box (+-inf on the unbounded
+// axes); the broadphase treats planes separately.
+void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
+                    BoundsColumns& out);
+
+}  // namespace elan::detail

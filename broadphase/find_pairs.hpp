@@ -1,0 +1,67 @@
+// Stage 2, find pairs: which bodies' boxes overlap. Every method returns the same canonical list:
+// keys make_pair_key(a, b) (a < b), sorted ascending, unique.
+//
+// Reads: bounds, per-body kind, filter bits, plane flags. Writes: the pair list.
+// Parallel over tiles / sweep chunks; per-block outputs joined in block order, then sorted.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "broadphase/bounds.hpp"
+
+namespace elan::detail {
+
+enum class BroadKind : uint8_t { Static, Kinematic, Sleeping, Awake };
+
+// Static-static, kinematic-static, kinematic-kinematic, sleeping-sleeping and sleeping-static
+// pairs are never reported. Awake bodies pair with anything; kinematic bodies also with sleeping
+// ones (so a moving kinematic body wakes what it touches).
+inline bool should_pair(BroadKind a, BroadKind b) {
+  if (a == BroadKind::Awake || b == BroadKind::Awake) return true;
+  return (a == BroadKind::Kinematic && b == BroadKind::Sleeping) ||
+         (a == BroadKind::Sleeping && b == BroadKind::Kinematic);
+}
+
+struct BroadphaseInput {
+  const BoundsColumns* bounds = nullptr;
+  std::span<const uint8_t> kind;        // BroadKind per body
+  std::span<const uint32_t> category;   // a pair passes if (cat_a & mask_b) && (cat_b & mask_a)
+  std::span<const uint32_t> mask;
+  std::span<const uint8_t> is_plane;    // 1 for plane shapes (infinite boxes)
+};
+
+inline bool filter_pass(const BroadphaseInput& in, uint32_t a, uint32_t b) {
+  return (in.category[a] & in.mask[b]) != 0 && (in.category[b] & in.mask[a]) != 0;
+}
+
+// Serial O(n^2) reference: the test oracle.
+void find_pairs_brute_force(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
+
+// All n(n-1)/2 pairs in parallel TBB tasks over tiles of the pair space. Keeps its scratch.
+class AllPairs {
+ public:
+  void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
+
+ private:
+  struct Impl;
+  std::vector<std::vector<uint64_t>> block_pairs_;
+  std::vector<uint64_t> sort_scratch_;
+};
+
+// Sweep-and-prune on the axis of largest spread, keeping last step's order so the re-sort is
+// of nearly sorted input; the sweep is split into parallel chunks.
+class SweepAndPrune {
+ public:
+  void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
+
+ private:
+  std::vector<uint32_t> order_;     // body indices sorted by min on the sweep axis
+  std::vector<Real> sorted_min_;    // min on the axis, in order_
+  int axis_ = 0;
+  std::vector<std::vector<uint64_t>> block_pairs_;
+  std::vector<uint64_t> sort_scratch_;
+};
+
+}  // namespace elan::detail

@@ -1,0 +1,56 @@
+// Deterministic parallel helpers over fixed blocks: the layout of work depends on the item count
+// and a compile-time grain only, never on the thread count.
+#pragma once
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace elan::detail {
+
+inline constexpr std::size_t block_count(std::size_t count, std::size_t grain) {
+  return (count + grain - 1) / grain;
+}
+
+// Calls f(begin, end, block) for every block [block*grain, min(count, (block+1)*grain)).
+// determinism: block boundaries are a function of (count, grain) alone (rule 2), so a loop that
+// writes only to slots it owns gives the same bits for any thread count.
+template <class F>
+void for_blocks(std::size_t count, std::size_t grain, F&& f) {
+  const std::size_t blocks = block_count(count, grain);
+  if (blocks == 0) return;
+  if (blocks == 1) {
+    f(std::size_t{0}, count, std::size_t{0});
+    return;
+  }
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, blocks, 1),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t b = r.begin(); b != r.end(); ++b) {
+          f(b * grain, std::min(count, (b + 1) * grain), b);
+        }
+      },
+      tbb::simple_partitioner());
+}
+
+// Joins per-block outputs in block order into `out` (cleared first).
+// determinism: rule 1, variable-length output is concatenated in block order.
+template <class T, class A1, class A2>
+void concat_blocks(const std::vector<std::vector<T, A1>>& blocks, std::vector<T, A2>& out) {
+  std::size_t total = 0;
+  for (const auto& b : blocks) total += b.size();
+  out.clear();
+  out.reserve(total);
+  for (const auto& b : blocks) out.insert(out.end(), b.begin(), b.end());
+}
+
+// LSD radix sort of 64-bit keys, 16 bits per pass, skipping passes whose digit is constant.
+// Stable and deterministic; `scratch` is reused between calls.
+void radix_sort(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch);
+
+}  // namespace elan::detail

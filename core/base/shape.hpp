@@ -1,0 +1,43 @@
+// Shape: immutable geometry in its principal frame (centre of mass at the origin, inertia
+// diagonal), plus the frame's placement in the user's shape frame and exact mass properties.
+#pragma once
+
+#include <memory>
+
+#include "core/base/convex_hull.hpp"
+#include "elan/defs.hpp"
+#include "elan/math.hpp"
+
+namespace elan::detail {
+
+struct Shape {
+  ShapeType type = ShapeType::Sphere;
+  Real radius = 0;                        // m: sphere, capsule, cylinder
+  Real half_height = 0;                   // m: capsule segment / cylinder, along local Y
+  Vec3 half_extents = Vec3::Zero();       // m: box
+  std::shared_ptr<const ConvexHull> hull; // principal frame; null unless ConvexHull
+  Vec3 plane_normal = Vec3::UnitY();      // plane: dot(n, x) <= offset (principal = user frame)
+  Real plane_offset = 0;
+
+  // Placement of the principal frame in the user's shape frame:
+  // x_user = frame_rotation * x_principal + frame_position. Identity except for hulls.
+  Vec3 frame_position = Vec3::Zero();
+  Quat frame_rotation = Quat::Identity();
+
+  Real volume = 0;                        // m^3 (0 for planes)
+  Vec3 unit_inertia = Vec3::Zero();       // m^2: principal moments per kg (I = mass * this)
+  Vec3 local_min = Vec3::Zero();          // m: bounds in the principal frame (planes: unused)
+  Vec3 local_max = Vec3::Zero();
+  Real bounding_radius = 0;               // m: max distance of the surface from the origin
+};
+
+// Validates `def` and builds the shape. Throws elan::Error naming the field ("shape.radius",
+// "shape.points", ...) for zero, negative or non-finite sizes, a zero plane normal or a
+// degenerate hull.
+Shape make_shape(const ShapeDef& def);
+
+// Support point of the shape (principal frame) in direction d (need not be unit). Planes have no
+// support and are handled by their own routines.
+Vec3 support(const Shape& shape, const Vec3& d);
+
+}  // namespace elan::detail

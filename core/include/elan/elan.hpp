@@ -1,0 +1,10 @@
+// The whole public API of elan in one include.
+#pragma once
+
+#include "elan/defs.hpp"
+#include "elan/error.hpp"
+#include "elan/ids.hpp"
+#include "elan/math.hpp"
+#include "elan/profile.hpp"
+#include "elan/scene.hpp"
+#include "elan/world.hpp"

@@ -1,0 +1,44 @@
+// Scene files (JSON, see README "Scene file"): parsing with validation, and loading into a World.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "elan/defs.hpp"
+#include "elan/world.hpp"
+
+namespace elan {
+
+/// A scene file was rejected. what() is one line naming the file, the body (index and name when
+/// it has one) and the field, e.g.
+/// `scene.json: body 3 ("ball"): shape.radius: must be positive, got -1`.
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct SceneBody {
+  std::string name;              ///< empty when the file gives none
+  ShapeDef shape;
+  BodyDef body;                  ///< body.shape is filled by load_into
+};
+
+struct Scene {
+  WorldDef world;                ///< gravity, substeps, iterations, allow_sleep
+  Real timestep = Real(1.0 / 60.0);  ///< s per step
+  bool has_substeps = false;     ///< the file set `substeps`
+  bool has_iterations = false;   ///< the file set `iterations`
+  std::vector<SceneBody> bodies; ///< explicit bodies first, then generated ones, in order
+};
+
+/// Parses scene text; `file_name` is used in messages only. Throws SceneError.
+Scene parse_scene(const std::string& text, const std::string& file_name);
+/// Reads and parses a scene file. Throws SceneError (also for an unreadable file).
+Scene load_scene(const std::string& path);
+/// Creates the scene's shapes (identical shape definitions are shared) and bodies in `world`,
+/// in scene order, so body index i is the scene's body i. Throws SceneError.
+void load_into(const Scene& scene, World& world, const std::string& file_name);
+
+}  // namespace elan

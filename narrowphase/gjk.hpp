@@ -1,0 +1,32 @@
+// GJK distance between two convex shapes (core shapes: sphere and capsule radii are applied
+// afterwards), using the support of the Minkowski difference without building it.
+#pragma once
+
+#include "core/base/shape.hpp"
+
+namespace elan::detail {
+
+struct GjkResult {
+  Real distance = 0;          // m, between the core shapes (0 when they overlap)
+  Vec3 point_a = Vec3::Zero();  // world: closest point on A's core
+  Vec3 point_b = Vec3::Zero();  // world: closest point on B's core
+  bool overlap = false;       // cores intersect: use EPA for depth
+  int iterations = 0;
+};
+
+// `include_radius` false treats spheres as points and capsules as segments (their "core").
+GjkResult gjk_distance(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                       bool include_radius = true, const Vec3* initial_direction = nullptr);
+
+struct EpaResult {
+  Real depth = 0;             // m, positive
+  Vec3 normal = Vec3::UnitY();  // world, from A towards B
+  Vec3 point_a = Vec3::Zero();  // world: deepest point of A inside B
+  Vec3 point_b = Vec3::Zero();
+  bool ok = false;
+};
+
+// Penetration depth and normal of overlapping shapes (full shapes, radii included).
+EpaResult epa_penetration(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb);
+
+}  // namespace elan::detail
