@@ -26,10 +26,10 @@ inline bool should_pair(BroadKind a, BroadKind b) {
 
 struct BroadphaseInput {
   const BoundsColumns* bounds = nullptr;
-  std::span<const uint8_t> kind;        // BroadKind per body
-  std::span<const uint32_t> category;   // a pair passes if (cat_a & mask_b) && (cat_b & mask_a)
+  std::span<const uint8_t> kind;       // BroadKind per body
+  std::span<const uint32_t> category;  // a pair passes if (cat_a & mask_b) && (cat_b & mask_a)
   std::span<const uint32_t> mask;
-  std::span<const uint8_t> is_plane;    // 1 for plane shapes (infinite boxes)
+  std::span<const uint8_t> is_plane;  // 1 for plane shapes (infinite boxes)
 };
 
 inline bool filter_pass(const BroadphaseInput& in, uint32_t a, uint32_t b) {
@@ -45,8 +45,7 @@ class AllPairs {
   void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
 
  private:
-  struct Impl;
-  std::vector<std::vector<uint64_t>> block_pairs_;
+  std::vector<std::vector<uint64_t>> block_pairs_;  // one per tile
   std::vector<uint64_t> sort_scratch_;
 };
 
@@ -57,10 +56,20 @@ class SweepAndPrune {
   void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
 
  private:
-  std::vector<uint32_t> order_;     // body indices sorted by min on the sweep axis
-  std::vector<Real> sorted_min_;    // min on the axis, in order_
+  bool choose_axis(const BroadphaseInput& in);
+  void sort_full(const BroadphaseInput& in);
+  bool sort_incremental();
+  void gather_sorted(const BroadphaseInput& in);
+
+  std::vector<uint32_t> order_;   // body indices sorted by min on the sweep axis
+  std::vector<Real> sorted_min_;  // min on the axis, in order_ (planes, NaN: +inf)
+  Column<Real> sorted_max_;       // the rest of each box, in order_: max on the axis and
+  Column<Real> sorted_lo1_, sorted_hi1_, sorted_lo2_, sorted_hi2_;  // the two other axes
   int axis_ = 0;
-  std::vector<std::vector<uint64_t>> block_pairs_;
+  std::vector<double> axis_partials_;  // per block: count, sum and sum of squares of centres
+  std::vector<uint32_t> planes_;
+  std::vector<std::vector<uint64_t>> block_pairs_;  // sweep chunks, then plane blocks
+  std::vector<uint64_t> sort_keys_;
   std::vector<uint64_t> sort_scratch_;
 };
 

@@ -1,0 +1,237 @@
+// Sweep-and-prune: boxes sorted by min on the axis of largest spread, order kept between updates
+// so the re-sort is an insertion sort of nearly sorted input; the sweep runs in parallel chunks.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "broadphase/find_pairs.hpp"
+#include "broadphase/pair_test.hpp"
+#include "core/base/pair_key.hpp"
+#include "core/base/parallel.hpp"
+
+namespace elan::detail {
+
+namespace {
+
+constexpr std::size_t kStatsGrain = 4096;
+constexpr std::size_t kSweepGrain = 512;
+constexpr std::size_t kPlaneGrain = 4096;
+// Switch axis only when another one spreads clearly more, so a scene near a tie does not pay a
+// full re-sort every update.
+constexpr double kAxisHysteresis = 1.25;
+// Insertion sort costs n + inversions; past this many moves per body a full sort is cheaper.
+constexpr std::size_t kMaxMovesPerBody = 8;
+
+const Real* axis_min(const BoundsColumns& b, int axis) {
+  return axis == 0 ? b.min_x.data() : axis == 1 ? b.min_y.data() : b.min_z.data();
+}
+const Real* axis_max(const BoundsColumns& b, int axis) {
+  return axis == 0 ? b.max_x.data() : axis == 1 ? b.max_y.data() : b.max_z.data();
+}
+
+// Planes are outside the sweep and NaN boxes never overlap: both sort last, as +inf.
+Real sweep_key(const BroadphaseInput& in, const Real* mins, uint32_t i) {
+  const Real v = mins[i];
+  return (in.is_plane[i] || std::isnan(v)) ? std::numeric_limits<Real>::infinity() : v;
+}
+
+}  // namespace
+
+// Returns true when the axis changed (the kept order is then useless).
+bool SweepAndPrune::choose_axis(const BroadphaseInput& in) {
+  const BoundsColumns& b = *in.bounds;
+  const std::size_t n = b.size();
+  const std::size_t blocks = block_count(n, kStatsGrain);
+  axis_partials_.resize(blocks * 7);
+  // determinism: block partials in double, summed in block order (rule 3).
+  for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
+    double acc[7] = {0, 0, 0, 0, 0, 0, 0};
+    const Real* mins[3] = {b.min_x.data(), b.min_y.data(), b.min_z.data()};
+    const Real* maxs[3] = {b.max_x.data(), b.max_y.data(), b.max_z.data()};
+    for (std::size_t i = begin; i < end; ++i) {
+      if (in.is_plane[i]) continue;
+      double c[3];
+      for (int a = 0; a < 3; ++a) c[a] = 0.5 * (double(mins[a][i]) + double(maxs[a][i]));
+      if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2])) continue;
+      acc[0] += 1;
+      for (int a = 0; a < 3; ++a) {
+        acc[1 + a] += c[a];
+        acc[4 + a] += c[a] * c[a];
+      }
+    }
+    std::copy(acc, acc + 7, axis_partials_.begin() + std::ptrdiff_t(blk * 7));
+  });
+  double acc[7] = {0, 0, 0, 0, 0, 0, 0};
+  for (std::size_t blk = 0; blk < blocks; ++blk) {
+    for (int k = 0; k < 7; ++k) acc[k] += axis_partials_[blk * 7 + std::size_t(k)];
+  }
+  if (acc[0] < 2) return false;
+  double var[3];
+  for (int a = 0; a < 3; ++a) {
+    const double mean = acc[1 + a] / acc[0];
+    var[a] = acc[4 + a] / acc[0] - mean * mean;
+  }
+  int best = axis_;
+  for (int a = 0; a < 3; ++a) {
+    if (var[a] > var[best]) best = a;
+  }
+  if (best == axis_ || !(var[best] > kAxisHysteresis * var[axis_])) return false;
+  axis_ = best;
+  return true;
+}
+
+void SweepAndPrune::sort_full(const BroadphaseInput& in) {
+  const std::size_t n = in.bounds->size();
+  const Real* mins = axis_min(*in.bounds, axis_);
+  order_.resize(n);
+  sorted_min_.resize(n);
+  if constexpr (sizeof(Real) == 4) {
+    // perf: (order-preserving key bits, index) in one 64-bit word, radix sorted; the index in the
+    // low half breaks ties, so the order is a function of the boxes alone.
+    sort_keys_.resize(n);
+    for (uint32_t i = 0; i < n; ++i) {
+      uint32_t u = std::bit_cast<uint32_t>(sweep_key(in, mins, i));
+      u = (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+      sort_keys_[i] = (uint64_t{u} << 32) | i;
+    }
+    radix_sort(sort_keys_, sort_scratch_);
+    for (std::size_t k = 0; k < n; ++k) order_[k] = uint32_t(sort_keys_[k]);
+  } else {
+    for (uint32_t i = 0; i < n; ++i) order_[i] = i;
+    std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
+      const Real ka = sweep_key(in, mins, a), kb = sweep_key(in, mins, b);
+      return ka < kb || (ka == kb && a < b);
+    });
+  }
+  for (std::size_t k = 0; k < n; ++k) sorted_min_[k] = sweep_key(in, mins, order_[k]);
+}
+
+// Insertion sort of the refreshed keys in last update's order. Returns false (order partly
+// moved, still a permutation) when the input turned out too far from sorted.
+bool SweepAndPrune::sort_incremental() {
+  const std::size_t n = order_.size();
+  const std::size_t budget = kMaxMovesPerBody * n;
+  std::size_t moves = 0;
+  Real* key = sorted_min_.data();
+  uint32_t* ord = order_.data();
+  for (std::size_t k = 1; k < n; ++k) {
+    const Real v = key[k];
+    if (!(v < key[k - 1])) continue;
+    const uint32_t id = ord[k];
+    std::size_t j = k;
+    while (j > 0 && v < key[j - 1]) {
+      key[j] = key[j - 1];
+      ord[j] = ord[j - 1];
+      --j;
+    }
+    key[j] = v;
+    ord[j] = id;
+    moves += k - j;
+    if (moves > budget) return false;
+  }
+  return true;
+}
+
+void SweepAndPrune::gather_sorted(const BroadphaseInput& in) {
+  const BoundsColumns& b = *in.bounds;
+  const std::size_t n = b.size();
+  const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
+  const Real* hi0 = axis_max(b, axis_);
+  const Real *lo1 = axis_min(b, a1), *hi1 = axis_max(b, a1);
+  const Real *lo2 = axis_min(b, a2), *hi2 = axis_max(b, a2);
+  sorted_max_.resize(n);
+  sorted_lo1_.resize(n);
+  sorted_hi1_.resize(n);
+  sorted_lo2_.resize(n);
+  sorted_hi2_.resize(n);
+  constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
+  // determinism: indexed writes, slot k owned by its block.
+  for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const uint32_t i = order_[k];
+      // Planes are paired in their own pass; a NaN box never overlaps, keeping them out of the
+      // sweep both as the scanning item and as a candidate.
+      const bool plane = in.is_plane[i] != 0;
+      sorted_max_[k] = plane ? kNaN : hi0[i];
+      sorted_lo1_[k] = plane ? kNaN : lo1[i];
+      sorted_hi1_[k] = plane ? kNaN : hi1[i];
+      sorted_lo2_[k] = plane ? kNaN : lo2[i];
+      sorted_hi2_[k] = plane ? kNaN : hi2[i];
+    }
+  });
+}
+
+void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs) {
+  const BoundsColumns& b = *in.bounds;
+  const std::size_t n = b.size();
+
+  const bool axis_changed = choose_axis(in);
+  bool sorted = false;
+  if (!axis_changed && order_.size() == n) {
+    const Real* mins = axis_min(b, axis_);
+    // determinism: indexed writes (rule 1).
+    for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t k = begin; k < end; ++k) sorted_min_[k] = sweep_key(in, mins, order_[k]);
+    });
+    sorted = sort_incremental();
+  }
+  if (!sorted) sort_full(in);
+  gather_sorted(in);
+
+  planes_.clear();
+  for (uint32_t i = 0; i < n; ++i) {
+    if (in.is_plane[i]) planes_.push_back(i);
+  }
+  const std::size_t sweep_blocks = block_count(n, kSweepGrain);
+  const std::size_t plane_blocks = planes_.empty() ? 0 : block_count(n, kPlaneGrain);
+  const std::size_t blocks = sweep_blocks + plane_blocks;
+  // perf: buffers only grow, so after warm-up an update allocates nothing.
+  if (block_pairs_.size() < blocks) block_pairs_.resize(blocks);
+  for (std::size_t t = blocks; t < block_pairs_.size(); ++t) block_pairs_[t].clear();
+
+  // Each chunk scans forward from its own items, possibly past its end: a pair is found once,
+  // from whichever box comes first in the order (ties in min included: key_j == key_i <= max_i).
+  // determinism: one buffer per chunk, joined in chunk order, then sorted (rule 1).
+  for_blocks(n, kSweepGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
+    std::vector<uint64_t>& out = block_pairs_[blk];
+    out.clear();
+    const Real* key = sorted_min_.data();
+    for (std::size_t k = begin; k < end; ++k) {
+      const Real hi = sorted_max_[k];
+      const Real l1 = sorted_lo1_[k], h1 = sorted_hi1_[k];
+      const Real l2 = sorted_lo2_[k], h2 = sorted_hi2_[k];
+      for (std::size_t j = k + 1; j < n && key[j] <= hi; ++j) {
+        if ((sorted_lo1_[j] <= h1) & (l1 <= sorted_hi1_[j]) & (sorted_lo2_[j] <= h2) &
+            (l2 <= sorted_hi2_[j])) {
+          const uint32_t i0 = order_[k], i1 = order_[j];
+          if (accept_pair(in, i0, i1)) out.push_back(make_pair_key(i0, i1));
+        }
+      }
+    }
+  });
+
+  // Planes against every other body; a plane-plane pair once, from the lower index.
+  if (plane_blocks != 0) {
+    for_blocks(n, kPlaneGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
+      std::vector<uint64_t>& out = block_pairs_[sweep_blocks + blk];
+      out.clear();
+      for (uint32_t p : planes_) {
+        for (std::size_t j = begin; j < end; ++j) {
+          const uint32_t q = uint32_t(j);
+          if (q == p || (in.is_plane[q] && q < p)) continue;
+          if (boxes_overlap(b, p, q) && accept_pair(in, p, q)) out.push_back(make_pair_key(p, q));
+        }
+      }
+    });
+  }
+
+  // The sweep yields each pair once and the plane pass covers only pairs with a plane, so the
+  // sorted list is already unique.
+  concat_blocks(block_pairs_, out_pairs);
+  radix_sort(out_pairs, sort_scratch_);
+}
+
+}  // namespace elan::detail
