@@ -1,0 +1,80 @@
+// collide(): one pair, dispatched on the shape types to the cheapest exact routine (closed forms,
+// SAT with clipping, or the general GJK/EPA path).
+#include "narrowphase/collide.hpp"
+
+#include <utility>
+
+#include "narrowphase/general.hpp"
+#include "narrowphase/round_pairs.hpp"
+#include "narrowphase/sat.hpp"
+
+namespace elan::detail {
+
+namespace {
+
+using PairFn = bool (*)(const Shape&, const Transform&, const Shape&, const Transform&, Real,
+                        Manifold&);
+
+// Both in one working frame: world rotation, origin at A's centre of mass, so coordinates stay
+// small far from the world origin.
+bool collide_sat(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                 Real speculative_distance, Manifold& out) {
+  Polyhedron pa, pb;
+  make_polyhedron(a, xa.rotation, Vec3::Zero(), pa);
+  make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
+  return collide_polyhedra(pa, pb, speculative_distance, out);
+}
+
+bool collide_capsule_poly(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                          Real speculative_distance, Manifold& out) {
+  Polyhedron pb;
+  make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
+  const Vec3 axis = xa.rotation * Vec3(0, a.half_height, 0);
+  return collide_segment_polyhedron(-axis, axis, a.radius, pb, speculative_distance, out);
+}
+
+// The routine for (ta, tb) in that order, or null if only the (tb, ta) order exists.
+PairFn pick(const Shape& a, const Shape& b) {
+  const ShapeType ta = a.type, tb = b.type;
+  if (tb == ShapeType::Plane) return ta == ShapeType::Plane ? nullptr : collide_convex_plane;
+  if (ta == ShapeType::Plane) return nullptr;
+  if (ta == ShapeType::Sphere) {
+    switch (tb) {
+      case ShapeType::Sphere:
+        return collide_sphere_sphere;
+      case ShapeType::Capsule:
+        return collide_sphere_capsule;
+      case ShapeType::Box:
+        return collide_sphere_box;
+      default:
+        return collide_sphere_convex;
+    }
+  }
+  if (tb == ShapeType::Sphere) return nullptr;
+  if (ta == ShapeType::Capsule && tb == ShapeType::Capsule) return collide_capsule_capsule;
+  if (ta == ShapeType::Capsule && is_sat_polyhedron(b)) return collide_capsule_poly;
+  if (tb == ShapeType::Capsule && is_sat_polyhedron(a)) return nullptr;
+  if (is_sat_polyhedron(a) && is_sat_polyhedron(b)) return collide_sat;
+  return collide_general;
+}
+
+}  // namespace
+
+bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+             Real speculative_distance, Manifold& out) {
+  out.point_count = 0;
+  if (PairFn f = pick(a, b)) return f(a, xa, b, xb, speculative_distance, out);
+  if (a.type == ShapeType::Plane && b.type == ShapeType::Plane) return false;
+  // Only the (B, A) routine exists: run it, then flip the normal and swap the anchors.
+  PairFn g = pick(b, a);
+  if (!g || !g(b, xb, a, xa, speculative_distance, out)) {
+    out.point_count = 0;
+    return false;
+  }
+  out.normal = -out.normal;
+  for (int k = 0; k < out.point_count; ++k)
+    std::swap(out.points[k].anchor_a, out.points[k].anchor_b);
+  return true;
+}
+
+}  // namespace elan::detail

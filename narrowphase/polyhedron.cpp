@@ -1,0 +1,118 @@
+// Builds the working-frame polyhedron of a box (from a static unit box) or a convex hull,
+// including the edge-to-face adjacency the Gauss-map edge pruning needs.
+#include "narrowphase/polyhedron.hpp"
+
+namespace elan::detail {
+
+namespace {
+
+// Unit box: vertex i has coordinate signs (bit 0: x, bit 1: y, bit 2: z; set = +). Faces in the
+// order +x, -x, +y, -y, +z, -z (the face ids of round_pairs.hpp), loops counter-clockwise seen
+// from outside; edges with the two faces that share them.
+constexpr uint32_t kBoxLoops[24] = {1, 3, 7, 5, 0, 4, 6, 2, 2, 6, 7, 3,
+                                    0, 1, 5, 4, 4, 5, 7, 6, 0, 2, 3, 1};
+constexpr uint32_t kBoxEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                       {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+constexpr uint32_t kBoxEdgeFaces[12][2] = {{3, 5}, {2, 5}, {3, 4}, {2, 4}, {1, 5}, {0, 5},
+                                           {1, 4}, {0, 4}, {1, 3}, {0, 3}, {1, 2}, {0, 2}};
+
+void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& out) {
+  const Vec3& h = box.half_extents;
+  out.vertex_count = 8;
+  out.face_count = 6;
+  out.edge_count = 12;
+  const Vec3 ax = r.col(0) * h.x(), ay = r.col(1) * h.y(), az = r.col(2) * h.z();
+  for (int i = 0; i < 8; ++i) {
+    out.vertices[i] = centre + ((i & 1) ? ax : Vec3(-ax)) + ((i & 2) ? ay : Vec3(-ay)) +
+                      ((i & 4) ? az : Vec3(-az));
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 n = r.col(k);
+    const Real d = n.dot(centre);
+    out.normals[2 * k] = n;
+    out.normals[2 * k + 1] = -n;
+    out.offsets[2 * k] = d + h[k];
+    out.offsets[2 * k + 1] = -d + h[k];
+  }
+  for (int f = 0; f < 6; ++f) {
+    out.face_first[f] = uint32_t(4 * f);
+    out.face_count_of[f] = 4;
+  }
+  out.face_vertices = kBoxLoops;
+  for (int e = 0; e < 12; ++e) {
+    out.edges[e] = {kBoxEdges[e][0], kBoxEdges[e][1]};
+    out.edge_faces[e] = {kBoxEdgeFaces[e][0], kBoxEdgeFaces[e][1]};
+  }
+  out.centre = centre;
+}
+
+// Face of the directed edge u -> v: each undirected hull edge appears once in each direction in
+// the face loops, so the faces on both sides are the owners of (u -> v) and (v -> u). A CSR list
+// of outgoing loop edges per vertex finds them in O(loop length) overall.
+void make_hull(const ConvexHull& hull, const Mat3& r, const Vec3& centre, Polyhedron& out) {
+  const int nv = int(hull.vertices.size());
+  const int nf = int(hull.faces.size());
+  out.vertex_count = nv;
+  out.face_count = nf;
+  out.edge_count = int(hull.edges.size());
+  for (int i = 0; i < nv; ++i) out.vertices[i] = r * hull.vertices[i] + centre;
+  out.face_vertices = hull.face_vertices.data();
+
+  std::array<uint16_t, kMaxPolyVertices + 1> start{};
+  std::array<uint16_t, kMaxPolyLoop> next_vertex;
+  std::array<uint16_t, kMaxPolyLoop> face_of;
+  std::array<uint16_t, kMaxPolyVertices> fill{};
+  for (int f = 0; f < nf; ++f) {
+    const HullFace& face = hull.faces[f];
+    out.normals[f] = r * face.normal;
+    out.offsets[f] = out.normals[f].dot(out.vertices[hull.face_vertices[face.first]]);
+    out.face_first[f] = face.first;
+    out.face_count_of[f] = face.count;
+    for (uint32_t k = 0; k < face.count; ++k) ++start[hull.face_vertices[face.first + k] + 1];
+  }
+  for (int i = 0; i < nv; ++i) start[i + 1] = uint16_t(start[i + 1] + start[i]);
+  for (int f = 0; f < nf; ++f) {
+    const HullFace& face = hull.faces[f];
+    for (uint32_t k = 0; k < face.count; ++k) {
+      const uint32_t u = hull.face_vertices[face.first + k];
+      const uint32_t v = hull.face_vertices[face.first + (k + 1) % face.count];
+      const int slot = start[u] + fill[u]++;
+      next_vertex[slot] = uint16_t(v);
+      face_of[slot] = uint16_t(f);
+    }
+  }
+  const auto find_face = [&](uint32_t u, uint32_t v) -> uint32_t {
+    for (int s = start[u]; s < start[u + 1]; ++s) {
+      if (next_vertex[s] == v) return face_of[s];
+    }
+    return 0;
+  };
+  for (int e = 0; e < out.edge_count; ++e) {
+    const auto [u, v] = hull.edges[e];
+    out.edges[e] = {u, v};
+    out.edge_faces[e] = {find_face(u, v), find_face(v, u)};
+  }
+  out.centre = centre;
+}
+
+}  // namespace
+
+bool is_sat_polyhedron(const Shape& shape) {
+  if (shape.type == ShapeType::Box) return true;
+  if (shape.type != ShapeType::ConvexHull || !shape.hull) return false;
+  const ConvexHull& h = *shape.hull;
+  return h.vertices.size() <= kMaxPolyVertices && h.faces.size() <= kMaxPolyFaces &&
+         h.face_vertices.size() <= kMaxPolyLoop && h.edges.size() <= kMaxPolyEdges;
+}
+
+void make_polyhedron(const Shape& shape, const Quat& rotation, const Vec3& centre,
+                     Polyhedron& out) {
+  const Mat3 r = rotation.toRotationMatrix();
+  if (shape.type == ShapeType::Box) {
+    make_box(shape, r, centre, out);
+  } else {
+    make_hull(*shape.hull, r, centre, out);
+  }
+}
+
+}  // namespace elan::detail

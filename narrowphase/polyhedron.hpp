@@ -1,0 +1,42 @@
+// Polyhedra for SAT and clipping: a box or convex hull placed in a shared working frame (world
+// rotation, origin at A's centre of mass), with the face/edge adjacency the Gauss-map test needs.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "core/base/shape.hpp"
+
+namespace elan::detail {
+
+// perf: fixed stack buffers (no allocation per pair). A hull beyond these sizes takes the
+// general GJK/EPA path instead (see collide.cpp).
+inline constexpr int kMaxPolyVertices = 256;
+inline constexpr int kMaxPolyFaces = 512;
+inline constexpr int kMaxPolyLoop = 1536;  // sum of face loop lengths
+inline constexpr int kMaxPolyEdges = 768;
+
+// A polyhedron in the working frame. Face normals are unit and outward; a face's plane is
+// dot(normal, x) == offset. edge_faces[e] are the two faces sharing edge e.
+struct Polyhedron {
+  int vertex_count = 0;
+  int face_count = 0;
+  int edge_count = 0;
+  std::array<Vec3, kMaxPolyVertices> vertices;
+  std::array<Vec3, kMaxPolyFaces> normals;
+  std::array<Real, kMaxPolyFaces> offsets;
+  std::array<uint32_t, kMaxPolyFaces> face_first;
+  std::array<uint32_t, kMaxPolyFaces> face_count_of;
+  const uint32_t* face_vertices = nullptr;  // loops, counter-clockwise seen from outside
+  std::array<std::array<uint32_t, 2>, kMaxPolyEdges> edges;
+  std::array<std::array<uint32_t, 2>, kMaxPolyEdges> edge_faces;
+  Vec3 centre = Vec3::Zero();  // the centre of mass, inside the solid
+};
+
+// True when `shape` is a box or a hull that fits the buffers above.
+bool is_sat_polyhedron(const Shape& shape);
+
+// Fills `out` with the shape (box or hull) at rotation `rotation`, centre of mass at `centre`.
+void make_polyhedron(const Shape& shape, const Quat& rotation, const Vec3& centre, Polyhedron& out);
+
+}  // namespace elan::detail

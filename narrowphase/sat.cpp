@@ -1,0 +1,374 @@
+// SAT over face normals and Gauss-map-pruned edge pairs, then reference/incident face clipping
+// (Gregorius GDC 2013/2015) or one point at the closest points of two edges.
+#include "narrowphase/sat.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "narrowphase/clip.hpp"
+#include "narrowphase/manifold_reduce.hpp"
+
+namespace elan::detail {
+
+namespace {
+
+constexpr Real kLowest = std::numeric_limits<Real>::lowest();
+// Hysteresis so the manifold does not flicker between nearly equal axes: B's face must beat A's,
+// and an edge pair must beat the best face, by a relative plus an absolute margin (m).
+constexpr Real kFaceRelTol = Real(0.02);
+constexpr Real kEdgeRelTol = Real(0.05);
+constexpr Real kAbsTol = Real(2.5e-4);
+// Edge pairs closer to parallel than this (sine of the angle) are left to the face axes.
+constexpr Real kParallelSine = Real(0.005);
+
+struct FaceQuery {
+  int face = -1;
+  Real separation = kLowest;
+};
+
+struct EdgeQuery {
+  int edge_a = -1;
+  int edge_b = -1;
+  Real separation = kLowest;
+  Vec3 normal = Vec3::UnitY();
+};
+
+bool beats(Real candidate, Real incumbent, Real rel_tol) {
+  return candidate > incumbent + rel_tol * std::abs(incumbent) + kAbsTol;
+}
+
+Real min_projection(const Polyhedron& p, const Vec3& n) {
+  Real m = std::numeric_limits<Real>::max();
+  for (int i = 0; i < p.vertex_count; ++i) m = std::min(m, n.dot(p.vertices[i]));
+  return m;
+}
+
+// Faces of `a` as axes: separation = how far b's deepest vertex is outside the face plane.
+FaceQuery query_faces(const Polyhedron& a, const Polyhedron& b) {
+  FaceQuery q;
+  for (int f = 0; f < a.face_count; ++f) {
+    const Real s = min_projection(b, a.normals[f]) - a.offsets[f];
+    if (s > q.separation) {
+      q.separation = s;
+      q.face = f;
+    }
+  }
+  return q;
+}
+
+// Arcs (a, b) of A's Gauss map and (c, d) of -B's Gauss map cross exactly when the edges build a
+// face of the Minkowski difference; bxa and dxc are the arcs' plane normals (Gregorius 2013).
+bool is_minkowski_face(const Vec3& a, const Vec3& b, const Vec3& bxa, const Vec3& c, const Vec3& d,
+                       const Vec3& dxc) {
+  const Real cba = c.dot(bxa), dba = d.dot(bxa);
+  const Real adc = a.dot(dxc), bdc = b.dot(dxc);
+  return cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0;
+}
+
+EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b) {
+  EdgeQuery q;
+  for (int ea = 0; ea < a.edge_count; ++ea) {
+    const Vec3& pa = a.vertices[a.edges[ea][0]];
+    const Vec3 ua = a.vertices[a.edges[ea][1]] - pa;
+    const Vec3& na = a.normals[a.edge_faces[ea][0]];
+    const Vec3& nb = a.normals[a.edge_faces[ea][1]];
+    const Vec3 bxa = nb.cross(na);
+    const Real ua_len2 = ua.squaredNorm();
+    for (int eb = 0; eb < b.edge_count; ++eb) {
+      const Vec3 nc = -b.normals[b.edge_faces[eb][0]];
+      const Vec3 nd = -b.normals[b.edge_faces[eb][1]];
+      if (!is_minkowski_face(na, nb, bxa, nc, nd, nd.cross(nc))) continue;
+      const Vec3& pb = b.vertices[b.edges[eb][0]];
+      const Vec3 ub = b.vertices[b.edges[eb][1]] - pb;
+      Vec3 axis = ua.cross(ub);
+      const Real len = axis.norm();
+      if (len <= kParallelSine * std::sqrt(ua_len2 * ub.squaredNorm())) continue;
+      axis /= len;
+      if (axis.dot(pa - a.centre) < 0) axis = -axis;
+      const Real s = axis.dot(pb - pa);
+      if (s > q.separation) {
+        q.separation = s;
+        q.edge_a = ea;
+        q.edge_b = eb;
+        q.normal = axis;
+      }
+    }
+  }
+  return q;
+}
+
+// Closest points of segments p1 + s d1 and p2 + t d2, s, t in [0, 1] (Ericson, Real-Time
+// Collision Detection, 5.1.9), degenerate segments included.
+void closest_points_segments(const Vec3& p1, const Vec3& d1, const Vec3& p2, const Vec3& d2,
+                             Vec3& c1, Vec3& c2) {
+  const Vec3 r = p1 - p2;
+  const Real a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  const Real eps = std::numeric_limits<Real>::epsilon();
+  Real s = 0, t = 0;
+  if (a <= eps && e <= eps) {
+  } else if (a <= eps) {
+    t = std::clamp(f / e, Real(0), Real(1));
+  } else {
+    const Real c = d1.dot(r);
+    if (e <= eps) {
+      s = std::clamp(-c / a, Real(0), Real(1));
+    } else {
+      const Real b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > eps * a * e ? std::clamp((b * f - c * e) / denom, Real(0), Real(1)) : Real(0);
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, Real(0), Real(1));
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, Real(0), Real(1));
+      }
+    }
+  }
+  c1 = p1 + s * d1;
+  c2 = p2 + t * d2;
+}
+
+void set_point(Manifold& out, int k, const Vec3& p, const Vec3& b_centre, Real separation,
+               uint32_t id) {
+  ContactPoint& c = out.points[k];
+  c.anchor_a = p;
+  c.anchor_b = p - b_centre;
+  c.separation = separation;
+  c.feature_id = id;
+}
+
+// Stores the candidates (midpoints between the surfaces), reduced to four.
+bool emit_points(const Vec3* points, const Real* separations, const uint32_t* ids, int count,
+                 const Vec3& normal, const Vec3& b_centre, Manifold& out) {
+  if (count <= kMaxManifoldPoints) {
+    for (int k = 0; k < count; ++k) set_point(out, k, points[k], b_centre, separations[k], ids[k]);
+    out.point_count = count;
+  } else {
+    int keep[kMaxManifoldPoints];
+    const int n =
+        reduce_to_four(std::span<const Vec3>(points, std::size_t(count)),
+                       std::span<const Real>(separations, std::size_t(count)), normal, keep);
+    for (int k = 0; k < n; ++k) {
+      set_point(out, k, points[keep[k]], b_centre, separations[keep[k]], ids[keep[k]]);
+    }
+    out.point_count = n;
+  }
+  return out.point_count > 0;
+}
+
+// Clips the incident face of `inc` (the face most anti-parallel to the reference normal) against
+// the side planes of `ref`'s face `rf`. `ref_is_a` orients the normal and tags the ids.
+bool face_contact(const Polyhedron& ref, int rf, const Polyhedron& inc, bool ref_is_a,
+                  Real speculative_distance, const Vec3& b_centre, Manifold& out) {
+  const Vec3 n = ref.normals[rf];
+  int inf = 0;
+  Real most = std::numeric_limits<Real>::max();
+  for (int f = 0; f < inc.face_count; ++f) {
+    const Real d = inc.normals[f].dot(n);
+    if (d < most) {
+      most = d;
+      inf = f;
+    }
+  }
+  ClipPolygon poly[2];
+  {
+    const uint32_t first = inc.face_first[inf], cnt = inc.face_count_of[inf];
+    const int m = int(std::min<uint32_t>(cnt, kMaxClipVertices / 2));
+    for (int k = 0; k < m; ++k) {
+      poly[0].points[k] = inc.vertices[inc.face_vertices[first + k]];
+      poly[0].out_label[k] = uint8_t(k & 63);
+    }
+    poly[0].count = m;
+  }
+  int cur = 0;
+  const uint32_t rfirst = ref.face_first[rf], rcnt = ref.face_count_of[rf];
+  for (uint32_t k = 0; k < rcnt && poly[cur].count > 0; ++k) {
+    const Vec3& v0 = ref.vertices[ref.face_vertices[rfirst + k]];
+    const Vec3& v1 = ref.vertices[ref.face_vertices[rfirst + (k + 1) % rcnt]];
+    // Loop is counter-clockwise seen along -n, so (v1 - v0) x n points out of the face.
+    clip_polygon(poly[cur], (v1 - v0).cross(n), v0, uint8_t(kSidePlaneLabel + (k & 63)),
+                 poly[1 - cur]);
+    cur = 1 - cur;
+  }
+  const ClipPolygon& clipped = poly[cur];
+  const Vec3 normal = ref_is_a ? n : Vec3(-n);
+  out.normal = normal;
+  const uint32_t base = (ref_is_a ? kFeatureFaceA : kFeatureFaceB) | ((uint32_t(rf) & 0xFF) << 22) |
+                        ((uint32_t(inf) & 0xFF) << 14);
+  const Real offset = ref.offsets[rf];
+
+  Vec3 points[kMaxClipVertices];
+  Real seps[kMaxClipVertices];
+  uint32_t ids[kMaxClipVertices];
+  int count = 0;
+  for (int k = 0; k < clipped.count; ++k) {
+    const Vec3& p = clipped.points[k];
+    const Real s = n.dot(p) - offset;
+    if (s > speculative_distance) continue;
+    points[count] = p - (Real(0.5) * s) * n;
+    seps[count] = s;
+    ids[count] = base | clip_vertex_id(clipped, k);
+    ++count;
+  }
+  if (count == 0 && clipped.count == 0) {
+    // The faces do not overlap sideways (separated shapes, or round-off): keep the incident
+    // polyhedron's deepest vertex so a speculative contact still exists.
+    int best = 0;
+    Real bs = std::numeric_limits<Real>::max();
+    for (int i = 0; i < inc.vertex_count; ++i) {
+      const Real s = n.dot(inc.vertices[i]);
+      if (s < bs) {
+        bs = s;
+        best = i;
+      }
+    }
+    const Real s = bs - offset;
+    if (s > speculative_distance) return false;
+    points[0] = inc.vertices[best] - (Real(0.5) * s) * n;
+    seps[0] = s;
+    ids[0] = base | 0x3FFFu;
+    count = 1;
+  }
+  return emit_points(points, seps, ids, count, normal, b_centre, out);
+}
+
+}  // namespace
+
+bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculative_distance,
+                       Manifold& out) {
+  out.point_count = 0;
+  const FaceQuery fa = query_faces(a, b);
+  if (fa.separation > speculative_distance) return false;
+  const FaceQuery fb = query_faces(b, a);
+  if (fb.separation > speculative_distance) return false;
+  const EdgeQuery ee = query_edges(a, b);
+  if (ee.separation > speculative_distance) return false;
+
+  const bool use_b = beats(fb.separation, fa.separation, kFaceRelTol);
+  const Real face_sep = use_b ? fb.separation : fa.separation;
+  if (ee.edge_a >= 0 && beats(ee.separation, face_sep, kEdgeRelTol)) {
+    const Vec3& pa = a.vertices[a.edges[ee.edge_a][0]];
+    const Vec3& pb = b.vertices[b.edges[ee.edge_b][0]];
+    Vec3 ca, cb;
+    closest_points_segments(pa, a.vertices[a.edges[ee.edge_a][1]] - pa, pb,
+                            b.vertices[b.edges[ee.edge_b][1]] - pb, ca, cb);
+    out.normal = ee.normal;
+    set_point(
+        out, 0, Real(0.5) * (ca + cb), b.centre, ee.separation,
+        kFeatureEdges | ((uint32_t(ee.edge_a) & 0x7FFF) << 15) | (uint32_t(ee.edge_b) & 0x7FFF));
+    out.point_count = 1;
+    return true;
+  }
+  if (use_b) return face_contact(b, fb.face, a, false, speculative_distance, b.centre, out);
+  return face_contact(a, fa.face, b, true, speculative_distance, b.centre, out);
+}
+
+bool collide_segment_polyhedron(const Vec3& s0, const Vec3& s1, Real radius, const Polyhedron& b,
+                                Real speculative_distance, Manifold& out) {
+  out.point_count = 0;
+  const Vec3 u = s1 - s0;
+  FaceQuery fq;
+  for (int f = 0; f < b.face_count; ++f) {
+    const Vec3& n = b.normals[f];
+    const Real s = std::min(n.dot(s0), n.dot(s1)) - b.offsets[f] - radius;
+    if (s > fq.separation) {
+      fq.separation = s;
+      fq.face = f;
+    }
+  }
+  if (fq.separation > speculative_distance) return false;
+
+  // The segment's Gauss map is the great circle normal to u; it crosses the arc of B's edge
+  // (between the outward normals c and d) when they lie on opposite sides of it.
+  EdgeQuery eq;
+  const Real u_len2 = u.squaredNorm();
+  for (int e = 0; e < b.edge_count; ++e) {
+    const Vec3& c = b.normals[b.edge_faces[e][0]];
+    const Vec3& d = b.normals[b.edge_faces[e][1]];
+    if (c.dot(u) * d.dot(u) >= 0) continue;
+    const Vec3& pb = b.vertices[b.edges[e][0]];
+    const Vec3 ub = b.vertices[b.edges[e][1]] - pb;
+    Vec3 axis = u.cross(ub);
+    const Real len = axis.norm();
+    if (len <= kParallelSine * std::sqrt(u_len2 * ub.squaredNorm())) continue;
+    axis /= len;
+    if (axis.dot(pb - b.centre) < 0) axis = -axis;  // out of B at its edge
+    const Real s = axis.dot(s0 - pb) - radius;
+    if (s > eq.separation) {
+      eq.separation = s;
+      eq.edge_a = e;
+      eq.normal = -axis;
+    }
+  }
+  if (eq.separation > speculative_distance) return false;
+
+  if (eq.edge_a >= 0 && beats(eq.separation, fq.separation, kEdgeRelTol)) {
+    const Vec3& pb = b.vertices[b.edges[eq.edge_a][0]];
+    Vec3 ca, cb;
+    closest_points_segments(s0, u, pb, b.vertices[b.edges[eq.edge_a][1]] - pb, ca, cb);
+    out.normal = eq.normal;
+    // Midpoint between the capsule surface (ca + radius n) and the edge point.
+    set_point(out, 0, Real(0.5) * (ca + eq.normal * radius + cb), b.centre, eq.separation,
+              kFeatureSegment | (1u << 29) | (uint32_t(eq.edge_a) & 0xFFFF));
+    out.point_count = 1;
+    return true;
+  }
+
+  // Clip the segment's parameter range against the face's side planes; remember which plane
+  // cut each end for the feature ids.
+  const int f = fq.face;
+  const Vec3& n = b.normals[f];
+  Real t0 = 0, t1 = 1;
+  uint32_t l0 = 0, l1 = 1;
+  const uint32_t first = b.face_first[f], cnt = b.face_count_of[f];
+  for (uint32_t k = 0; k < cnt && t0 <= t1; ++k) {
+    const Vec3& v0 = b.vertices[b.face_vertices[first + k]];
+    const Vec3& v1 = b.vertices[b.face_vertices[first + (k + 1) % cnt]];
+    const Vec3 side = (v1 - v0).cross(n);
+    const Real d0 = side.dot(s0 - v0), du = side.dot(u);
+    if (std::abs(du) <= std::numeric_limits<Real>::epsilon() * std::abs(d0)) {
+      if (d0 > 0) t0 = Real(2);
+      continue;
+    }
+    const Real t = -d0 / du;
+    if (du > 0) {
+      if (t < t1) {
+        t1 = t;
+        l1 = 2 + k;
+      }
+    } else if (t > t0) {
+      t0 = t;
+      l0 = 2 + k;
+    }
+  }
+  const Vec3 normal = -n;
+  out.normal = normal;
+  const uint32_t base = kFeatureSegment | ((uint32_t(f) & 0xFFFF) << 12);
+  Vec3 points[2];
+  Real seps[2];
+  uint32_t ids[2];
+  int count = 0;
+  if (t0 > t1) {
+    // The segment misses the face sideways: one point at the deeper end.
+    const bool first_deeper = n.dot(s0) <= n.dot(s1);
+    t0 = t1 = first_deeper ? Real(0) : Real(1);
+    l0 = l1 = first_deeper ? 0u : 1u;
+  }
+  const Real ts[2] = {t0, t1};
+  const uint32_t ls[2] = {l0, l1};
+  for (int k = 0; k < (t0 == t1 ? 1 : 2); ++k) {
+    const Vec3 p = s0 + ts[k] * u;
+    const Real depth_plane = n.dot(p) - b.offsets[f];
+    const Real s = depth_plane - radius;
+    if (s > speculative_distance) continue;
+    // Midpoint between the capsule surface point (p - radius n) and the face point.
+    points[count] = p - (Real(0.5) * (depth_plane + radius)) * n;
+    seps[count] = s;
+    ids[count] = base | (ls[k] & 0xFFF);
+    ++count;
+  }
+  return emit_points(points, seps, ids, count, normal, b.centre, out);
+}
+
+}  // namespace elan::detail

@@ -1,0 +1,28 @@
+// Separating axis test with face clipping for polyhedron pairs (boxes, hulls) and for a capsule
+// against a polyhedron (Gregorius, "The Separating Axis Test between Convex Polyhedra", GDC 2013;
+// "Robust Contact Creation for Physics Simulations", GDC 2015).
+#pragma once
+
+#include "core/base/contact.hpp"
+#include "narrowphase/polyhedron.hpp"
+
+namespace elan::detail {
+
+// Feature id layout: bits 30-31 the kind, the rest the touching features.
+inline constexpr uint32_t kFeatureFaceA = 0u << 30;    // A's face is the reference face
+inline constexpr uint32_t kFeatureFaceB = 1u << 30;    // B's face is the reference face
+inline constexpr uint32_t kFeatureEdges = 2u << 30;    // edge of A against edge of B
+inline constexpr uint32_t kFeatureSegment = 3u << 30;  // capsule segment or general path
+
+// A and B in one working frame (positions relative to A's centre of mass). Writes out.normal
+// (A to B, working = world rotation), point_count, and each point's anchor_a (offset from A's
+// centre, which is the frame origin), anchor_b = anchor_a - b.centre, separation and feature id.
+bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculative_distance,
+                       Manifold& out);
+
+// Capsule A (segment s0-s1 in the working frame, origin at its centre, `radius`) against
+// polyhedron B; same output conventions.
+bool collide_segment_polyhedron(const Vec3& s0, const Vec3& s1, Real radius, const Polyhedron& b,
+                                Real speculative_distance, Manifold& out);
+
+}  // namespace elan::detail
