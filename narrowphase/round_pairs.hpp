@@ -8,9 +8,10 @@
 
 namespace elan::detail {
 
-// Feature ids of the round routines: sphere 0, capsule segment ends 0/1 (parallel capsule pairs
-// use end-of-A / end-of-B ids), box faces 0..5 (+x,-x,+y,-y,+z,-z), hull and box vertices their
-// index, cylinder rim points kFeatureRim + k.
+// Feature ids (stable while the same features touch): sphere 0; capsule-capsule end-of-A 0/1,
+// end-of-B 2/3, segment-segment 4; sphere-box region code (outside) or 27 + face (inside);
+// plane contacts the vertex index (box corner bits x,y,z; capsule end 0 = -Y), cylinder rim
+// points kFeatureRim + k.
 inline constexpr uint32_t kFeatureRim = 0x100;
 
 bool collide_sphere_sphere(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,

@@ -1,0 +1,252 @@
+// GJK distance (Gilbert, Johnson, Keerthi 1988) on the support of the Minkowski difference, with
+// the signed-volumes sub-algorithm of Montanari, Petrella, Mezzetti (2017) for the simplex.
+#include "narrowphase/gjk.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "narrowphase/minkowski.hpp"
+
+namespace elan::detail {
+namespace {
+
+constexpr Real kEps = std::numeric_limits<Real>::epsilon();
+// Relative gap ||v||^2 - v.w <= kRelTol ||v||^2 bounds the distance's relative error by kRelTol
+// (van den Bergen 2003, 4.3.4); a few hundred ulps above the rounding of the dot products.
+constexpr Real kRelTol = sizeof(Real) == 4 ? Real(1e-5) : Real(1e-10);
+// Origin within this fraction of the simplex's size counts as on it: overlap (touching).
+constexpr Real kOnSimplex = 100 * kEps;
+constexpr int kMaxIterations = 64;
+
+bool same_sign(Real a, Real b) {
+  return (a > 0 && b > 0) || (a < 0 && b < 0);
+}
+
+int largest_axis(const Vec3& v) {
+  const Vec3 a = v.cwiseAbs();
+  return a.x() >= a.y() ? (a.x() >= a.z() ? 0 : 2) : (a.y() >= a.z() ? 1 : 2);
+}
+
+// Closest point of a sub-simplex to the origin: indices into the caller's vertices and weights.
+struct SubSimplex {
+  int count = 0;
+  int index[4] = {0, 0, 0, 0};
+  Real lambda[4] = {0, 0, 0, 0};
+  Vec3 v = Vec3::Zero();
+};
+
+void set_vertex(SubSimplex& r, const Vec3* w, int i) {
+  r.count = 1;
+  r.index[0] = i;
+  r.lambda[0] = 1;
+  r.v = w[i];
+}
+
+// Segment: barycentric weights from the 1D coordinates along the axis of largest extent, which
+// keeps the signs of the weights exact enough to pick the right Voronoi region (Montanari S1D).
+void solve_segment(const Vec3* w, int i0, int i1, SubSimplex& r) {
+  const Vec3& s1 = w[i0];
+  const Vec3& s2 = w[i1];
+  const Vec3 t = s2 - s1;
+  const Real tt = t.squaredNorm();
+  if (!(tt > 0)) return set_vertex(r, w, i0);
+  const Vec3 p0 = s1 - t * (s1.dot(t) / tt);
+  const int k = largest_axis(t);
+  const Real mu = s1[k] - s2[k];
+  const Real c1 = p0[k] - s2[k];  // weight of s1, times mu
+  const Real c2 = s1[k] - p0[k];  // weight of s2, times mu
+  if (same_sign(mu, c1) && same_sign(mu, c2)) {
+    r.count = 2;
+    r.index[0] = i0;
+    r.index[1] = i1;
+    r.lambda[0] = c1 / mu;
+    r.lambda[1] = c2 / mu;
+    r.v = r.lambda[0] * s1 + r.lambda[1] * s2;
+    return;
+  }
+  set_vertex(r, w, same_sign(mu, c2) ? i1 : i0);
+}
+
+// Triangle: project the origin on the plane, then signed areas in the coordinate plane where the
+// triangle's projection is largest (Montanari S2D). Regions outside an edge recurse to that edge;
+// a degenerate triangle tries all three edges.
+void solve_triangle(const Vec3* w, int i0, int i1, int i2, SubSimplex& r) {
+  const Vec3& s1 = w[i0];
+  const Vec3& s2 = w[i1];
+  const Vec3& s3 = w[i2];
+  const Vec3 n = (s2 - s1).cross(s3 - s1);
+  const Real nn = n.squaredNorm();
+  Real c[3] = {0, 0, 0};
+  Real mu = 0;
+  if (nn > 0) {
+    const Vec3 p0 = n * (s1.dot(n) / nn);
+    const int k = largest_axis(n);
+    const int x = (k + 1) % 3;
+    const int y = (k + 2) % 3;
+    // Twice the signed area of (p, q, s) projected on axes (x, y); cyclic axes keep the sign of
+    // n[k].
+    auto area = [x, y](const Vec3& p, const Vec3& q, const Vec3& s) {
+      return (q[x] - p[x]) * (s[y] - p[y]) - (q[y] - p[y]) * (s[x] - p[x]);
+    };
+    mu = area(s1, s2, s3);
+    c[0] = area(p0, s2, s3);
+    c[1] = area(s1, p0, s3);
+    c[2] = area(s1, s2, p0);
+    if (same_sign(mu, c[0]) && same_sign(mu, c[1]) && same_sign(mu, c[2])) {
+      r.count = 3;
+      r.index[0] = i0;
+      r.index[1] = i1;
+      r.index[2] = i2;
+      for (int j = 0; j < 3; ++j) r.lambda[j] = c[j] / mu;
+      r.v = r.lambda[0] * s1 + r.lambda[1] * s2 + r.lambda[2] * s3;
+      return;
+    }
+  }
+  const int ids[3] = {i0, i1, i2};
+  Real best = std::numeric_limits<Real>::infinity();
+  for (int j = 0; j < 3; ++j) {
+    if (nn > 0 && same_sign(mu, c[j])) continue;
+    SubSimplex e;
+    solve_segment(w, ids[(j + 1) % 3], ids[(j + 2) % 3], e);
+    const Real d = e.v.squaredNorm();
+    if (d < best) best = d, r = e;
+  }
+}
+
+// Tetrahedron: signed volumes with the origin replacing each vertex give the barycentric weights
+// (Montanari S3D). All of one sign: origin inside. Otherwise the closest point lies on a face
+// whose weight has the wrong sign; a flat tetrahedron tries all four faces.
+void solve_tetrahedron(const Vec3* w, SubSimplex& r) {
+  const Vec3 &s1 = w[0], &s2 = w[1], &s3 = w[2], &s4 = w[3];
+  const Real c[4] = {s2.dot(s3.cross(s4)), -s1.dot((s3 - s1).cross(s4 - s1)),
+                     (s2 - s1).dot((-s1).cross(s4 - s1)), (s2 - s1).dot((s3 - s1).cross(-s1))};
+  const Real mu = c[0] + c[1] + c[2] + c[3];
+  if (same_sign(mu, c[0]) && same_sign(mu, c[1]) && same_sign(mu, c[2]) && same_sign(mu, c[3])) {
+    r.count = 4;
+    for (int j = 0; j < 4; ++j) r.index[j] = j, r.lambda[j] = c[j] / mu;
+    r.v = Vec3::Zero();
+    return;
+  }
+  Real best = std::numeric_limits<Real>::infinity();
+  for (int j = 0; j < 4; ++j) {
+    if (same_sign(mu, c[j])) continue;
+    SubSimplex f;
+    solve_triangle(w, (j + 1) % 4, (j + 2) % 4, (j + 3) % 4, f);
+    const Real d = f.v.squaredNorm();
+    if (d < best) best = d, r = f;
+  }
+}
+
+SubSimplex solve_simplex(const Simplex& s) {
+  Vec3 w[4];
+  for (int i = 0; i < s.count; ++i) w[i] = s.v[i].w;
+  SubSimplex r;
+  switch (s.count) {
+    case 1:
+      set_vertex(r, w, 0);
+      break;
+    case 2:
+      solve_segment(w, 0, 1, r);
+      break;
+    case 3:
+      solve_triangle(w, 0, 1, 2, r);
+      break;
+    default:
+      solve_tetrahedron(w, r);
+      break;
+  }
+  return r;
+}
+
+void witness_points(const Simplex& s, Vec3& pa, Vec3& pb) {
+  pa = Vec3::Zero();
+  pb = Vec3::Zero();
+  for (int i = 0; i < s.count; ++i) pa += s.lambda[i] * s.v[i].a, pb += s.lambda[i] * s.v[i].b;
+}
+
+}  // namespace
+
+PlacedShape place(const Shape& s, const Transform& x, bool include_radius) {
+  return PlacedShape{&s, x.rotation.toRotationMatrix(), x.position, include_radius};
+}
+
+Real core_radius(const Shape& s) {
+  return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ? s.radius : Real(0);
+}
+
+Vec3 support_world(const PlacedShape& p, const Vec3& d) {
+  const Shape& s = *p.shape;
+  const Vec3 dl = p.rotation.transpose() * d;
+  Vec3 local;
+  switch (s.type) {
+    case ShapeType::Sphere:
+      local = Vec3::Zero();
+      break;
+    case ShapeType::Capsule:
+      local = Vec3(0, dl.y() >= 0 ? s.half_height : -s.half_height, 0);
+      break;
+    default:
+      return p.rotation * support(s, dl) + p.position;
+  }
+  Vec3 out = p.rotation * local + p.position;
+  // A rounded shape is its core swept by a sphere: the sphere's support adds r d/|d|.
+  if (p.include_radius) {
+    const Real len = d.norm();
+    if (len > 0) out += d * (s.radius / len);
+  }
+  return out;
+}
+
+GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
+                     Simplex& s) {
+  GjkResult result;
+  // v is the current closest point of the simplex to the origin; GJK searches along -v. A
+  // direction from A to B is -v for separated shapes (v ~ a - b), so it seeds the search.
+  Vec3 d = initial_direction;
+  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
+  if (!(d.squaredNorm() > 0)) d = Vec3::UnitY();
+  s.count = 1;
+  s.v[0] = support_minkowski(a, b, d);
+  s.lambda[0] = 1;
+  Vec3 v = s.v[0].w;
+  Real vv = v.squaredNorm();
+  for (int iter = 0; iter < kMaxIterations; ++iter) {
+    result.iterations = iter + 1;
+    Real max_ww = 0;
+    for (int i = 0; i < s.count; ++i) max_ww = std::max(max_ww, s.v[i].w.squaredNorm());
+    if (vv <= kOnSimplex * kOnSimplex * max_ww) {
+      result.overlap = true;
+      break;
+    }
+    const SimplexVertex w = support_minkowski(a, b, -v);
+    if (vv - v.dot(w.w) <= kRelTol * vv) break;
+    bool repeated = false;
+    for (int i = 0; i < s.count; ++i) repeated = repeated || s.v[i].w == w.w;
+    if (repeated) break;
+    Simplex next = s;
+    next.v[next.count++] = w;
+    const SubSimplex r = solve_simplex(next);
+    // Rounding can make the new closest point no closer; keep the previous simplex then.
+    if (r.count < 4 && !(r.v.squaredNorm() < vv)) break;
+    s.count = r.count;
+    for (int i = 0; i < r.count; ++i) s.v[i] = next.v[r.index[i]], s.lambda[i] = r.lambda[i];
+    v = r.v;
+    vv = v.squaredNorm();
+    if (r.count == 4) {
+      result.overlap = true;
+      break;
+    }
+  }
+  witness_points(s, result.point_a, result.point_b);
+  result.distance = result.overlap ? Real(0) : std::sqrt(vv);
+  return result;
+}
+
+GjkResult gjk_distance(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                       bool include_radius, const Vec3* initial_direction) {
+  Simplex s;
+  return gjk_placed(place(a, xa, include_radius), place(b, xb, include_radius),
+                    initial_direction ? *initial_direction : Vec3::Zero(), s);
+}
+
+}  // namespace elan::detail

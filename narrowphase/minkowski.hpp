@@ -1,0 +1,53 @@
+// Internal to GJK/EPA: support of the Minkowski difference A - B of two placed shapes (core or
+// full), the simplex GJK hands to EPA, and the core-based penetration query.
+#pragma once
+
+#include "core/base/shape.hpp"
+#include "narrowphase/gjk.hpp"
+
+namespace elan::detail {
+
+// A shape placed in the world, rotation as a matrix so each support costs two mat-vec products.
+struct PlacedShape {
+  const Shape* shape;
+  Mat3 rotation;
+  Vec3 position;
+  bool include_radius;
+};
+
+PlacedShape place(const Shape& s, const Transform& x, bool include_radius);
+
+// Radius that rounds the core (sphere: point, capsule: segment); 0 for other shapes.
+Real core_radius(const Shape& s);
+
+// World support point of the placed shape in world direction d (need not be unit).
+Vec3 support_world(const PlacedShape& p, const Vec3& d);
+
+struct SimplexVertex {
+  Vec3 w;  // a - b: point of the Minkowski difference
+  Vec3 a;  // world support point on A
+  Vec3 b;  // world support point on B
+};
+
+struct Simplex {
+  SimplexVertex v[4];
+  Real lambda[4];  // barycentric weights of the closest point
+  int count = 0;
+};
+
+inline SimplexVertex support_minkowski(const PlacedShape& a, const PlacedShape& b, const Vec3& d) {
+  SimplexVertex s;
+  s.a = support_world(a, d);
+  s.b = support_world(b, -d);
+  s.w = s.a - s.b;
+  return s;
+}
+
+// GJK on two placed shapes; leaves the terminating simplex in `out_simplex`.
+GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
+                     Simplex& out_simplex);
+
+// EPA on the placed shapes from GJK's terminating simplex (origin in or on it).
+EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& simplex);
+
+}  // namespace elan::detail
