@@ -1,0 +1,128 @@
+// One step: bounds, pairs, collide, islands and sleep, colour, prepare, substeps, restitution,
+// finalize. Each stage is a function over the world's arrays; this file only orders them.
+#include "core/world/step.hpp"
+
+#include <chrono>
+
+#include "narrowphase/collide.hpp"
+
+namespace elan::detail {
+
+namespace {
+
+double ms_between(std::chrono::steady_clock::time_point a,
+                  std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+BroadKind broad_kind(const BodyStore& b, std::size_t i) {
+  switch (MotionType(b.motion[i])) {
+    case MotionType::Static:
+      return BroadKind::Static;
+    case MotionType::Kinematic:
+      return BroadKind::Kinematic;
+    case MotionType::Dynamic:
+      break;
+  }
+  return b.is_awake(i) && !(b.flags[i] & kFrozen) ? BroadKind::Awake : BroadKind::Sleeping;
+}
+
+}  // namespace
+
+void carry_sleeping_contacts(const BodyStore& bodies, std::span<const Manifold> previous,
+                             std::vector<Manifold>& contacts, std::vector<Manifold>& scratch) {
+  auto idle = [&](uint32_t i) {
+    return !bodies.is_dynamic(i) ? bodies.is_static(i)
+                                 : (!bodies.is_awake(i) && !(bodies.flags[i] & kFrozen));
+  };
+  bool any = false;
+  for (const Manifold& m : previous) {
+    if (m.point_count > 0 && idle(m.body_a) && idle(m.body_b)) {
+      any = true;
+      break;
+    }
+  }
+  if (!any) return;
+  scratch.clear();
+  std::size_t j = 0;
+  for (const Manifold& m : previous) {
+    if (!(m.point_count > 0 && idle(m.body_a) && idle(m.body_b))) continue;
+    while (j < contacts.size() && contacts[j].key < m.key) scratch.push_back(contacts[j++]);
+    if (j < contacts.size() && contacts[j].key == m.key) continue;  // found again this step
+    scratch.push_back(m);
+  }
+  while (j < contacts.size()) scratch.push_back(contacts[j++]);
+  contacts.swap(scratch);
+}
+
+uint32_t run_step(WorldState& w, Real dt) {
+  using clock = std::chrono::steady_clock;
+  StepStats& stats = w.stats;
+  BodyStore& bodies = w.bodies;
+  const std::size_t n = bodies.size();
+  const auto t0 = clock::now();
+
+  compute_bounds(bodies, w.shapes, dt, kBoundsMargin, w.bounds);
+  const auto t1 = clock::now();
+
+  w.broad_kind.resize(n);
+  w.is_plane.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    w.broad_kind[i] = uint8_t(broad_kind(bodies, i));
+    w.is_plane[i] = w.shapes[bodies.shape[i]].type == ShapeType::Plane;
+  }
+  BroadphaseInput input{&w.bounds, w.broad_kind, bodies.category, bodies.mask, w.is_plane};
+  if (w.def.broadphase == BroadphaseType::AllPairs) {
+    w.all_pairs.find_pairs(input, w.pairs);
+  } else {
+    w.sap.find_pairs(input, w.pairs);
+  }
+  const auto t2 = clock::now();
+
+  w.previous_contacts.swap(w.contacts);
+  CollideSettings collide_settings;
+  collide_settings.speculative_distance = kSpeculativeDistance;
+  collide_settings.dt = dt;
+  collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.previous_contacts, w.contact_slots,
+                w.contacts);
+  carry_sleeping_contacts(bodies, w.previous_contacts, w.contacts, w.contact_slots);
+  const auto t3 = clock::now();
+
+  SolveSettings solve_settings;
+  solve_settings.dt = dt;
+  solve_settings.substeps = w.def.substeps;
+  solve_settings.iterations = w.def.iterations;
+  solve_settings.gravity = w.def.gravity;
+  solve_settings.allow_sleep = w.def.allow_sleep;
+  solve_settings.participants = w.threads;
+  SolveStats solve_stats;
+  prepare_solve(bodies, w.contacts, solve_settings, w.solver, solve_stats);
+  const auto t4 = clock::now();
+  solve(bodies, w.contacts, solve_settings, w.solver);
+  const auto t5 = clock::now();
+  const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
+  const auto t6 = clock::now();
+
+  stats.pairs = w.pairs.size();
+  stats.manifolds = w.contacts.size();
+  stats.contacts = 0;
+  for (const Manifold& m : w.contacts) stats.contacts += std::size_t(m.point_count);
+  stats.awake = solve_stats.awake;
+  stats.colors = solve_stats.colors;
+  stats.overflow = solve_stats.overflow;
+  stats.status = status;
+  StepProfile& p = stats.profile;
+  p.bounds = ms_between(t0, t1);
+  p.pairs = ms_between(t1, t2);
+  p.collide = ms_between(t2, t3);
+  p.islands = solve_stats.islands_ms;
+  p.color = solve_stats.color_ms;
+  p.solve = ms_between(t4, t5);
+  p.ccd = 0;
+  p.finalize = ms_between(t5, t6);
+  p.total = ms_between(t0, t6);
+  ++w.step_count;
+  return status;
+}
+
+}  // namespace elan::detail

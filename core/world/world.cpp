@@ -1,0 +1,285 @@
+// The public World API: ids, validation of definitions, getters and setters, and step.
+#include "elan/world.hpp"
+
+#include <tbb/info.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/base/state_hash.hpp"
+#include "core/world/step.hpp"
+#include "core/world/world_state.hpp"
+
+namespace elan {
+
+using detail::WorldState;
+
+namespace {
+
+void check(bool ok, const char* field, const std::string& message) {
+  if (!ok) throw Error(field, message);
+}
+
+bool finite(const Vec3& v) {
+  return v.allFinite();
+}
+
+void validate(const WorldDef& def) {
+  check(finite(def.gravity), "gravity", "must be finite");
+  check(def.substeps >= 1 && def.substeps <= 64, "substeps", "must be in 1..64");
+  check(def.iterations >= 1 && def.iterations <= 64, "iterations", "must be in 1..64");
+  check(def.threads >= 0 && def.threads <= 1024, "threads", "must be in 0..1024");
+}
+
+int resolve_threads(int threads) {
+  return threads > 0 ? threads : std::max(1, tbb::info::default_concurrency());
+}
+
+std::size_t index_of(const WorldState& s, BodyId id) {
+  if (id.slot >= s.slot_index.size() || s.slot_generation[id.slot] != id.generation ||
+      s.slot_index[id.slot] == UINT32_MAX) {
+    throw Error("body", "invalid or destroyed body id");
+  }
+  return s.slot_index[id.slot];
+}
+
+}  // namespace
+
+World::World(const WorldDef& def) : state_(std::make_unique<WorldState>()) {
+  validate(def);
+  state_->def = def;
+  state_->threads = resolve_threads(def.threads);
+  state_->arena = std::make_unique<tbb::task_arena>(state_->threads);
+}
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+ShapeId World::create_shape(const ShapeDef& def) {
+  state_->shapes.push_back(detail::make_shape(def));
+  return ShapeId{uint32_t(state_->shapes.size() - 1)};
+}
+
+BodyId World::create_body(const BodyDef& def) {
+  WorldState& s = *state_;
+  check(!def.shape.is_null() && def.shape.index < s.shapes.size(), "shape", "invalid shape id");
+  const detail::Shape& shape = s.shapes[def.shape.index];
+  check(finite(def.position), "position", "must be finite");
+  check(def.orientation.coeffs().allFinite(), "orientation", "must be finite");
+  check(def.orientation.norm() > Real(1e-12), "orientation", "zero quaternion");
+  check(finite(def.linear_velocity), "linear_velocity", "must be finite");
+  check(finite(def.angular_velocity), "angular_velocity", "must be finite");
+  check(std::isfinite(def.friction) && def.friction >= 0, "friction", "must be finite and >= 0");
+  check(std::isfinite(def.restitution) && def.restitution >= 0, "restitution",
+        "must be finite and >= 0");
+  check(std::isfinite(def.linear_damping) && def.linear_damping >= 0, "linear_damping",
+        "must be finite and >= 0");
+  check(std::isfinite(def.angular_damping) && def.angular_damping >= 0, "angular_damping",
+        "must be finite and >= 0");
+  if (def.mass) {
+    check(std::isfinite(*def.mass) && *def.mass > 0, "mass", "must be finite and positive");
+  }
+  check(std::isfinite(def.density) && def.density > 0, "density", "must be finite and positive");
+  if (shape.type == ShapeType::Plane) {
+    check(def.motion == MotionType::Static, "motion", "a plane must be static");
+  }
+
+  const Quat q_user = def.orientation.normalized();
+  const std::size_t i = s.bodies.push_back();
+  detail::BodyStore& b = s.bodies;
+  // The store keeps the principal frame: centre of mass and principal axes.
+  b.set_position(i, def.position + q_user * shape.frame_position);
+  b.set_orientation(i, (q_user * shape.frame_rotation).normalized());
+  const bool moving = def.motion != MotionType::Static;
+  b.set_linear_velocity(i, moving ? def.linear_velocity : Vec3::Zero());
+  b.set_angular_velocity(i, moving ? def.angular_velocity : Vec3::Zero());
+  if (def.motion == MotionType::Dynamic) {
+    const Real mass = def.mass ? *def.mass : def.density * shape.volume;
+    check(std::isfinite(mass) && mass > 0, "mass", "computed mass is not positive");
+    b.inv_mass[i] = 1 / mass;
+    const Vec3 inertia = mass * shape.unit_inertia;
+    b.inv_ix[i] = 1 / inertia.x();
+    b.inv_iy[i] = 1 / inertia.y();
+    b.inv_iz[i] = 1 / inertia.z();
+  }
+  b.friction[i] = def.friction;
+  b.restitution[i] = def.restitution;
+  b.linear_damping[i] = def.linear_damping;
+  b.angular_damping[i] = def.angular_damping;
+  b.shape[i] = def.shape.index;
+  b.category[i] = def.category_bits;
+  b.mask[i] = def.mask_bits;
+  b.motion[i] = uint8_t(def.motion);
+  b.flags[i] =
+      (def.motion == MotionType::Static || (def.motion == MotionType::Dynamic && !def.awake))
+          ? 0
+          : detail::kAwake;
+
+  uint32_t slot;
+  if (!s.free_slots.empty()) {
+    slot = s.free_slots.back();
+    s.free_slots.pop_back();
+  } else {
+    slot = uint32_t(s.slot_index.size());
+    s.slot_index.push_back(UINT32_MAX);
+    s.slot_generation.push_back(0);
+  }
+  s.slot_index[slot] = uint32_t(i);
+  b.slot[i] = slot;
+  return BodyId{slot, s.slot_generation[slot]};
+}
+
+uint32_t World::step(Real dt) {
+  WorldState& s = *state_;
+  if (!(std::isfinite(dt) && dt > 0)) {
+    s.stats.status = kStepBadTimestep;
+    return kStepBadTimestep;
+  }
+  uint32_t status = 0;
+  s.arena->execute([&] { status = detail::run_step(s, dt); });
+  return status;
+}
+
+bool World::is_valid(BodyId id) const {
+  const WorldState& s = *state_;
+  return id.slot < s.slot_index.size() && s.slot_generation[id.slot] == id.generation &&
+         s.slot_index[id.slot] != UINT32_MAX;
+}
+
+std::size_t World::body_count() const {
+  return state_->bodies.size();
+}
+
+BodyId World::body_at(std::size_t index) const {
+  const WorldState& s = *state_;
+  if (index >= s.bodies.size()) throw Error("index", "body index out of range");
+  const uint32_t slot = s.bodies.slot[index];
+  return BodyId{slot, s.slot_generation[slot]};
+}
+
+Vec3 World::position(BodyId id) const {
+  const WorldState& s = *state_;
+  const std::size_t i = index_of(s, id);
+  const detail::Shape& shape = s.shapes[s.bodies.shape[i]];
+  return s.bodies.position(i) - orientation(id) * shape.frame_position;
+}
+
+Quat World::orientation(BodyId id) const {
+  const WorldState& s = *state_;
+  const std::size_t i = index_of(s, id);
+  const detail::Shape& shape = s.shapes[s.bodies.shape[i]];
+  return (s.bodies.orientation(i) * shape.frame_rotation.conjugate()).normalized();
+}
+
+Vec3 World::linear_velocity(BodyId id) const {
+  return state_->bodies.linear_velocity(index_of(*state_, id));
+}
+Vec3 World::angular_velocity(BodyId id) const {
+  return state_->bodies.angular_velocity(index_of(*state_, id));
+}
+Vec3 World::center_of_mass(BodyId id) const {
+  return state_->bodies.position(index_of(*state_, id));
+}
+Real World::mass(BodyId id) const {
+  const Real inv = state_->bodies.inv_mass[index_of(*state_, id)];
+  return inv > 0 ? 1 / inv : 0;
+}
+MotionType World::motion_type(BodyId id) const {
+  return MotionType(state_->bodies.motion[index_of(*state_, id)]);
+}
+bool World::is_awake(BodyId id) const {
+  const std::size_t i = index_of(*state_, id);
+  return state_->bodies.is_dynamic(i) && state_->bodies.is_awake(i);
+}
+
+void World::set_linear_velocity(BodyId id, const Vec3& v) {
+  check(finite(v), "linear_velocity", "must be finite");
+  const std::size_t i = index_of(*state_, id);
+  if (state_->bodies.is_static(i)) return;
+  state_->bodies.set_linear_velocity(i, v);
+  state_->bodies.flags[i] |= detail::kAwake;
+  state_->bodies.sleep_time[i] = 0;
+}
+
+void World::set_angular_velocity(BodyId id, const Vec3& w) {
+  check(finite(w), "angular_velocity", "must be finite");
+  const std::size_t i = index_of(*state_, id);
+  if (state_->bodies.is_static(i)) return;
+  state_->bodies.set_angular_velocity(i, w);
+  state_->bodies.flags[i] |= detail::kAwake;
+  state_->bodies.sleep_time[i] = 0;
+}
+
+const WorldDef& World::settings() const {
+  return state_->def;
+}
+
+void World::set_substeps(int substeps) {
+  check(substeps >= 1 && substeps <= 64, "substeps", "must be in 1..64");
+  state_->def.substeps = substeps;
+}
+void World::set_iterations(int iterations) {
+  check(iterations >= 1 && iterations <= 64, "iterations", "must be in 1..64");
+  state_->def.iterations = iterations;
+}
+void World::set_broadphase(BroadphaseType type) {
+  state_->def.broadphase = type;
+}
+void World::set_threads(int threads) {
+  check(threads >= 0 && threads <= 1024, "threads", "must be in 0..1024");
+  state_->def.threads = threads;
+  state_->threads = resolve_threads(threads);
+  state_->arena = std::make_unique<tbb::task_arena>(state_->threads);
+}
+
+const StepStats& World::last_step() const {
+  return state_->stats;
+}
+
+uint64_t World::state_hash() const {
+  return detail::hash_bodies(state_->bodies);
+}
+
+Real World::kinetic_energy() const {
+  const detail::BodyStore& b = state_->bodies;
+  double e = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (!b.is_dynamic(i) || b.inv_mass[i] == 0) continue;
+    const Vec3 w_body = b.orientation(i).conjugate() * b.angular_velocity(i);
+    const double rot = double(w_body.x()) * w_body.x() / b.inv_ix[i] +
+                       double(w_body.y()) * w_body.y() / b.inv_iy[i] +
+                       double(w_body.z()) * w_body.z() / b.inv_iz[i];
+    e += 0.5 * double(b.linear_velocity(i).squaredNorm()) / b.inv_mass[i] + 0.5 * rot;
+  }
+  return Real(e);
+}
+
+Vec3 World::linear_momentum() const {
+  const detail::BodyStore& b = state_->bodies;
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (!b.is_dynamic(i)) continue;
+    p += b.linear_velocity(i).cast<double>() / double(b.inv_mass[i]);
+  }
+  return p.cast<Real>();
+}
+
+Vec3 World::angular_momentum() const {
+  const detail::BodyStore& b = state_->bodies;
+  Eigen::Vector3d l = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (!b.is_dynamic(i)) continue;
+    const double m = 1.0 / double(b.inv_mass[i]);
+    const Eigen::Vector3d x = b.position(i).cast<double>();
+    const Eigen::Vector3d v = b.linear_velocity(i).cast<double>();
+    const Eigen::Quaterniond q = b.orientation(i).cast<double>();
+    const Eigen::Vector3d w_body = q.conjugate() * b.angular_velocity(i).cast<double>();
+    const Eigen::Vector3d l_body(w_body.x() / b.inv_ix[i], w_body.y() / b.inv_iy[i],
+                                 w_body.z() / b.inv_iz[i]);
+    l += m * x.cross(v) + q * l_body;
+  }
+  return l.cast<Real>();
+}
+
+}  // namespace elan

@@ -1,0 +1,58 @@
+// WorldState: everything a World owns, laid out as the step's stages read and write it.
+#pragma once
+
+#include <tbb/task_arena.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "broadphase/bounds.hpp"
+#include "broadphase/find_pairs.hpp"
+#include "core/base/body_store.hpp"
+#include "core/base/contact.hpp"
+#include "core/base/shape.hpp"
+#include "elan/defs.hpp"
+#include "elan/profile.hpp"
+#include "solver/solve.hpp"
+
+namespace elan::detail {
+
+// Margin added to every bounding box, m: a little more than the speculative distance so pairs
+// about to touch are found before they do.
+inline constexpr Real kBoundsMargin = Real(0.04);
+inline constexpr Real kSpeculativeDistance = Real(0.02);
+
+struct WorldState {
+  WorldDef def;
+  int threads = 1;  // resolved worker count
+  std::unique_ptr<tbb::task_arena> arena;
+
+  BodyStore bodies;
+  std::vector<Shape> shapes;
+
+  // Ids: slot -> dense index and generation; freed slots are reused last-freed first.
+  std::vector<uint32_t> slot_index;
+  std::vector<uint32_t> slot_generation;
+  std::vector<uint32_t> free_slots;
+
+  // Broadphase.
+  BoundsColumns bounds;
+  std::vector<uint8_t> broad_kind;
+  std::vector<uint8_t> is_plane;
+  AllPairs all_pairs;
+  SweepAndPrune sap;
+  std::vector<uint64_t> pairs;
+
+  // Contacts: this step's, sorted by key; last step's for warm starting; per-pair slots.
+  std::vector<Manifold> contacts;
+  std::vector<Manifold> previous_contacts;
+  std::vector<Manifold> contact_slots;
+
+  SolverState solver;
+  StepStats stats;
+  uint32_t reported_status = 0;  // flags already reported once
+  uint64_t step_count = 0;
+};
+
+}  // namespace elan::detail

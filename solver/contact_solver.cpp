@@ -1,0 +1,222 @@
+// Soft-step contact solver: non-penetration with soft position correction, Coulomb friction with
+// a circular cone, restitution from the pre-solve approach speed.
+#include "solver/contact_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace elan::detail {
+
+SymMat3 rotate_diagonal(const Quat& q, const Vec3& d) {
+  const Mat3 r = q.toRotationMatrix();
+  SymMat3 m;
+  // (R D R^T)_ij = sum_k R_ik d_k R_jk
+  m.xx = r(0, 0) * d.x() * r(0, 0) + r(0, 1) * d.y() * r(0, 1) + r(0, 2) * d.z() * r(0, 2);
+  m.yy = r(1, 0) * d.x() * r(1, 0) + r(1, 1) * d.y() * r(1, 1) + r(1, 2) * d.z() * r(1, 2);
+  m.zz = r(2, 0) * d.x() * r(2, 0) + r(2, 1) * d.y() * r(2, 1) + r(2, 2) * d.z() * r(2, 2);
+  m.xy = r(0, 0) * d.x() * r(1, 0) + r(0, 1) * d.y() * r(1, 1) + r(0, 2) * d.z() * r(1, 2);
+  m.xz = r(0, 0) * d.x() * r(2, 0) + r(0, 1) * d.y() * r(2, 1) + r(0, 2) * d.z() * r(2, 2);
+  m.yz = r(1, 0) * d.x() * r(2, 0) + r(1, 1) * d.y() * r(2, 1) + r(1, 2) * d.z() * r(2, 2);
+  return m;
+}
+
+Softness make_softness(Real hertz, Real damping_ratio, Real h) {
+  if (hertz == 0) return {0, 1, 0};
+  // Catto, "Solver2D" (2024): a damped spring of angular frequency omega integrated implicitly
+  // over h becomes bias_rate = omega / (2 zeta + h omega), mass_scale = a2 / (1 + a2),
+  // impulse_scale = 1 / (1 + a2) with a2 = h omega (2 zeta + h omega).
+  const Real omega = Real(2 * M_PI) * hertz;
+  const Real a1 = 2 * damping_ratio + h * omega;
+  const Real a2 = h * omega * a1;
+  const Real a3 = 1 / (1 + a2);
+  return {omega / a1, a2 * a3, a3};
+}
+
+namespace {
+
+// Deterministic tangent basis from the normal (Erin Catto's b2ComputeBasis idea: pick the axis
+// least aligned with n).
+void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
+  if (std::abs(n.x()) >= Real(0.57735027)) {
+    t1 = Vec3(n.y(), -n.x(), 0);
+  } else {
+    t1 = Vec3(0, n.z(), -n.y());
+  }
+  t1.normalize();
+  t2 = n.cross(t1);
+}
+
+inline Real effective_mass(Real ma, Real mb, const SymMat3& ia, const SymMat3& ib, const Vec3& ra,
+                           const Vec3& rb, const Vec3& dir) {
+  const Vec3 rna = ra.cross(dir);
+  const Vec3 rnb = rb.cross(dir);
+  const Real k = ma + mb + rna.dot(ia * rna) + rnb.dot(ib * rnb);
+  return k > 0 ? 1 / k : 0;
+}
+
+inline Vec3 relative_velocity(const SolverBody& a, const SolverBody& b, const Vec3& ra,
+                              const Vec3& rb) {
+  return b.v + b.w.cross(rb) - a.v - a.w.cross(ra);
+}
+
+// Applies impulse p at the anchors: -p to A, +p to B. Static and kinematic sides are read-only.
+inline void apply_impulse(ContactConstraint& c, SolverBody& a, SolverBody& b, const Vec3& ra,
+                          const Vec3& rb, const Vec3& p) {
+  if (c.write_a) {
+    a.v -= c.inv_mass_a * p;
+    a.w -= c.inv_i_a * ra.cross(p);
+  }
+  if (c.write_b) {
+    b.v += c.inv_mass_b * p;
+    b.w += c.inv_i_b * rb.cross(p);
+  }
+}
+
+}  // namespace
+
+void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
+                     std::span<const uint32_t> packet_of, const ContactSolverContext& ctx,
+                     ContactConstraint& c) {
+  const uint32_t a = m.body_a, b = m.body_b;
+  c.packet_a = packet_of[a];
+  c.packet_b = packet_of[b];
+  c.manifold = manifold_index;
+  c.count = m.point_count;
+  c.write_a = bodies.is_dynamic(a);
+  c.write_b = bodies.is_dynamic(b);
+  const SolverBodyParams& pa = ctx.params[c.packet_a];
+  const SolverBodyParams& pb = ctx.params[c.packet_b];
+  c.inv_mass_a = c.write_a ? pa.inv_mass : 0;
+  c.inv_mass_b = c.write_b ? pb.inv_mass : 0;
+  c.inv_i_a = c.write_a ? pa.inv_inertia : SymMat3{};
+  c.inv_i_b = c.write_b ? pb.inv_inertia : SymMat3{};
+  c.friction = std::sqrt(bodies.friction[a] * bodies.friction[b]);
+  c.restitution = std::max(bodies.restitution[a], bodies.restitution[b]);
+  c.softness = (c.write_a && c.write_b) ? ctx.contact_softness : ctx.static_softness;
+  c.normal = m.normal;
+  tangent_basis(c.normal, c.tangent[0], c.tangent[1]);
+  const SolverBody& sa = ctx.bodies[c.packet_a];
+  const SolverBody& sb = ctx.bodies[c.packet_b];
+  for (int i = 0; i < c.count; ++i) {
+    const ContactPoint& mp = m.points[i];
+    ConstraintPoint& cp = c.points[i];
+    cp.ra = mp.anchor_a;
+    cp.rb = mp.anchor_b;
+    cp.adjusted_separation = mp.separation - (cp.rb - cp.ra).dot(c.normal);
+    cp.normal_mass =
+        effective_mass(c.inv_mass_a, c.inv_mass_b, c.inv_i_a, c.inv_i_b, cp.ra, cp.rb, c.normal);
+    for (int t = 0; t < 2; ++t) {
+      cp.tangent_mass[t] = effective_mass(c.inv_mass_a, c.inv_mass_b, c.inv_i_a, c.inv_i_b, cp.ra,
+                                          cp.rb, c.tangent[t]);
+      cp.tangent_impulse[t] = mp.tangent_impulse[t];
+    }
+    cp.normal_impulse = mp.normal_impulse;
+    cp.max_normal_impulse = 0;
+    cp.relative_velocity = relative_velocity(sa, sb, cp.ra, cp.rb).dot(c.normal);
+  }
+}
+
+void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
+  for (uint32_t i = begin; i < end; ++i) {
+    ContactConstraint& c = ctx.constraints[i];
+    SolverBody& a = ctx.bodies[c.packet_a];
+    SolverBody& b = ctx.bodies[c.packet_b];
+    for (int k = 0; k < c.count; ++k) {
+      const ConstraintPoint& cp = c.points[k];
+      const Vec3 p = cp.normal_impulse * c.normal + cp.tangent_impulse[0] * c.tangent[0] +
+                     cp.tangent_impulse[1] * c.tangent[1];
+      apply_impulse(c, a, b, cp.ra, cp.rb, p);
+    }
+  }
+}
+
+void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, bool use_bias) {
+  for (uint32_t i = begin; i < end; ++i) {
+    ContactConstraint& c = ctx.constraints[i];
+    SolverBody& a = ctx.bodies[c.packet_a];
+    SolverBody& b = ctx.bodies[c.packet_b];
+    const Vec3 n = c.normal;
+    const Vec3 dp = b.dp - a.dp;
+    for (int k = 0; k < c.count; ++k) {
+      ConstraintPoint& cp = c.points[k];
+      // Current separation from the pose change of both bodies since the step began, with the
+      // anchors carried by the rotation (Box2D v3): s = dot(d, n) + adjusted_separation.
+      const Vec3 d = dp + (b.dq * cp.rb) - (a.dq * cp.ra);
+      const Real s = d.dot(n) + cp.adjusted_separation;
+      Real bias = 0, mass_scale = 1, impulse_scale = 0;
+      if (s > 0) {
+        bias = s * ctx.inv_h;  // speculative: allow closing the gap within this substep only
+      } else if (use_bias) {
+        bias = std::max(c.softness.bias_rate * s, -ctx.max_push_velocity);
+        mass_scale = c.softness.mass_scale;
+        impulse_scale = c.softness.impulse_scale;
+      }
+      const Real vn = relative_velocity(a, b, cp.ra, cp.rb).dot(n);
+      Real impulse = -cp.normal_mass * mass_scale * (vn + bias) - impulse_scale * cp.normal_impulse;
+      const Real updated = std::max(cp.normal_impulse + impulse, Real(0));
+      impulse = updated - cp.normal_impulse;
+      cp.normal_impulse = updated;
+      cp.max_normal_impulse = std::max(cp.max_normal_impulse, impulse);
+      apply_impulse(c, a, b, cp.ra, cp.rb, impulse * n);
+    }
+    for (int k = 0; k < c.count; ++k) {
+      ConstraintPoint& cp = c.points[k];
+      const Vec3 dv = relative_velocity(a, b, cp.ra, cp.rb);
+      // Coulomb friction with a circular cone: solve both tangents, then clamp the vector
+      // impulse to friction * normal impulse.
+      Real t0 = cp.tangent_impulse[0] - cp.tangent_mass[0] * dv.dot(c.tangent[0]);
+      Real t1 = cp.tangent_impulse[1] - cp.tangent_mass[1] * dv.dot(c.tangent[1]);
+      const Real max_friction = c.friction * cp.normal_impulse;
+      const Real len2 = t0 * t0 + t1 * t1;
+      if (len2 > max_friction * max_friction) {
+        const Real scale = len2 > 0 ? max_friction / std::sqrt(len2) : 0;
+        t0 *= scale;
+        t1 *= scale;
+      }
+      const Vec3 p =
+          (t0 - cp.tangent_impulse[0]) * c.tangent[0] + (t1 - cp.tangent_impulse[1]) * c.tangent[1];
+      cp.tangent_impulse[0] = t0;
+      cp.tangent_impulse[1] = t1;
+      apply_impulse(c, a, b, cp.ra, cp.rb, p);
+    }
+  }
+}
+
+void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
+  for (uint32_t i = begin; i < end; ++i) {
+    ContactConstraint& c = ctx.constraints[i];
+    if (c.restitution == 0) continue;
+    SolverBody& a = ctx.bodies[c.packet_a];
+    SolverBody& b = ctx.bodies[c.packet_b];
+    for (int k = 0; k < c.count; ++k) {
+      ConstraintPoint& cp = c.points[k];
+      // Only points that approached faster than the threshold and actually pushed bounce.
+      if (cp.relative_velocity > -ctx.restitution_threshold || cp.max_normal_impulse == 0) {
+        continue;
+      }
+      const Real vn = relative_velocity(a, b, cp.ra, cp.rb).dot(c.normal);
+      Real impulse = -cp.normal_mass * (vn + c.restitution * cp.relative_velocity);
+      const Real updated = std::max(cp.normal_impulse + impulse, Real(0));
+      impulse = updated - cp.normal_impulse;
+      cp.normal_impulse = updated;
+      cp.max_normal_impulse = std::max(cp.max_normal_impulse, impulse);
+      apply_impulse(c, a, b, cp.ra, cp.rb, impulse * c.normal);
+    }
+  }
+}
+
+void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t end,
+                    std::span<Manifold> manifolds) {
+  for (uint32_t i = begin; i < end; ++i) {
+    const ContactConstraint& c = ctx.constraints[i];
+    Manifold& m = manifolds[c.manifold];
+    for (int k = 0; k < c.count; ++k) {
+      m.points[k].normal_impulse = c.points[k].normal_impulse;
+      m.points[k].tangent_impulse[0] = c.points[k].tangent_impulse[0];
+      m.points[k].tangent_impulse[1] = c.points[k].tangent_impulse[1];
+      m.points[k].max_normal_impulse = c.points[k].max_normal_impulse;
+    }
+  }
+}
+
+}  // namespace elan::detail

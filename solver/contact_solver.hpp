@@ -1,0 +1,44 @@
+// Contact constraints of the soft step (Box2D v3 "solver2d" soft step, Catto 2024): prepare once
+// per step, then per substep warm start, solve with bias, relax without bias; restitution and
+// impulse storage once per step.
+//
+// Reads: manifolds, body packets and parameters. Writes: constraint impulses and the packets of
+// the dynamic bodies a constraint touches. Threading: the functions take a range of constraints;
+// a caller runs ranges of one colour in parallel (no two constraints of a colour share a dynamic
+// body), colours and the overflow one after another.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "core/base/body_store.hpp"
+#include "core/base/contact.hpp"
+#include "solver/solver_types.hpp"
+
+namespace elan::detail {
+
+struct ContactSolverContext {
+  std::span<SolverBody> bodies;  // packets (0 = static dummy)
+  std::span<const SolverBodyParams> params;
+  std::span<ContactConstraint> constraints;  // grouped by colour
+  Real h = 0;                                // s, substep
+  Real inv_h = 0;
+  Softness contact_softness;       // dynamic vs dynamic
+  Softness static_softness;        // against a static or kinematic body (stiffer)
+  Real max_push_velocity = 3;      // m/s: cap of the position-correction speed
+  Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
+};
+
+// Builds constraint `out` from manifold `m` (index `manifold_index`).
+void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
+                     std::span<const uint32_t> packet_of, const ContactSolverContext& ctx,
+                     ContactConstraint& out);
+
+void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
+void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, bool use_bias);
+void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
+// Copies accumulated impulses back into the manifolds (for next step's warm start and events).
+void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t end,
+                    std::span<Manifold> manifolds);
+
+}  // namespace elan::detail

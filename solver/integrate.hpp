@@ -1,0 +1,29 @@
+// Integration of the body packets over one substep: velocities from gravity, forces and damping;
+// positions and orientations from velocities, keeping the angular momentum of a torque-free body.
+//
+// Reads/writes: packets [begin, end). Parallel over fixed blocks of packets; indexed writes.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "core/base/body_store.hpp"
+#include "solver/solver_types.hpp"
+
+namespace elan::detail {
+
+// v += h (g + F/m), w += h I^-1 tau, then implicit damping v /= (1 + h d) (dv/dt = -d v).
+void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
+                          Real h, uint32_t begin, uint32_t end);
+
+// dp += h v; dq advanced by the exact rotation of w over h. For anisotropic dynamic bodies the
+// angular velocity is then re-derived from the conserved world angular momentum,
+// w' = I(q')^-1 I(q) w (the body spins "from momentum": L is unchanged by the rotation update,
+// so a torque-free body conserves L and shows the intermediate-axis flip).
+void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
+                         const BodyStore& bodies, Real h, uint32_t begin, uint32_t end);
+
+// Rotation by angle |w| h about w, as a unit quaternion (exact exponential map).
+Quat rotation_from_angular_velocity(const Vec3& w, Real h);
+
+}  // namespace elan::detail

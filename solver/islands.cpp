@@ -1,0 +1,95 @@
+// Union-find islands over touching contacts, and island sleep/wake.
+#include "solver/islands.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace elan::detail {
+
+namespace {
+uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];  // path halving
+    i = parent[i];
+  }
+  return i;
+}
+}  // namespace
+
+std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts,
+                           const IslandSettings& settings, IslandScratch& s) {
+  const std::size_t n = bodies.size();
+  s.parent.resize(n);
+  for (std::size_t i = 0; i < n; ++i) s.parent[i] = uint32_t(i);
+  for (const Manifold& m : contacts) {
+    if (m.point_count == 0) continue;
+    if (!bodies.is_dynamic(m.body_a) || !bodies.is_dynamic(m.body_b)) continue;
+    const uint32_t ra = find_root(s.parent, m.body_a);
+    const uint32_t rb = find_root(s.parent, m.body_b);
+    // determinism: link toward the lower index, so the root is the island's lowest body
+    // whatever the contact order.
+    if (ra < rb)
+      s.parent[rb] = ra;
+    else if (rb < ra)
+      s.parent[ra] = rb;
+  }
+
+  s.island_sleep_time.assign(n, std::numeric_limits<Real>::max());
+  s.island_awake.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!bodies.is_dynamic(i) || (bodies.flags[i] & kFrozen)) continue;
+    const uint32_t r = find_root(s.parent, uint32_t(i));
+    s.parent[i] = r;
+    if (bodies.is_awake(i)) {
+      s.island_awake[r] = 1;
+      s.island_sleep_time[r] = std::min(s.island_sleep_time[r], bodies.sleep_time[i]);
+    }
+  }
+  // A moving kinematic body keeps what it touches awake.
+  for (const Manifold& m : contacts) {
+    if (m.point_count == 0) continue;
+    const uint32_t k = m.body_b;  // a kinematic body of a pair is B
+    if (bodies.motion[k] != uint8_t(MotionType::Kinematic)) continue;
+    const bool moving = bodies.vx[k] != 0 || bodies.vy[k] != 0 || bodies.vz[k] != 0 ||
+                        bodies.wx[k] != 0 || bodies.wy[k] != 0 || bodies.wz[k] != 0;
+    if (!moving || !bodies.is_dynamic(m.body_a)) continue;
+    const uint32_t r = s.parent[m.body_a];
+    s.island_awake[r] = 1;
+    s.island_sleep_time[r] = 0;
+  }
+
+  std::size_t islands = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!bodies.is_dynamic(i) || (bodies.flags[i] & kFrozen)) continue;
+    const uint32_t r = s.parent[i];
+    if (r == i) ++islands;
+    if (!s.island_awake[r]) continue;
+    if (settings.allow_sleep && s.island_sleep_time[r] >= settings.time_to_sleep) {
+      bodies.flags[i] &= uint8_t(~kAwake);
+      bodies.vx[i] = bodies.vy[i] = bodies.vz[i] = 0;
+      bodies.wx[i] = bodies.wy[i] = bodies.wz[i] = 0;
+    } else if (!bodies.is_awake(i)) {
+      bodies.flags[i] |= kAwake;  // woken by its island
+      bodies.sleep_time[i] = 0;
+    }
+  }
+  return islands;
+}
+
+void update_sleep_timers(BodyStore& bodies, std::span<const Shape> shapes, Real dt,
+                         Real threshold) {
+  const std::size_t n = bodies.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!bodies.is_dynamic(i) || !bodies.is_awake(i)) continue;
+    const Real v2 =
+        bodies.vx[i] * bodies.vx[i] + bodies.vy[i] * bodies.vy[i] + bodies.vz[i] * bodies.vz[i];
+    const Real w2 =
+        bodies.wx[i] * bodies.wx[i] + bodies.wy[i] * bodies.wy[i] + bodies.wz[i] * bodies.wz[i];
+    const Real r = shapes[bodies.shape[i]].bounding_radius;
+    const Real speed2 = std::max(v2, w2 * r * r);
+    bodies.sleep_time[i] = speed2 > threshold * threshold ? Real(0) : bodies.sleep_time[i] + dt;
+  }
+}
+
+}  // namespace elan::detail

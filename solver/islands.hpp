@@ -1,0 +1,41 @@
+// Stage 4, islands and sleep: bodies linked by touching contacts form islands (union-find that
+// links toward the lower index, as Jolt does); an island sleeps when all its bodies have been
+// slow for a while, and wakes as a whole when any of its bodies is awake or touched by a moving
+// kinematic body.
+//
+// Reads: contacts, motion types, flags, sleep timers, kinematic velocities.
+// Writes: awake flags, sleep timers and the velocities of bodies put to sleep (zeroed).
+// Serial: union-find is cheap next to the solve, and its result does not depend on link order.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/base/body_store.hpp"
+#include "core/base/contact.hpp"
+#include "core/base/shape.hpp"
+
+namespace elan::detail {
+
+struct IslandScratch {
+  std::vector<uint32_t> parent;
+  std::vector<Real> island_sleep_time;
+  std::vector<uint8_t> island_awake;
+};
+
+struct IslandSettings {
+  bool allow_sleep = true;
+  Real time_to_sleep = Real(0.5);  // s an island must stay slow before it sleeps
+};
+
+// Returns the number of islands with more than one body (for the profile).
+std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts,
+                           const IslandSettings& settings, IslandScratch& scratch);
+
+// Updates each awake dynamic body's sleep timer from its velocity after the step: the timer
+// grows by dt while max(|v|, |w| * bounding_radius) stays under `threshold` m/s (Box2D v3's
+// sleep velocity), and resets otherwise.
+void update_sleep_timers(BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real threshold);
+
+}  // namespace elan::detail

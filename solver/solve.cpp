@@ -1,0 +1,259 @@
+// The solver stages: packets, colouring, preparation, substeps, restitution and write-back.
+#include "solver/solve.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/base/parallel.hpp"
+#include "elan/profile.hpp"
+#include "solver/integrate.hpp"
+
+namespace elan::detail {
+
+namespace {
+
+// perf: blocks of constraints small enough to balance two threads within a colour, large enough
+// that claiming a block costs little next to solving it.
+constexpr uint32_t kConstraintBlock = 32;
+constexpr uint32_t kBodyBlock = 128;
+
+enum StageKind : uint32_t {
+  kIntegrateVelocities,
+  kWarmStart,
+  kSolve,
+  kIntegratePositions,
+  kRelax,
+  kRestitution,
+  kStoreImpulses,
+};
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+ContactSolverContext make_context(const SolveSettings& settings, SolverState& state) {
+  ContactSolverContext ctx;
+  ctx.bodies = state.packets;
+  ctx.params = state.params;
+  ctx.constraints = state.constraints;
+  ctx.h = settings.dt / Real(settings.substeps);
+  ctx.inv_h = 1 / ctx.h;
+  // Box2D v3: contact stiffness at most a quarter of the substep rate, twice as stiff against
+  // static bodies (they do not give way).
+  const Real hertz = std::min(settings.contact_hertz, Real(0.25) * ctx.inv_h);
+  ctx.contact_softness = make_softness(hertz, settings.contact_damping_ratio, ctx.h);
+  ctx.static_softness = make_softness(2 * hertz, settings.contact_damping_ratio, ctx.h);
+  ctx.max_push_velocity = settings.max_push_velocity;
+  ctx.restitution_threshold = settings.restitution_threshold;
+  return ctx;
+}
+
+}  // namespace
+
+void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
+                   SolverState& st, SolveStats& stats) {
+  auto t0 = std::chrono::steady_clock::now();
+  update_islands(bodies, contacts, {settings.allow_sleep, settings.time_to_sleep},
+                 st.island_scratch);
+  stats.islands_ms = ms_since(t0);
+  t0 = std::chrono::steady_clock::now();
+
+  // Packets: awake dynamic and all kinematic bodies, in index order (packet 0 is the dummy).
+  const std::size_t n = bodies.size();
+  st.packet_of.assign(n, 0);
+  std::size_t count = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool simulated =
+        (bodies.is_dynamic(i) && bodies.is_awake(i) && !(bodies.flags[i] & kFrozen)) ||
+        bodies.motion[i] == uint8_t(MotionType::Kinematic);
+    if (simulated) st.packet_of[i] = uint32_t(count++);
+  }
+  st.packets.resize(count);
+  st.params.resize(count);
+  st.packets[0] = SolverBody{};
+  st.params[0] = SolverBodyParams{};
+  stats.awake = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const uint32_t p = st.packet_of[i];
+    if (p == 0) continue;
+    SolverBodyParams& prm = st.params[p];
+    prm.body = uint32_t(i);
+    if (bodies.is_dynamic(i)) ++stats.awake;
+  }
+  for_blocks(count - 1, kBodyBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t k = begin + 1; k < end + 1; ++k) {
+      SolverBodyParams& prm = st.params[k];
+      const uint32_t i = prm.body;
+      SolverBody& b = st.packets[k];
+      b.v = bodies.linear_velocity(i);
+      b.w = bodies.angular_velocity(i);
+      b.dp.setZero();
+      b.dq = Quat::Identity();
+      const bool dynamic = bodies.is_dynamic(i);
+      prm.inv_mass = dynamic ? bodies.inv_mass[i] : 0;
+      const Vec3 inv_i(bodies.inv_ix[i], bodies.inv_iy[i], bodies.inv_iz[i]);
+      const Quat q = bodies.orientation(i);
+      prm.inv_inertia = dynamic ? rotate_diagonal(q, inv_i) : SymMat3{};
+      const Vec3 force(bodies.fx[i], bodies.fy[i], bodies.fz[i]);
+      const Vec3 torque(bodies.tx[i], bodies.ty[i], bodies.tz[i]);
+      prm.delta_v_per_s = dynamic ? Vec3(settings.gravity + prm.inv_mass * force) : Vec3::Zero();
+      prm.delta_w_per_s = dynamic ? Vec3(prm.inv_inertia * torque) : Vec3::Zero();
+      prm.linear_damping = bodies.linear_damping[i];
+      prm.angular_damping = bodies.angular_damping[i];
+      prm.inertia = inv_i.cwiseInverse();
+      // Bodies with equal principal moments (spheres, cubes) have no gyroscopic term.
+      prm.gyroscopic = dynamic && !(inv_i.x() == inv_i.y() && inv_i.y() == inv_i.z());
+    }
+  });
+
+  // Candidates: touching contacts with at least one simulated dynamic body.
+  st.candidates.clear();
+  st.color_input.clear();
+  for (std::size_t m = 0; m < contacts.size(); ++m) {
+    const Manifold& mf = contacts[m];
+    if (mf.point_count == 0) continue;
+    const uint32_t pa = st.packet_of[mf.body_a], pb = st.packet_of[mf.body_b];
+    const bool da = pa != 0 && bodies.is_dynamic(mf.body_a);
+    const bool db = pb != 0 && bodies.is_dynamic(mf.body_b);
+    if (!da && !db) continue;
+    st.candidates.push_back(uint32_t(m));
+    st.color_input.push_back({pa, pb, da, db});
+  }
+  build_colors(st.color_input, count, st.color_scratch, st.order, st.color_start);
+  stats.colors = 0;
+  for (uint32_t c = 0; c < kColorCount; ++c) {
+    if (st.color_start[c + 1] > st.color_start[c]) ++stats.colors;
+  }
+  stats.overflow = st.color_start[kColorCount + 1] - st.color_start[kColorCount];
+
+  st.constraints.resize(st.order.size());
+  const ContactSolverContext ctx = make_context(settings, st);
+  for_blocks(st.order.size(), kConstraintBlock * 4,
+             [&](std::size_t begin, std::size_t end, std::size_t) {
+               for (std::size_t k = begin; k < end; ++k) {
+                 const uint32_t m = st.candidates[st.order[k]];
+                 prepare_contact(contacts[m], m, bodies, st.packet_of, ctx, st.constraints[k]);
+               }
+             });
+  stats.color_ms = ms_since(t0);
+}
+
+void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
+           SolverState& st) {
+  ContactSolverContext ctx = make_context(settings, st);
+  const uint32_t packet_count = uint32_t(st.packets.size() - 1);
+  const uint32_t body_blocks = uint32_t(block_count(packet_count, kBodyBlock));
+
+  // The schedule: one stage per colour for each constraint pass, the overflow as one block.
+  std::vector<StageSpec>& stages = st.stages;
+  stages.clear();
+  auto add_constraint_pass = [&](StageKind kind) {
+    for (uint32_t c = 0; c < kColorCount; ++c) {
+      const uint32_t n = st.color_start[c + 1] - st.color_start[c];
+      if (n) stages.push_back({uint32_t(block_count(n, kConstraintBlock)), kind, c});
+    }
+    if (st.color_start[kColorCount + 1] > st.color_start[kColorCount]) {
+      stages.push_back({1, kind, kColorCount});
+    }
+  };
+  for (int s = 0; s < settings.substeps; ++s) {
+    stages.push_back({body_blocks, kIntegrateVelocities, 0});
+    add_constraint_pass(kWarmStart);
+    for (int it = 0; it < settings.iterations; ++it) add_constraint_pass(kSolve);
+    stages.push_back({body_blocks, kIntegratePositions, 0});
+    add_constraint_pass(kRelax);
+  }
+  add_constraint_pass(kRestitution);
+  stages.push_back(
+      {uint32_t(block_count(st.constraints.size(), kConstraintBlock * 4)), kStoreImpulses, 0});
+
+  const Real h = ctx.h;
+  auto work = [&](const StageSpec& stage, uint32_t block) {
+    if (stage.kind == kIntegrateVelocities || stage.kind == kIntegratePositions) {
+      // Packets are 1..packet_count; block b covers [1 + b*kBodyBlock, ...).
+      const uint32_t begin = 1 + block * kBodyBlock;
+      const uint32_t end = std::min(packet_count + 1, begin + kBodyBlock);
+      if (stage.kind == kIntegrateVelocities) {
+        integrate_velocities(st.packets, st.params, h, begin, end);
+      } else {
+        integrate_positions(st.packets, st.params, bodies, h, begin, end);
+      }
+      return;
+    }
+    if (stage.kind == kStoreImpulses) {
+      const uint32_t begin = block * kConstraintBlock * 4;
+      const uint32_t end =
+          std::min<uint32_t>(uint32_t(st.constraints.size()), begin + kConstraintBlock * 4);
+      store_impulses(ctx, begin, end, contacts);
+      return;
+    }
+    const uint32_t color_begin = st.color_start[stage.arg];
+    const uint32_t color_end = st.color_start[stage.arg + 1];
+    const bool overflow = stage.arg == kColorCount;
+    const uint32_t begin = overflow ? color_begin : color_begin + block * kConstraintBlock;
+    const uint32_t end = overflow ? color_end : std::min(color_end, begin + kConstraintBlock);
+    switch (stage.kind) {
+      case kWarmStart:
+        warm_start_contacts(ctx, begin, end);
+        break;
+      case kSolve:
+        solve_contacts(ctx, begin, end, true);
+        break;
+      case kRelax:
+        solve_contacts(ctx, begin, end, false);
+        break;
+      case kRestitution:
+        apply_restitution(ctx, begin, end);
+        break;
+      default:
+        break;
+    }
+  };
+  st.executor.run(stages, settings.participants, work);
+}
+
+uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
+                         const SolveSettings& settings, SolverState& st) {
+  const std::size_t count = st.packets.size() - 1;
+  // determinism: indexed writes per packet; the non-finite flag is a per-block OR, combined in
+  // block order below.
+  std::vector<uint8_t>& frozen_any = st.block_flags;
+  frozen_any.assign(block_count(count, kBodyBlock) + 1, 0);
+  for_blocks(count, kBodyBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
+    for (std::size_t k = begin + 1; k < end + 1; ++k) {
+      const SolverBody& b = st.packets[k];
+      const uint32_t i = st.params[k].body;
+      const Vec3 p = bodies.position(i) + b.dp;
+      const Quat q = (b.dq * bodies.orientation(i)).normalized();
+      const bool finite =
+          p.allFinite() && q.coeffs().allFinite() && b.v.allFinite() && b.w.allFinite();
+      if (!finite) {
+        // Quarantine: keep the last good pose, stop it, take it out of the simulation.
+        bodies.set_linear_velocity(i, Vec3::Zero());
+        bodies.set_angular_velocity(i, Vec3::Zero());
+        bodies.flags[i] = uint8_t((bodies.flags[i] | kFrozen) & ~kAwake);
+        frozen_any[block] = 1;
+        continue;
+      }
+      bodies.set_position(i, p);
+      bodies.set_orientation(i, q);
+      bodies.set_linear_velocity(i, b.v);
+      bodies.set_angular_velocity(i, b.w);
+      bodies.fx[i] = bodies.fy[i] = bodies.fz[i] = 0;
+      bodies.tx[i] = bodies.ty[i] = bodies.tz[i] = 0;
+    }
+  });
+  uint32_t status = 0;
+  for (uint8_t f : frozen_any) status |= f ? uint32_t(kStepFrozeNonFinite) : 0u;
+  if (settings.allow_sleep) {
+    update_sleep_timers(bodies, shapes, settings.dt, settings.sleep_threshold);
+  }
+  if (st.color_start.size() == kColorCount + 2 &&
+      st.color_start[kColorCount + 1] > st.color_start[kColorCount]) {
+    status |= kStepColorOverflow;
+  }
+  return status;
+}
+
+}  // namespace elan::detail

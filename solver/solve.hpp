@@ -1,0 +1,73 @@
+// Stages 4 to 8 and 10 of the step around the contact solver: islands and sleep, packets and
+// colouring, constraint preparation, the substeps, restitution, and writing results back.
+//
+// Reads: body columns, shapes, contacts. Writes: body columns (pose, velocity, flags, sleep
+// timers, forces cleared), contact impulses. Parallel work runs in fixed blocks through the
+// StageExecutor; all layouts depend on the scene alone.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/base/body_store.hpp"
+#include "core/base/contact.hpp"
+#include "core/base/shape.hpp"
+#include "solver/coloring.hpp"
+#include "solver/contact_solver.hpp"
+#include "solver/islands.hpp"
+#include "solver/solver_types.hpp"
+#include "solver/stage_executor.hpp"
+
+namespace elan::detail {
+
+struct SolveSettings {
+  Real dt = Real(1.0 / 60.0);  // s
+  int substeps = 4;
+  int iterations = 1;  // solve passes per substep (relax is one pass)
+  Vec3 gravity = Vec3(0, Real(-9.81), 0);
+  bool allow_sleep = true;
+  Real contact_hertz = 30;  // Hz, capped at a quarter of the substep rate
+  Real contact_damping_ratio = 10;
+  Real max_push_velocity = 3;         // m/s
+  Real restitution_threshold = 1;     // m/s
+  Real sleep_threshold = Real(0.05);  // m/s
+  Real time_to_sleep = Real(0.5);     // s
+  int participants = 1;               // threads that may take part in the solve
+};
+
+struct SolverState {
+  std::vector<uint32_t> packet_of;  // per body: its packet, 0 when not simulated
+  std::vector<SolverBody> packets;  // 0 = static dummy
+  std::vector<SolverBodyParams> params;
+  std::vector<uint32_t> candidates;  // contact indices that take part in the solve
+  std::vector<ColorInput> color_input;
+  std::vector<uint32_t> order, color_start;
+  std::vector<ContactConstraint> constraints;  // grouped by colour
+  ColorScratch color_scratch;
+  IslandScratch island_scratch;
+  StageExecutor executor;
+  std::vector<StageSpec> stages;
+  std::vector<uint8_t> block_flags;  // per body block: went non-finite
+};
+
+struct SolveStats {
+  std::size_t awake = 0, colors = 0, overflow = 0;
+  double islands_ms = 0, color_ms = 0, solve_ms = 0;
+};
+
+// Islands and sleep, packets for the awake bodies, colouring and constraint preparation.
+void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
+                   SolverState& state, SolveStats& stats);
+
+// The substeps, restitution and impulse storage. Results stay in state.packets.
+void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
+           SolverState& state);
+
+// Writes the packets back into the body columns; quarantines bodies whose state went non-finite
+// (restored to the step's start pose, velocities zeroed, flagged frozen); updates sleep timers;
+// clears applied forces. Returns StepStatus flags.
+uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
+                         const SolveSettings& settings, SolverState& state);
+
+}  // namespace elan::detail

@@ -1,0 +1,81 @@
+// Solver data: the compact per-body packet the substeps work on, per-body constants, and
+// contact constraints in solver form.
+#pragma once
+
+#include <cstdint>
+
+#include "core/base/contact.hpp"
+#include "elan/math.hpp"
+
+namespace elan::detail {
+
+// Symmetric 3x3 matrix (world inverse inertia), 6 scalars.
+struct SymMat3 {
+  Real xx = 0, yy = 0, zz = 0, xy = 0, xz = 0, yz = 0;
+  Vec3 operator*(const Vec3& v) const {
+    return {xx * v.x() + xy * v.y() + xz * v.z(), xy * v.x() + yy * v.y() + yz * v.z(),
+            xz * v.x() + yz * v.y() + zz * v.z()};
+  }
+};
+
+// R diag(d) R^T for a unit quaternion q.
+SymMat3 rotate_diagonal(const Quat& q, const Vec3& d);
+
+// The hot per-body record (Box2D v3's body state): velocities and the pose change since the
+// start of the step. Packet 0 is a static dummy with zero velocity that is never written.
+struct alignas(16) SolverBody {
+  Vec3 v = Vec3::Zero();       // m/s, world
+  Vec3 w = Vec3::Zero();       // rad/s, world
+  Vec3 dp = Vec3::Zero();      // m: position change since the step began
+  Quat dq = Quat::Identity();  // rotation since the step began (world: q = dq * q0)
+};
+
+// Per-packet constants for the step.
+struct SolverBodyParams {
+  uint32_t body = 0;                  // dense body index
+  Real inv_mass = 0;                  // 1/kg (0: kinematic)
+  SymMat3 inv_inertia;                // 1/(kg m^2), world, at the step's start pose
+  Vec3 delta_v_per_s = Vec3::Zero();  // m/s^2: gravity + force / mass
+  Vec3 delta_w_per_s = Vec3::Zero();  // rad/s^2: inv_inertia * torque
+  Real linear_damping = 0;            // 1/s
+  Real angular_damping = 0;           // 1/s
+  Vec3 inertia = Vec3::Zero();        // kg m^2, principal moments (gyroscopic bodies)
+  bool gyroscopic = false;            // anisotropic inertia: keep L = I w through rotation
+};
+
+// Soft constraint coefficients (Box2D v3 "soft step", b2MakeSoft): a spring-damper of the
+// given stiffness (Hz) and damping ratio expressed as a bias rate and two impulse scales.
+struct Softness {
+  Real bias_rate = 0;  // 1/s
+  Real mass_scale = 1;
+  Real impulse_scale = 0;
+};
+Softness make_softness(Real hertz, Real damping_ratio, Real h);
+
+struct ConstraintPoint {
+  Vec3 ra = Vec3::Zero();  // m, world at step start: point minus A's centre of mass
+  Vec3 rb = Vec3::Zero();
+  Real adjusted_separation = 0;  // m: separation - dot(rb - ra, n), so s = dot(d, n) + this
+  Real normal_mass = 0;          // kg: 1 / (J M^-1 J^T) along the normal
+  Real tangent_mass[2] = {0, 0};
+  Real normal_impulse = 0;  // N s, accumulated over the step (warm started)
+  Real tangent_impulse[2] = {0, 0};
+  Real max_normal_impulse = 0;
+  Real relative_velocity = 0;  // m/s along n before the solve (negative: approaching)
+};
+
+struct ContactConstraint {
+  uint32_t packet_a = 0, packet_b = 0;  // 0 = static dummy
+  uint32_t manifold = 0;                // index into the contact list, to store impulses back
+  int count = 0;
+  bool write_a = false, write_b = false;  // dynamic bodies only are written
+  Real inv_mass_a = 0, inv_mass_b = 0;
+  SymMat3 inv_i_a, inv_i_b;
+  Vec3 normal = Vec3::UnitY();
+  Vec3 tangent[2] = {Vec3::UnitX(), Vec3::UnitZ()};
+  Real friction = 0, restitution = 0;
+  Softness softness;
+  ConstraintPoint points[kMaxManifoldPoints];
+};
+
+}  // namespace elan::detail
