@@ -11,29 +11,29 @@
 namespace elan::detail {
 
 enum BodyFlags : uint8_t {
-  kAwake = 1u << 0,      // dynamic body being simulated (static/kinematic: unused)
-  kFrozen = 1u << 1,     // went non-finite and was quarantined
+  kAwake = 1u << 0,   // dynamic body being simulated (static/kinematic: unused)
+  kFrozen = 1u << 1,  // went non-finite and was quarantined
 };
 
 // The pose is that of the centre of mass and principal axes (the shape's principal frame); the
 // user-facing pose of the shape frame is derived with Shape::frame_*.
 struct BodyStore {
-  Column<Real> px, py, pz;            // m, world: centre of mass
-  Column<Real> qw, qx, qy, qz;        // principal frame to world, unit
-  Column<Real> vx, vy, vz;            // m/s, world
-  Column<Real> wx, wy, wz;            // rad/s, world
-  Column<Real> fx, fy, fz;            // N, world: force applied for the next step
-  Column<Real> tx, ty, tz;            // N m, world: torque applied for the next step
-  Column<Real> inv_mass;              // 1/kg (0: static or kinematic)
+  Column<Real> px, py, pz;              // m, world: centre of mass
+  Column<Real> qw, qx, qy, qz;          // principal frame to world, unit
+  Column<Real> vx, vy, vz;              // m/s, world
+  Column<Real> wx, wy, wz;              // rad/s, world
+  Column<Real> fx, fy, fz;              // N, world: force applied for the next step
+  Column<Real> tx, ty, tz;              // N m, world: torque applied for the next step
+  Column<Real> inv_mass;                // 1/kg (0: static or kinematic)
   Column<Real> inv_ix, inv_iy, inv_iz;  // 1/(kg m^2), principal axes
   Column<Real> friction, restitution;
   Column<Real> linear_damping, angular_damping;  // 1/s
-  Column<Real> sleep_time;            // s spent below the sleep threshold
-  Column<uint32_t> shape;             // index into the world's shapes
-  Column<uint32_t> category, mask;    // collision filter bits
-  Column<uint32_t> slot;              // id slot owning this index
-  Column<uint8_t> motion;             // MotionType
-  Column<uint8_t> flags;              // BodyFlags
+  Column<Real> sleep_time;                       // s spent below the sleep threshold
+  Column<uint32_t> shape;                        // index into the world's shapes
+  Column<uint32_t> category, mask;               // collision filter bits
+  Column<uint32_t> slot;                         // id slot owning this index
+  Column<uint8_t> motion;                        // MotionType
+  Column<uint8_t> flags;                         // BodyFlags
 
   std::size_t size() const { return px.size(); }
 
@@ -49,12 +49,27 @@ struct BodyStore {
   Quat orientation(std::size_t i) const { return Quat(qw[i], qx[i], qy[i], qz[i]); }
   Vec3 linear_velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
   Vec3 angular_velocity(std::size_t i) const { return {wx[i], wy[i], wz[i]}; }
-  void set_position(std::size_t i, const Vec3& p) { px[i] = p.x(); py[i] = p.y(); pz[i] = p.z(); }
-  void set_orientation(std::size_t i, const Quat& q) {
-    qw[i] = q.w(); qx[i] = q.x(); qy[i] = q.y(); qz[i] = q.z();
+  void set_position(std::size_t i, const Vec3& p) {
+    px[i] = p.x();
+    py[i] = p.y();
+    pz[i] = p.z();
   }
-  void set_linear_velocity(std::size_t i, const Vec3& v) { vx[i] = v.x(); vy[i] = v.y(); vz[i] = v.z(); }
-  void set_angular_velocity(std::size_t i, const Vec3& w) { wx[i] = w.x(); wy[i] = w.y(); wz[i] = w.z(); }
+  void set_orientation(std::size_t i, const Quat& q) {
+    qw[i] = q.w();
+    qx[i] = q.x();
+    qy[i] = q.y();
+    qz[i] = q.z();
+  }
+  void set_linear_velocity(std::size_t i, const Vec3& v) {
+    vx[i] = v.x();
+    vy[i] = v.y();
+    vz[i] = v.z();
+  }
+  void set_angular_velocity(std::size_t i, const Vec3& w) {
+    wx[i] = w.x();
+    wy[i] = w.y();
+    wz[i] = w.z();
+  }
   bool is_dynamic(std::size_t i) const { return motion[i] == uint8_t(MotionType::Dynamic); }
   bool is_static(std::size_t i) const { return motion[i] == uint8_t(MotionType::Static); }
   bool is_awake(std::size_t i) const { return (flags[i] & kAwake) != 0; }

@@ -11,20 +11,20 @@ namespace elan::detail {
 inline constexpr int kMaxManifoldPoints = 4;
 
 struct ContactPoint {
-  Vec3 anchor_a = Vec3::Zero();   // m, world: contact point minus A's centre of mass
-  Vec3 anchor_b = Vec3::Zero();   // m, world: contact point minus B's centre of mass
-  Real separation = 0;            // m: negative = penetration, positive = speculative gap
-  uint32_t feature_id = 0;        // same while the same pair of features touches
-  Real normal_impulse = 0;        // N s, accumulated; carried to the next step (warm start)
+  Vec3 anchor_a = Vec3::Zero();      // m, world: contact point minus A's centre of mass
+  Vec3 anchor_b = Vec3::Zero();      // m, world: contact point minus B's centre of mass
+  Real separation = 0;               // m: negative = penetration, positive = speculative gap
+  uint32_t feature_id = 0;           // same while the same pair of features touches
+  Real normal_impulse = 0;           // N s, accumulated; carried to the next step (warm start)
   Real tangent_impulse[2] = {0, 0};  // N s, along the manifold's tangent basis
-  Real max_normal_impulse = 0;    // N s, largest applied during the step (events, sleep)
+  Real max_normal_impulse = 0;       // N s, largest applied during the step (events, sleep)
 };
 
 struct Manifold {
-  uint64_t key = 0;               // make_pair_key(body_a, body_b)
-  uint32_t body_a = 0;            // dense index; the static body, if any, is always B
+  uint64_t key = 0;     // make_pair_key(body_a, body_b)
+  uint32_t body_a = 0;  // dense index; the static body, if any, is always B
   uint32_t body_b = 0;
-  Vec3 normal = Vec3::UnitY();    // unit, world, from A towards B
+  Vec3 normal = Vec3::UnitY();  // unit, world, from A towards B
   int point_count = 0;
   ContactPoint points[kMaxManifoldPoints];
 };

@@ -19,12 +19,12 @@ enum class BroadphaseType : uint8_t { SweepAndPrune, AllPairs };
 /// A shape in its own frame. Capsule and cylinder axes are local Y.
 struct ShapeDef {
   ShapeType type = ShapeType::Sphere;
-  Real radius = 0.5;                         ///< m: sphere, capsule, cylinder
-  Real half_height = 0.5;                    ///< m: half the capsule segment / cylinder height
-  Vec3 half_extents = Vec3::Constant(0.5);   ///< m: box
-  std::vector<Vec3> points;                  ///< m, shape frame: convex hull input cloud
-  Vec3 normal = Vec3::UnitY();               ///< plane normal (normalised on creation)
-  Real offset = 0;                           ///< m: plane is dot(normal, x) <= offset
+  Real radius = 0.5;                        ///< m: sphere, capsule, cylinder
+  Real half_height = 0.5;                   ///< m: half the capsule segment / cylinder height
+  Vec3 half_extents = Vec3::Constant(0.5);  ///< m: box
+  std::vector<Vec3> points;                 ///< m, shape frame: convex hull input cloud
+  Vec3 normal = Vec3::UnitY();              ///< plane normal (normalised on creation)
+  Real offset = 0;                          ///< m: plane is dot(normal, x) <= offset
 };
 
 /// A body. `position`/`orientation` place the shape's own frame; velocities are those of the
@@ -32,28 +32,28 @@ struct ShapeDef {
 struct BodyDef {
   MotionType motion = MotionType::Dynamic;
   ShapeId shape;
-  Vec3 position = Vec3::Zero();              ///< m, world
-  Quat orientation = Quat::Identity();       ///< shape frame to world (normalised on creation)
-  Vec3 linear_velocity = Vec3::Zero();       ///< m/s, world, of the centre of mass
-  Vec3 angular_velocity = Vec3::Zero();      ///< rad/s, world
-  std::optional<Real> mass;                  ///< kg; when absent, density * volume
-  Real density = 1000;                       ///< kg/m^3
-  Real friction = 0.5;                       ///< Coulomb coefficient, mixed as sqrt(f1 f2)
-  Real restitution = 0;                      ///< mixed as max(e1, e2)
-  Real linear_damping = 0;                   ///< 1/s: dv/dt = -d v
-  Real angular_damping = 0;                  ///< 1/s: dw/dt = -d w
-  uint32_t category_bits = 1;                ///< collision filter: what this body is
-  uint32_t mask_bits = UINT32_MAX;           ///< collision filter: what it collides with
-  bool awake = true;                         ///< start awake (dynamic bodies)
+  Vec3 position = Vec3::Zero();          ///< m, world
+  Quat orientation = Quat::Identity();   ///< shape frame to world (normalised on creation)
+  Vec3 linear_velocity = Vec3::Zero();   ///< m/s, world, of the centre of mass
+  Vec3 angular_velocity = Vec3::Zero();  ///< rad/s, world
+  std::optional<Real> mass;              ///< kg; when absent, density * volume
+  Real density = 1000;                   ///< kg/m^3
+  Real friction = 0.5;                   ///< Coulomb coefficient, mixed as sqrt(f1 f2)
+  Real restitution = 0;                  ///< mixed as max(e1, e2)
+  Real linear_damping = 0;               ///< 1/s: dv/dt = -d v
+  Real angular_damping = 0;              ///< 1/s: dw/dt = -d w
+  uint32_t category_bits = 1;            ///< collision filter: what this body is
+  uint32_t mask_bits = UINT32_MAX;       ///< collision filter: what it collides with
+  bool awake = true;                     ///< start awake (dynamic bodies)
 };
 
 /// World settings.
 struct WorldDef {
-  Vec3 gravity = Vec3(0, Real(-9.81), 0);    ///< m/s^2, world
-  int substeps = 4;                          ///< soft-step substeps per step
-  int iterations = 1;                        ///< solver iterations per substep
+  Vec3 gravity = Vec3(0, Real(-9.81), 0);  ///< m/s^2, world
+  int substeps = 4;                        ///< soft-step substeps per step
+  int iterations = 1;                      ///< solver iterations per substep
   bool allow_sleep = true;
-  int threads = 0;                           ///< worker count; 0 = all cores
+  int threads = 0;  ///< worker count; 0 = all cores
   BroadphaseType broadphase = BroadphaseType::SweepAndPrune;
 };
 

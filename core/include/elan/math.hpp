@@ -19,8 +19,8 @@ using Quat = Eigen::Quaternion<Real>;
 
 /// A rigid transform: x_world = rotation * x_local + position.
 struct Transform {
-  Vec3 position = Vec3::Zero();          ///< m, world frame
-  Quat rotation = Quat::Identity();      ///< local to world
+  Vec3 position = Vec3::Zero();      ///< m, world frame
+  Quat rotation = Quat::Identity();  ///< local to world
   Vec3 apply(const Vec3& p) const { return rotation * p + position; }
   Vec3 apply_inverse(const Vec3& p) const { return rotation.conjugate() * (p - position); }
 };

@@ -9,9 +9,9 @@ namespace elan {
 /// Status flags returned by World::step. The step never throws; problems are reported here.
 enum StepStatus : uint32_t {
   kStepOk = 0,
-  kStepFrozeNonFinite = 1u << 0,   ///< a body's state became non-finite and it was frozen
-  kStepColorOverflow = 1u << 1,    ///< some constraints did not fit the colours: solved serially
-  kStepBadTimestep = 1u << 2,      ///< dt was not finite and positive: nothing was simulated
+  kStepFrozeNonFinite = 1u << 0,  ///< a body's state became non-finite and it was frozen
+  kStepColorOverflow = 1u << 1,   ///< some constraints did not fit the colours: solved serially
+  kStepBadTimestep = 1u << 2,     ///< dt was not finite and positive: nothing was simulated
 };
 
 /// Wall-clock milliseconds spent in each stage of the last step.
@@ -22,13 +22,13 @@ struct StepProfile {
 
 /// Counts of the last step.
 struct StepStats {
-  std::size_t pairs = 0;         ///< pairs the broadphase reported
-  std::size_t manifolds = 0;     ///< touching or near pairs
-  std::size_t contacts = 0;      ///< contact points in all manifolds (speculative included)
-  std::size_t awake = 0;         ///< awake dynamic bodies
-  std::size_t colors = 0;        ///< constraint colours used (overflow not counted)
-  std::size_t overflow = 0;      ///< manifolds solved serially in the overflow
-  uint32_t status = kStepOk;     ///< StepStatus flags
+  std::size_t pairs = 0;      ///< pairs the broadphase reported
+  std::size_t manifolds = 0;  ///< touching or near pairs
+  std::size_t contacts = 0;   ///< contact points in all manifolds (speculative included)
+  std::size_t awake = 0;      ///< awake dynamic bodies
+  std::size_t colors = 0;     ///< constraint colours used (overflow not counted)
+  std::size_t overflow = 0;   ///< manifolds solved serially in the overflow
+  uint32_t status = kStepOk;  ///< StepStatus flags
   StepProfile profile;
 };
 

@@ -20,17 +20,17 @@ class SceneError : public std::runtime_error {
 };
 
 struct SceneBody {
-  std::string name;              ///< empty when the file gives none
+  std::string name;  ///< empty when the file gives none
   ShapeDef shape;
-  BodyDef body;                  ///< body.shape is filled by load_into
+  BodyDef body;  ///< body.shape is filled by load_into
 };
 
 struct Scene {
-  WorldDef world;                ///< gravity, substeps, iterations, allow_sleep
+  WorldDef world;                    ///< gravity, substeps, iterations, allow_sleep
   Real timestep = Real(1.0 / 60.0);  ///< s per step
-  bool has_substeps = false;     ///< the file set `substeps`
-  bool has_iterations = false;   ///< the file set `iterations`
-  std::vector<SceneBody> bodies; ///< explicit bodies first, then generated ones, in order
+  bool has_substeps = false;         ///< the file set `substeps`
+  bool has_iterations = false;       ///< the file set `iterations`
+  std::vector<SceneBody> bodies;     ///< explicit bodies first, then generated ones, in order
 };
 
 /// Parses scene text; `file_name` is used in messages only. Throws SceneError.

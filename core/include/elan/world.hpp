@@ -47,12 +47,12 @@ class World {
 
   /// Pose of the body's shape frame (as given at creation), world frame. Throw elan::Error on
   /// a stale id.
-  Vec3 position(BodyId id) const;                 ///< m
+  Vec3 position(BodyId id) const;  ///< m
   Quat orientation(BodyId id) const;
-  Vec3 linear_velocity(BodyId id) const;          ///< m/s, of the centre of mass
-  Vec3 angular_velocity(BodyId id) const;         ///< rad/s, world
-  Vec3 center_of_mass(BodyId id) const;           ///< m, world
-  Real mass(BodyId id) const;                     ///< kg (0 for static and kinematic)
+  Vec3 linear_velocity(BodyId id) const;   ///< m/s, of the centre of mass
+  Vec3 angular_velocity(BodyId id) const;  ///< rad/s, world
+  Vec3 center_of_mass(BodyId id) const;    ///< m, world
+  Real mass(BodyId id) const;              ///< kg (0 for static and kinematic)
   MotionType motion_type(BodyId id) const;
   bool is_awake(BodyId id) const;
 
@@ -72,9 +72,9 @@ class World {
   /// 64-bit hash of every body's stored position, orientation, linear and angular velocity,
   /// in body index order.
   uint64_t state_hash() const;
-  Real kinetic_energy() const;       ///< J, all dynamic bodies
-  Vec3 linear_momentum() const;      ///< kg m/s, dynamic bodies
-  Vec3 angular_momentum() const;     ///< kg m^2/s, dynamic bodies, about the world origin
+  Real kinetic_energy() const;    ///< J, all dynamic bodies
+  Vec3 linear_momentum() const;   ///< kg m/s, dynamic bodies
+  Vec3 angular_momentum() const;  ///< kg m^2/s, dynamic bodies, about the world origin
 
   /// Internal state, for the engine's own tools, tests and benchmarks.
   detail::WorldState& state() { return *state_; }
