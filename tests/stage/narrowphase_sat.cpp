@@ -1,0 +1,196 @@
+// SAT with clipping for boxes and hulls: depths, point counts and normals against closed forms
+// for face, edge and vertex contacts; hulls must agree with the boxes they equal.
+#include <gtest/gtest.h>
+
+#include "narrowphase_test_shapes.hpp"
+
+namespace elan::detail {
+namespace {
+
+using test::axis_angle;
+using test::pose;
+
+// Depth tolerance: the contact depths are differences of coordinates of order 1 m in float,
+// a few ulps (1e-7 relative) each; 1e-5 m leaves a wide margin yet catches any real error.
+constexpr Real kDepthTol = Real(1e-5);
+
+// Lowest world y of the box's corners for a given orientation (closed form of where it rests).
+Real lowest_corner_offset(const Vec3& h, const Quat& q) {
+  Real lo = 1e9;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 c((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
+    lo = std::min(lo, (q * c).y());
+  }
+  return lo;
+}
+
+struct PairCase {
+  const char* name;
+  Shape ground;
+  Shape body;
+};
+
+std::vector<PairCase> polyhedron_cases() {
+  return {{"box-box", test::box(5, Real(0.5), 5), test::box(Real(0.5), Real(0.5), Real(0.5))},
+          {"box-hull", test::box(5, Real(0.5), 5), test::box_hull(Real(0.5), Real(0.5), Real(0.5))},
+          {"hull-box", test::box_hull(5, Real(0.5), 5), test::box(Real(0.5), Real(0.5), Real(0.5))},
+          {"hull-hull", test::box_hull(5, Real(0.5), 5),
+           test::box_hull(Real(0.5), Real(0.5), Real(0.5))}};
+}
+
+// Rests `body` (orientation q) on the ground's top face (y = 0) with penetration `depth`.
+void rest(const PairCase& c, const Quat& q, Real depth, Manifold& m, Transform& xa, Transform& xb) {
+  xa = pose(Vec3(0, Real(-0.5), 0));
+  xb = pose(
+      Vec3(Real(0.1), -lowest_corner_offset(Vec3::Constant(Real(0.5)), q) - depth, Real(-0.2)), q);
+  ASSERT_TRUE(collide(c.ground, xa, c.body, xb, Real(0.02), m)) << c.name;
+  test::expect_sane(m, xa, xb);
+  EXPECT_NEAR(m.normal.y(), 1, 1e-5) << c.name;
+}
+
+TEST(SatPolyhedra, FlatBoxRestingGivesFourPointsAtTheDepth) {
+  for (const PairCase& c : polyhedron_cases()) {
+    Manifold m;
+    Transform xa, xb;
+    rest(c, Quat::Identity(), Real(1e-3), m, xa, xb);
+    ASSERT_EQ(m.point_count, 4) << c.name;
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_NEAR(m.points[k].separation, -1e-3, kDepthTol) << c.name;
+      const Vec3 p = test::contact_point(m, xa, k);
+      // At the body's bottom corners, midway between the two surfaces.
+      EXPECT_NEAR(std::abs(p.x() - Real(0.1)), 0.5, 1e-5) << c.name;
+      EXPECT_NEAR(std::abs(p.z() + Real(0.2)), 0.5, 1e-5) << c.name;
+      EXPECT_NEAR(p.y(), -0.5e-3, 1e-5) << c.name;
+    }
+  }
+}
+
+TEST(SatPolyhedra, SwappedOrderFlipsTheNormal) {
+  const Shape ground = test::box(5, Real(0.5), 5), b = test::box(Real(0.5), Real(0.5), Real(0.5));
+  const Transform xa = pose(Vec3(0, Real(-0.5), 0)), xb = pose(Vec3(0, Real(0.499), 0));
+  Manifold m;
+  ASSERT_TRUE(collide(b, xb, ground, xa, Real(0.02), m));
+  EXPECT_NEAR(m.normal.y(), -1, 1e-6);
+  ASSERT_EQ(m.point_count, 4);
+  test::expect_sane(m, xb, xa);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(m.points[k].separation, -1e-3, kDepthTol);
+}
+
+TEST(SatPolyhedra, BoxTiltedAboutOneAxisGivesAnEdgeContact) {
+  for (const PairCase& c : polyhedron_cases()) {
+    for (Real angle : {Real(0.3), Real(M_PI / 4), Real(1.1)}) {
+      Manifold m;
+      Transform xa, xb;
+      rest(c, axis_angle(angle, Vec3::UnitZ()), Real(2e-3), m, xa, xb);
+      ASSERT_EQ(m.point_count, 2) << c.name << " " << angle;
+      for (int k = 0; k < 2; ++k) {
+        EXPECT_NEAR(m.points[k].separation, -2e-3, kDepthTol) << c.name;
+        EXPECT_NEAR(std::abs(test::contact_point(m, xa, k).z() + Real(0.2)), 0.5, 1e-5);
+      }
+    }
+  }
+}
+
+TEST(SatPolyhedra, BoxTiltedAboutTwoAxesGivesAVertexContact) {
+  for (const PairCase& c : polyhedron_cases()) {
+    const Quat q = axis_angle(Real(0.4), Vec3::UnitX()) * axis_angle(Real(0.7), Vec3::UnitZ());
+    Manifold m;
+    Transform xa, xb;
+    rest(c, q, Real(1.5e-3), m, xa, xb);
+    ASSERT_EQ(m.point_count, 1) << c.name;
+    EXPECT_NEAR(m.points[0].separation, -1.5e-3, kDepthTol) << c.name;
+  }
+}
+
+TEST(SatPolyhedra, SeparatedWithinSpeculativeDistanceReportsTheGap) {
+  const Shape ground = test::box(5, Real(0.5), 5), b = test::box(Real(0.5), Real(0.5), Real(0.5));
+  const Transform xa = pose(Vec3(0, Real(-0.5), 0));
+  Manifold m;
+  ASSERT_TRUE(collide(ground, xa, b, pose(Vec3(0, Real(0.51), 0)), Real(0.02), m));
+  ASSERT_EQ(m.point_count, 4);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(m.points[k].separation, 0.01, kDepthTol);
+  EXPECT_FALSE(collide(ground, xa, b, pose(Vec3(0, Real(0.53), 0)), Real(0.02), m));
+  EXPECT_EQ(m.point_count, 0);
+  // Edge on edge, separated: one speculative point with the closed-form gap.
+  const Quat q = axis_angle(Real(M_PI / 4), Vec3::UnitX());
+  const Quat r = axis_angle(Real(M_PI / 4), Vec3::UnitZ());
+  const Real d = Real(std::sqrt(2.0)) * Real(0.5);
+  ASSERT_TRUE(
+      collide(b, pose(Vec3::Zero(), q), b, pose(Vec3(0, 2 * d + Real(0.01), 0), r), Real(0.02), m));
+  ASSERT_EQ(m.point_count, 1);
+  EXPECT_NEAR(m.points[0].separation, 0.01, kDepthTol);
+  EXPECT_NEAR(m.normal.y(), 1, 1e-5);
+}
+
+TEST(SatPolyhedra, CrossedEdgesGiveOnePointAtTheEdgeDepth) {
+  // Two boxes rotated 45 degrees about perpendicular horizontal axes: their edges cross.
+  const Shape b = test::box(Real(0.5), Real(0.5), Real(0.5));
+  const Shape h = test::box_hull(Real(0.5), Real(0.5), Real(0.5));
+  const Quat q = axis_angle(Real(M_PI / 4), Vec3::UnitX());
+  const Quat r = axis_angle(Real(M_PI / 4), Vec3::UnitZ());
+  const Real d = Real(std::sqrt(2.0)) * Real(0.5);
+  for (const Shape* s : {&b, &h}) {
+    Manifold m;
+    const Transform xa = pose(Vec3(1, 2, 3), q), xb = pose(Vec3(1, 2 + 2 * d - Real(0.004), 3), r);
+    ASSERT_TRUE(collide(*s, xa, b, xb, Real(0.02), m));
+    test::expect_sane(m, xa, xb);
+    ASSERT_EQ(m.point_count, 1);
+    EXPECT_NEAR(m.points[0].separation, -0.004, kDepthTol);
+    EXPECT_NEAR(m.normal.y(), 1, 1e-5);
+    EXPECT_LT((test::contact_point(m, xa, 0) - Vec3(1, 2 + d - Real(0.002), 3)).norm(), 1e-4);
+  }
+}
+
+TEST(SatPolyhedra, RoundHullOnBoxMatchesItsLowestVertex) {
+  const Shape ground = test::box(5, Real(0.5), 5);
+  for (int n : {8, 32, 128}) {
+    const Shape hull = test::round_hull(n, Real(0.5));
+    for (Real angle : {Real(0), Real(0.3), Real(1.3)}) {
+      const Quat q = axis_angle(angle, Vec3(1, 2, 3));
+      Real lo = 1e9;
+      for (const Vec3& v : hull.hull->vertices) lo = std::min(lo, (q * v).y());
+      const Transform xa = pose(Vec3(0, Real(-0.5), 0)), xb = pose(Vec3(0, -lo - Real(1e-3), 0), q);
+      Manifold m;
+      ASSERT_TRUE(collide(ground, xa, hull, xb, Real(0.02), m)) << n;
+      test::expect_sane(m, xa, xb);
+      ASSERT_GE(m.point_count, 1);
+      Real deepest = 1;
+      for (int k = 0; k < m.point_count; ++k) deepest = std::min(deepest, m.points[k].separation);
+      EXPECT_NEAR(deepest, -1e-3, kDepthTol) << n << " " << angle;
+      EXPECT_NEAR(m.normal.y(), 1, 1e-5);
+    }
+  }
+}
+
+TEST(SatPolyhedra, DegenerateInputStaysFinite) {
+  const Shape unit = test::box(Real(0.5), Real(0.5), Real(0.5));
+  const Shape thin = test::box(Real(0.5), Real(5e-4), Real(0.5));
+  const Shape huge = test::box(1000, 1000, 1000);
+  const Shape tiny = test::box(Real(0.01), Real(0.01), Real(0.01));
+  const Shape hull = test::round_hull(32, Real(0.5));
+  struct Case {
+    const Shape* a;
+    const Shape* b;
+    Transform xa, xb;
+  };
+  const Quat q = axis_angle(Real(0.3), Vec3(1, 1, 0));
+  const Case cases[] = {
+      {&unit, &unit, pose(Vec3(1, 2, 3)), pose(Vec3(1, 2, 3))},          // identical, same pose
+      {&unit, &unit, pose(Vec3::Zero()), pose(Vec3(0, 1, 0))},           // touching exactly
+      {&unit, &hull, pose(Vec3::Zero(), q), pose(Vec3::Zero())},         // coincident centres
+      {&hull, &hull, pose(Vec3::Zero(), q), pose(Vec3::Zero(), q)},      // identical hulls
+      {&thin, &thin, pose(Vec3::Zero()), pose(Vec3(0, Real(9e-4), 0))},  // very thin boxes
+      {&thin, &thin, pose(Vec3::Zero()), pose(Vec3(Real(0.2), 0, 0), q)},
+      {&huge, &tiny, pose(Vec3(0, -1000, 0)), pose(Vec3(0, Real(0.009), 0), q)},
+      {&tiny, &huge, pose(Vec3(0, Real(0.009), 0), q), pose(Vec3(0, -1000, 0))},
+  };
+  for (const Case& c : cases) {
+    Manifold m;
+    ASSERT_TRUE(collide(*c.a, c.xa, *c.b, c.xb, Real(0.02), m));
+    test::expect_sane(m, c.xa, c.xb);
+    EXPECT_GE(m.point_count, 1);
+  }
+}
+
+}  // namespace
+}  // namespace elan::detail

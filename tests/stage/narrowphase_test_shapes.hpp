@@ -1,0 +1,94 @@
+// Shapes and poses shared by the narrowphase stage tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/base/contact.hpp"
+#include "core/base/shape.hpp"
+#include "narrowphase/collide.hpp"
+
+namespace elan::detail::test {
+
+inline Shape box(Real hx, Real hy, Real hz) {
+  ShapeDef d;
+  d.type = ShapeType::Box;
+  d.half_extents = Vec3(hx, hy, hz);
+  return make_shape(d);
+}
+
+inline Shape capsule(Real radius, Real half_height) {
+  ShapeDef d;
+  d.type = ShapeType::Capsule;
+  d.radius = radius;
+  d.half_height = half_height;
+  return make_shape(d);
+}
+
+inline Shape cylinder(Real radius, Real half_height) {
+  ShapeDef d;
+  d.type = ShapeType::Cylinder;
+  d.radius = radius;
+  d.half_height = half_height;
+  return make_shape(d);
+}
+
+inline Shape sphere(Real radius) {
+  ShapeDef d;
+  d.type = ShapeType::Sphere;
+  d.radius = radius;
+  return make_shape(d);
+}
+
+// The hull of a box's eight corners: must collide exactly like the box.
+inline Shape box_hull(Real hx, Real hy, Real hz) {
+  ShapeDef d;
+  d.type = ShapeType::ConvexHull;
+  for (int i = 0; i < 8; ++i) {
+    d.points.emplace_back((i & 1) ? hx : -hx, (i & 2) ? hy : -hy, (i & 4) ? hz : -hz);
+  }
+  return make_shape(d);
+}
+
+// Points on a sphere (golden-angle spiral), symmetric enough that the centroid is near 0.
+inline Shape round_hull(int n, Real radius) {
+  ShapeDef d;
+  d.type = ShapeType::ConvexHull;
+  for (int i = 0; i < n; ++i) {
+    const double y = 1 - 2 * (i + 0.5) / n;
+    const double r = std::sqrt(1 - y * y);
+    const double t = 2.399963229728653 * i;
+    d.points.emplace_back(Real(radius * r * std::cos(t)), Real(radius * y),
+                          Real(radius * r * std::sin(t)));
+  }
+  return make_shape(d);
+}
+
+inline Transform pose(const Vec3& p, const Quat& q = Quat::Identity()) {
+  return {p, q};
+}
+
+inline Quat axis_angle(Real angle, const Vec3& axis) {
+  return Quat(Eigen::AngleAxis<Real>(angle, axis.normalized()));
+}
+
+// World contact point of point k (midpoint between the surfaces).
+inline Vec3 contact_point(const Manifold& m, const Transform& xa, int k) {
+  return xa.position + m.points[k].anchor_a;
+}
+
+inline void expect_sane(const Manifold& m, const Transform& xa, const Transform& xb) {
+  ASSERT_TRUE(m.normal.allFinite());
+  EXPECT_NEAR(m.normal.norm(), 1, 1e-4);
+  ASSERT_LE(m.point_count, kMaxManifoldPoints);
+  for (int k = 0; k < m.point_count; ++k) {
+    ASSERT_TRUE(m.points[k].anchor_a.allFinite());
+    ASSERT_TRUE(std::isfinite(m.points[k].separation));
+    // Both anchors name the same world point.
+    EXPECT_LT(((xa.position + m.points[k].anchor_a) - (xb.position + m.points[k].anchor_b)).norm(),
+              1e-4 * (1 + xa.position.norm() + xb.position.norm()));
+  }
+}
+
+}  // namespace elan::detail::test
