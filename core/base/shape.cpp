@@ -134,10 +134,14 @@ void make_hull(Shape& s, const ShapeDef& def) {
   s.hull = std::move(principal);
 }
 
-// Unit direction of d, or `fallback` when d has no usable length (d = 0 or underflows).
+// Unit direction of d, or `fallback` when d = 0. A d so short (or long) that its squared norm
+// under- or overflows is first rescaled by its largest component, off the common path.
 Vec3 direction_or(const Vec3& d, const Vec3& fallback) {
   const Real n = d.norm();
-  return n > 0 && std::isfinite(n) ? Vec3(d / n) : fallback;
+  if (n > std::numeric_limits<Real>::min() && n <= std::numeric_limits<Real>::max()) return d / n;
+  const Real m = d.cwiseAbs().maxCoeff();
+  if (!(m > 0) || !std::isfinite(m)) return fallback;
+  return (d / m).normalized();
 }
 
 }  // namespace
