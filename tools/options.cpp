@@ -1,0 +1,186 @@
+// Command-line parsing for the elan tool. Hand-written: two commands with a dozen options do not
+// justify a dependency (CLI11 is not in Debian's default set of installed packages).
+#include "tools/options.hpp"
+
+#include <tbb/info.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+
+namespace elan::cli {
+
+const char* const kMainUsage =
+    "usage: elan <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  run SCENE.json [options]   simulate a scene, print a JSON summary on stdout\n"
+    "  replay FILE [options]      re-simulate a recording and compare every step's state hash\n"
+    "\n"
+    "'elan run --help' and 'elan replay --help' list the options.\n";
+
+const char* const kRunUsage =
+    "usage: elan run SCENE.json [options]\n"
+    "\n"
+    "  --steps N            steps to simulate (default 600; 0 loads the scene only)\n"
+    "  --timestep S         seconds per step (default: the scene's, else 1/60)\n"
+    "  --substeps K         solver substeps per step (default: the scene's, else the engine's)\n"
+    "  --iterations K       solver iterations per substep (default: the scene's, else the "
+    "engine's)\n"
+    "  --threads T          worker threads (default: all cores)\n"
+    "  --broadphase B       sap or all-pairs (default sap)\n"
+    "  --trajectory F.csv   write every non-static body's state at step 0, every K-th and the "
+    "last\n"
+    "  --every K            trajectory interval in steps (default 1)\n"
+    "  --record FILE        save the scene, the settings and every step's state hash\n"
+    "\n"
+    "Prints one JSON object on stdout at the end; progress and warnings go to stderr.\n"
+    "Exit status: 0 ok, 2 bad arguments or input.\n";
+
+const char* const kReplayUsage =
+    "usage: elan replay FILE [options]\n"
+    "\n"
+    "  --threads T          worker threads (default: all cores)\n"
+    "  --broadphase B       sap or all-pairs (default: the recorded one)\n"
+    "\n"
+    "Re-simulates a recording made with 'elan run --record' and prints one JSON line.\n"
+    "Exit status: 0 all steps match, 1 a step's hash differs, 2 bad arguments or file.\n";
+
+namespace {
+
+constexpr uint64_t kMaxSteps = 1'000'000'000;
+constexpr int kMaxThreads = 1024;
+constexpr int kMaxSolverCount = 10'000;
+
+uint64_t parse_count(const std::string& option, const std::string& text, uint64_t lo, uint64_t hi) {
+  // strtoull accepts a sign and leading spaces; a count is digits only.
+  bool digits = !text.empty() && text.size() <= 19;
+  for (char c : text) digits = digits && c >= '0' && c <= '9';
+  if (!digits) throw UsageError(option + ": expected a whole number, got '" + text + "'");
+  const uint64_t v = std::strtoull(text.c_str(), nullptr, 10);
+  if (v < lo || v > hi) {
+    throw UsageError(option + ": must be between " + std::to_string(lo) + " and " +
+                     std::to_string(hi) + ", got " + text);
+  }
+  return v;
+}
+
+double parse_seconds(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = text.empty() ? 0 : std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
+    throw UsageError(option + ": expected a finite number, got '" + text + "'");
+  }
+  if (!(v > 0) || !(Real(v) > 0) || !std::isfinite(Real(v))) {
+    throw UsageError(option + ": must be positive, got " + text);
+  }
+  return v;
+}
+
+BroadphaseType parse_broadphase(const std::string& option, const std::string& text) {
+  if (text == "sap") return BroadphaseType::SweepAndPrune;
+  if (text == "all-pairs") return BroadphaseType::AllPairs;
+  throw UsageError(option + ": expected sap or all-pairs, got '" + text + "'");
+}
+
+// Walks `args`, accepting `--name value` and `--name=value`; the single positional argument goes
+// to `positional`, each option's value to `on_option`.
+void walk(std::span<const std::string> args, const std::string& command, std::string& positional,
+          bool& help, const std::function<void(const std::string&, const std::string&)>& on_option,
+          const std::function<bool(const std::string&)>& takes_value) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--help" || a == "-h") {
+      help = true;
+      continue;
+    }
+    if (a.size() > 1 && a[0] == '-') {
+      std::string name = a;
+      std::string value;
+      bool has_value = false;
+      if (const std::size_t eq = a.find('='); eq != std::string::npos) {
+        name = a.substr(0, eq);
+        value = a.substr(eq + 1);
+        has_value = true;
+      }
+      if (!takes_value(name)) {
+        throw UsageError("elan " + command + ": unknown option '" + name + "'");
+      }
+      if (!has_value) {
+        if (i + 1 >= args.size()) throw UsageError(name + ": missing value");
+        value = args[++i];
+      }
+      on_option(name, value);
+      continue;
+    }
+    if (!positional.empty()) {
+      throw UsageError("elan " + command + ": unexpected argument '" + a + "'");
+    }
+    positional = a;
+  }
+}
+
+}  // namespace
+
+RunOptions parse_run_options(std::span<const std::string> args) {
+  RunOptions o;
+  const auto takes_value = [](const std::string& n) {
+    return n == "--steps" || n == "--timestep" || n == "--substeps" || n == "--iterations" ||
+           n == "--threads" || n == "--broadphase" || n == "--trajectory" || n == "--every" ||
+           n == "--record";
+  };
+  const auto on_option = [&o](const std::string& n, const std::string& v) {
+    if (n == "--steps") {
+      o.steps = parse_count(n, v, 0, kMaxSteps);
+    } else if (n == "--timestep") {
+      o.timestep = parse_seconds(n, v);
+    } else if (n == "--substeps") {
+      o.substeps = int(parse_count(n, v, 1, kMaxSolverCount));
+    } else if (n == "--iterations") {
+      o.iterations = int(parse_count(n, v, 1, kMaxSolverCount));
+    } else if (n == "--threads") {
+      o.threads = int(parse_count(n, v, 1, kMaxThreads));
+    } else if (n == "--broadphase") {
+      o.broadphase = parse_broadphase(n, v);
+    } else if (n == "--trajectory" || n == "--record") {
+      if (v.empty()) throw UsageError(n + ": empty file name");
+      (n == "--trajectory" ? o.trajectory : o.record) = v;
+    } else if (n == "--every") {
+      o.every = parse_count(n, v, 1, kMaxSteps);
+      o.has_every = true;
+    }
+  };
+  walk(args, "run", o.scene, o.help, on_option, takes_value);
+  if (!o.help && o.scene.empty()) throw UsageError("elan run: missing SCENE.json");
+  return o;
+}
+
+ReplayOptions parse_replay_options(std::span<const std::string> args) {
+  ReplayOptions o;
+  const auto takes_value = [](const std::string& n) {
+    return n == "--threads" || n == "--broadphase";
+  };
+  const auto on_option = [&o](const std::string& n, const std::string& v) {
+    if (n == "--threads") {
+      o.threads = int(parse_count(n, v, 1, kMaxThreads));
+    } else {
+      o.broadphase = parse_broadphase(n, v);
+    }
+  };
+  walk(args, "replay", o.file, o.help, on_option, takes_value);
+  if (!o.help && o.file.empty()) throw UsageError("elan replay: missing FILE");
+  return o;
+}
+
+const char* broadphase_name(BroadphaseType type) {
+  return type == BroadphaseType::AllPairs ? "all-pairs" : "sap";
+}
+
+int resolve_threads(int threads) {
+  return threads > 0 ? threads : std::max(1, tbb::info::default_concurrency());
+}
+
+}  // namespace elan::cli

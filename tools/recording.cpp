@@ -1,0 +1,150 @@
+// Recording file format, version 1 (all integers little-endian):
+//   magic "\x89ELANREC" | u32 version | u32 real_bytes | u64 steps | f64 timestep | i32 substeps |
+//   i32 iterations | u32 threads | u32 broadphase | u64 n, scene name | u64 n, scene text |
+//   u64 n, n hashes (u64) | u64 FNV-1a of every byte before it.
+// The leading 0x89 byte keeps a text file from ever passing as a recording (as in PNG).
+#include "tools/recording.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace elan::cli {
+namespace {
+
+constexpr char kMagic[8] = {'\x89', 'E', 'L', 'A', 'N', 'R', 'E', 'C'};
+constexpr uint32_t kVersion = 1;
+
+// FNV-1a, 64 bit: every single-byte change changes the sum (each step is a bijection), which is
+// what corruption and truncation checks need; no cryptographic strength is sought.
+uint64_t fnv1a(const char* data, std::size_t size) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= uint8_t(data[i]);
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+void put_u64(std::string& out, uint64_t v) {
+  for (int i = 0; i < 8; ++i) out.push_back(char(uint8_t(v >> (8 * i))));
+}
+void put_u32(std::string& out, uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(char(uint8_t(v >> (8 * i))));
+}
+void put_string(std::string& out, const std::string& s) {
+  put_u64(out, s.size());
+  out += s;
+}
+
+class Reader {
+ public:
+  Reader(const std::string& bytes, std::size_t end, const std::string& file)
+      : bytes_(bytes), end_(end), file_(file) {}
+  uint64_t u64(const char* what) {
+    need(8, what);
+    uint64_t v = 0;
+    for (int i = 0; i < 8; ++i) v |= uint64_t(uint8_t(bytes_[pos_ + i])) << (8 * i);
+    pos_ += 8;
+    return v;
+  }
+  uint32_t u32(const char* what) {
+    need(4, what);
+    uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v |= uint32_t(uint8_t(bytes_[pos_ + i])) << (8 * i);
+    pos_ += 4;
+    return v;
+  }
+  std::string string(const char* what) {
+    const uint64_t n = u64(what);
+    need(n, what);
+    std::string s = bytes_.substr(pos_, n);
+    pos_ += n;
+    return s;
+  }
+  void need(uint64_t n, const char* what) {
+    if (n > end_ - pos_)
+      throw RecordingError(file_ + ": corrupt recording: " + what + " runs past the end");
+  }
+  std::size_t pos() const { return pos_; }
+
+ private:
+  const std::string& bytes_;
+  std::size_t end_;
+  const std::string& file_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::string encode_recording(const Recording& r) {
+  std::string out(kMagic, sizeof kMagic);
+  put_u32(out, kVersion);
+  put_u32(out, r.real_bytes);
+  put_u64(out, r.steps);
+  uint64_t dt_bits;
+  std::memcpy(&dt_bits, &r.timestep, 8);
+  put_u64(out, dt_bits);
+  put_u32(out, uint32_t(r.substeps));
+  put_u32(out, uint32_t(r.iterations));
+  put_u32(out, r.threads);
+  put_u32(out, r.broadphase);
+  put_string(out, r.scene_name);
+  put_string(out, r.scene_text);
+  put_u64(out, r.hashes.size());
+  for (uint64_t h : r.hashes) put_u64(out, h);
+  put_u64(out, fnv1a(out.data(), out.size()));
+  return out;
+}
+
+Recording decode_recording(const std::string& bytes, const std::string& file) {
+  const std::size_t magic_seen = std::min(bytes.size(), sizeof kMagic);
+  if (std::memcmp(bytes.data(), kMagic, magic_seen) != 0 || bytes.empty()) {
+    throw RecordingError(file + ": not an elan recording (it does not start with the magic bytes)");
+  }
+  if (bytes.size() < sizeof kMagic + 4 + 8) {
+    throw RecordingError(file + ": truncated recording (" + std::to_string(bytes.size()) +
+                         " bytes)");
+  }
+  const std::size_t body = bytes.size() - 8;
+  uint64_t stored = 0;
+  for (int i = 0; i < 8; ++i) stored |= uint64_t(uint8_t(bytes[body + i])) << (8 * i);
+  if (stored != fnv1a(bytes.data(), body)) {
+    throw RecordingError(file + ": truncated or corrupt recording (checksum mismatch)");
+  }
+  Reader in(bytes, body, file);
+  in.need(sizeof kMagic, "magic");
+  in.u64("magic");
+  const uint32_t version = in.u32("version");
+  if (version != kVersion) {
+    throw RecordingError(file + ": unsupported recording version " + std::to_string(version) +
+                         " (this elan reads version " + std::to_string(kVersion) + ")");
+  }
+  Recording r;
+  r.real_bytes = in.u32("real size");
+  r.steps = in.u64("steps");
+  const uint64_t dt_bits = in.u64("timestep");
+  std::memcpy(&r.timestep, &dt_bits, 8);
+  r.substeps = int32_t(in.u32("substeps"));
+  r.iterations = int32_t(in.u32("iterations"));
+  r.threads = in.u32("threads");
+  r.broadphase = in.u32("broadphase");
+  if (!(r.timestep > 0) || !std::isfinite(r.timestep) || r.substeps < 1 || r.iterations < 1 ||
+      r.broadphase > 1) {
+    throw RecordingError(file + ": corrupt recording: invalid settings");
+  }
+  r.scene_name = in.string("scene name");
+  r.scene_text = in.string("scene text");
+  const uint64_t count = in.u64("hash count");
+  if (count != r.steps + 1 || r.steps == UINT64_MAX) {
+    throw RecordingError(file + ": corrupt recording: " + std::to_string(count) + " hashes for " +
+                         std::to_string(r.steps) + " steps");
+  }
+  if (count > body / 8) throw RecordingError(file + ": corrupt recording: hashes run past the end");
+  r.hashes.resize(count);
+  for (uint64_t& h : r.hashes) h = in.u64("hashes");
+  if (in.pos() != body) throw RecordingError(file + ": corrupt recording: trailing bytes");
+  return r;
+}
+
+}  // namespace elan::cli
