@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "narrowphase/general.hpp"
+#include "narrowphase/gjk.hpp"
 #include "narrowphase/round_pairs.hpp"
 #include "narrowphase/sat.hpp"
 
@@ -30,6 +31,16 @@ bool collide_capsule_poly(const Shape& a, const Transform& xa, const Shape& b, c
   Polyhedron pb;
   make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
   const Vec3 axis = xa.rotation * Vec3(0, a.half_height, 0);
+  // SAT measures the depth of an overlapping segment exactly; a segment apart from the box
+  // (only the radius overlaps) needs the true closest points, which GJK gives.
+  const GjkResult g = gjk_distance(a, xa, b, xb, false);
+  if (!g.overlap && g.distance > Real(1e-6) * (a.half_height + a.radius)) {
+    if (g.distance - a.radius > speculative_distance) return false;
+    const Vec3 normal = (g.point_b - g.point_a) / g.distance;
+    return collide_segment_polyhedron_separated(-axis, axis, a.radius, pb, normal,
+                                                g.point_a - xa.position, g.point_b - xa.position,
+                                                speculative_distance, out);
+  }
   return collide_segment_polyhedron(-axis, axis, a.radius, pb, speculative_distance, out);
 }
 

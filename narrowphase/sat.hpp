@@ -25,4 +25,12 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
 bool collide_segment_polyhedron(const Vec3& s0, const Vec3& s1, Real radius, const Polyhedron& b,
                                 Real speculative_distance, Manifold& out);
 
+// Capsule A whose segment is apart from B (SAT is exact only for overlapping cores): `normal`
+// (A to B, unit) and the closest points of the segment and B come from GJK. Clips the segment
+// to B's face along the normal if it is aligned with one, else one point.
+bool collide_segment_polyhedron_separated(const Vec3& s0, const Vec3& s1, Real radius,
+                                          const Polyhedron& b, const Vec3& normal,
+                                          const Vec3& point_a, const Vec3& point_b,
+                                          Real speculative_distance, Manifold& out);
+
 }  // namespace elan::detail
