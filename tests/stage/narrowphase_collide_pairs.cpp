@@ -1,0 +1,160 @@
+// The collide stage: bit-identical results under 1 and 2 threads on a pile of mixed shapes,
+// A/B choice (static as B), and warm-start impulses carried by key and feature id.
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <cstring>
+#include <random>
+
+#include "core/base/pair_key.hpp"
+#include "narrowphase_test_shapes.hpp"
+
+namespace elan::detail {
+namespace {
+
+struct Pile {
+  BodyStore bodies;
+  std::vector<Shape> shapes;
+  std::vector<uint64_t> pairs;
+};
+
+// Mixed shapes at random poses in a small volume on a static ground box (body 0), pairs from
+// overlapping bounding spheres (a brute-force broadphase), sorted by key.
+Pile make_pile(int n, uint32_t seed) {
+  Pile p;
+  p.shapes = {test::box(20, Real(0.5), 20),
+              test::box(Real(0.4), Real(0.3), Real(0.5)),
+              test::sphere(Real(0.4)),
+              test::capsule(Real(0.25), Real(0.4)),
+              test::cylinder(Real(0.35), Real(0.3)),
+              test::round_hull(16, Real(0.45)),
+              test::box_hull(Real(0.3), Real(0.5), Real(0.4))};
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const uint32_t g = uint32_t(p.bodies.push_back());
+  p.bodies.shape[g] = 0;
+  p.bodies.motion[g] = uint8_t(MotionType::Static);
+  p.bodies.set_position(g, Vec3(0, Real(-0.5), 0));
+  for (int i = 0; i < n; ++i) {
+    const uint32_t b = uint32_t(p.bodies.push_back());
+    p.bodies.shape[b] = 1 + uint32_t(i % 6);
+    p.bodies.motion[b] = uint8_t(MotionType::Dynamic);
+    p.bodies.set_position(b,
+                          Vec3(Real(2.5 * u(rng)), Real(1.2 + 1.2 * u(rng)), Real(2.5 * u(rng))));
+    p.bodies.set_orientation(b, Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized());
+    p.bodies.set_linear_velocity(b, Vec3(u(rng), u(rng), u(rng)));
+  }
+  for (uint32_t i = 0; i < p.bodies.size(); ++i) {
+    for (uint32_t j = i + 1; j < p.bodies.size(); ++j) {
+      const Real r = p.shapes[p.bodies.shape[i]].bounding_radius +
+                     p.shapes[p.bodies.shape[j]].bounding_radius + Real(0.1);
+      if (i == 0) {
+        if (p.bodies.position(j).y() - r < Real(0.1)) p.pairs.push_back(make_pair_key(i, j));
+      } else if ((p.bodies.position(i) - p.bodies.position(j)).norm() < r) {
+        p.pairs.push_back(make_pair_key(i, j));
+      }
+    }
+  }
+  return p;
+}
+
+void expect_identical(const std::vector<Manifold>& x, const std::vector<Manifold>& y) {
+  ASSERT_EQ(x.size(), y.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    ASSERT_EQ(x[i].key, y[i].key);
+    ASSERT_EQ(x[i].body_a, y[i].body_a);
+    ASSERT_EQ(x[i].point_count, y[i].point_count);
+    ASSERT_EQ(std::memcmp(x[i].normal.data(), y[i].normal.data(), sizeof(Vec3)), 0);
+    for (int k = 0; k < x[i].point_count; ++k) {
+      const ContactPoint &a = x[i].points[k], &b = y[i].points[k];
+      ASSERT_EQ(std::memcmp(a.anchor_a.data(), b.anchor_a.data(), sizeof(Vec3)), 0);
+      ASSERT_EQ(std::memcmp(a.anchor_b.data(), b.anchor_b.data(), sizeof(Vec3)), 0);
+      ASSERT_EQ(std::memcmp(&a.separation, &b.separation, sizeof(Real)), 0);
+      ASSERT_EQ(a.feature_id, b.feature_id);
+      ASSERT_EQ(std::memcmp(&a.normal_impulse, &b.normal_impulse, sizeof(Real)), 0);
+    }
+  }
+}
+
+TEST(CollidePairs, BitIdenticalUnderOneAndTwoThreads) {
+  const Pile p = make_pile(300, 7);
+  ASSERT_GT(p.pairs.size(), 256u) << "enough pairs for several blocks";
+  CollideSettings settings;
+  std::vector<Manifold> slots1, slots2, out1, out2, previous;
+  tbb::task_arena(1).execute(
+      [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, previous, slots1, out1); });
+  tbb::task_arena(2).execute(
+      [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, previous, slots2, out2); });
+  ASSERT_GT(out1.size(), 50u);
+  expect_identical(out1, out2);
+  // Keys sorted and unique; static ground is always B; the normal is unit.
+  for (std::size_t i = 0; i < out1.size(); ++i) {
+    if (i > 0) {
+      EXPECT_LT(out1[i - 1].key, out1[i].key);
+    }
+    EXPECT_EQ(out1[i].key, make_pair_key(out1[i].body_a, out1[i].body_b));
+    EXPECT_NE(out1[i].body_a, 0u);
+    EXPECT_NEAR(out1[i].normal.norm(), 1, 1e-4);
+  }
+  // Warm start under both thread counts gives the same bits too.
+  for (Manifold& m : out1) {
+    for (int k = 0; k < m.point_count; ++k)
+      m.points[k].normal_impulse = Real(m.points[k].feature_id % 97);
+  }
+  previous = out1;
+  tbb::task_arena(1).execute(
+      [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, previous, slots1, out1); });
+  tbb::task_arena(2).execute(
+      [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, previous, slots2, out2); });
+  expect_identical(out1, out2);
+}
+
+TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
+  Pile p = make_pile(200, 11);
+  CollideSettings settings;
+  std::vector<Manifold> slots, first, second;
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, first);
+  int points = 0;
+  for (Manifold& m : first) {
+    for (int k = 0; k < m.point_count; ++k) {
+      EXPECT_EQ(m.points[k].normal_impulse, 0);
+      m.points[k].normal_impulse = Real(1 + m.points[k].feature_id % 1000);
+      m.points[k].tangent_impulse[0] = Real(m.key % 13);
+      m.points[k].tangent_impulse[1] = -Real(k);
+      ++points;
+    }
+  }
+  ASSERT_GT(points, 100);
+  // Nudge every dynamic body by 1e-4 m: the same features touch, so every impulse arrives.
+  for (uint32_t b = 1; b < p.bodies.size(); ++b) {
+    p.bodies.set_position(b, p.bodies.position(b) + Vec3(Real(1e-4), 0, Real(-1e-4)));
+  }
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, first, slots, second);
+  std::size_t j = 0;
+  int matched = 0, total = 0;
+  for (const Manifold& m : second) {
+    while (j < first.size() && first[j].key < m.key) ++j;
+    for (int k = 0; k < m.point_count; ++k) {
+      ++total;
+      const ContactPoint& c = m.points[k];
+      const ContactPoint* old = nullptr;
+      if (j < first.size() && first[j].key == m.key) {
+        for (int i = 0; i < first[j].point_count; ++i) {
+          if (first[j].points[i].feature_id == c.feature_id) old = &first[j].points[i];
+        }
+      }
+      if (old) {
+        ++matched;
+        EXPECT_EQ(c.normal_impulse, old->normal_impulse);
+        EXPECT_EQ(c.tangent_impulse[0], old->tangent_impulse[0]);
+        EXPECT_EQ(c.tangent_impulse[1], old->tangent_impulse[1]);
+      } else {
+        EXPECT_EQ(c.normal_impulse, 0);
+      }
+    }
+  }
+  EXPECT_GT(matched, total * 9 / 10) << "small motion keeps almost every feature";
+}
+
+}  // namespace
+}  // namespace elan::detail
