@@ -245,7 +245,7 @@ EpaResult epa_penetration(const Shape& a, const Transform& xa, const Shape& b,
   const GjkResult g = gjk_placed(pa, pb, xb.position - xa.position, s);
   const Real scale = std::max((g.point_a - xa.position).norm(), (g.point_b - xb.position).norm());
   EpaResult r;
-  if (!g.overlap && g.distance > Real(1e3) * kEps * scale) {
+  if (!g.overlap && g.distance > 16 * kEps * scale) {
     // Cores apart: the rounded shapes overlap by radii - distance along the core normal.
     r.normal = (g.point_b - g.point_a) / g.distance;
     r.ok = g.distance < radii;

@@ -15,7 +15,7 @@ constexpr Real kEps = std::numeric_limits<Real>::epsilon();
 // (van den Bergen 2003, 4.3.4); a few hundred ulps above the rounding of the dot products.
 constexpr Real kRelTol = sizeof(Real) == 4 ? Real(1e-5) : Real(1e-10);
 // Origin within this fraction of the simplex's size counts as on it: overlap (touching).
-constexpr Real kOnSimplex = 100 * kEps;
+constexpr Real kOnSimplex = 8 * kEps;
 constexpr int kMaxIterations = 64;
 
 bool same_sign(Real a, Real b) {
@@ -238,7 +238,10 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
     }
   }
   witness_points(s, result.point_a, result.point_b);
-  result.distance = result.overlap ? Real(0) : std::sqrt(vv);
+  // The distance is measured between the witnesses (not |v|), so that (b - a) / distance is a
+  // unit normal to rounding even far from the origin; witnesses that meet mean touching.
+  result.distance = result.overlap ? Real(0) : (result.point_b - result.point_a).norm();
+  if (!(result.distance > 0)) result.overlap = true, result.distance = 0;
   return result;
 }
 

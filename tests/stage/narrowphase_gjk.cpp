@@ -1,0 +1,189 @@
+// GJK distance and closest points against closed forms and an exact polytope oracle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "narrowphase/gjk.hpp"
+#include "narrowphase_oracle.hpp"
+
+namespace elan::detail {
+namespace {
+
+// Float GJK stops at a relative gap of 1e-5; the tolerances leave room for float rounding.
+constexpr double kTol = sizeof(Real) == 4 ? 2e-4 : 1e-8;
+
+Shape make(ShapeType type, Real r, Real hh, Vec3 he = Vec3::Zero()) {
+  ShapeDef d;
+  d.type = type;
+  d.radius = r;
+  d.half_height = hh;
+  d.half_extents = he;
+  return make_shape(d);
+}
+Shape sphere(Real r) {
+  return make(ShapeType::Sphere, r, 0);
+}
+Shape box(Real x, Real y, Real z) {
+  return make(ShapeType::Box, 0, 0, Vec3(x, y, z));
+}
+Shape capsule(Real r, Real hh) {
+  return make(ShapeType::Capsule, r, hh);
+}
+
+Transform at(Real x, Real y, Real z, Quat q = Quat::Identity()) {
+  Transform t;
+  t.position = Vec3(x, y, z);
+  t.rotation = q;
+  return t;
+}
+
+Quat axis_angle(Real angle, const Vec3& axis) {
+  return Quat(Eigen::AngleAxis<Real>(angle, axis.normalized()));
+}
+
+void expect_finite(const GjkResult& g) {
+  EXPECT_TRUE(std::isfinite(g.distance));
+  EXPECT_TRUE(g.point_a.allFinite());
+  EXPECT_TRUE(g.point_b.allFinite());
+}
+
+TEST(Gjk, SphereSphereMatchesClosedForm) {
+  const Shape a = sphere(0.5), b = sphere(0.25);
+  const Transform xa = at(1, 2, 3), xb = at(2, 4, 5);
+  const Real centre = std::sqrt(Real(1 + 4 + 4));
+  const GjkResult core = gjk_distance(a, xa, b, xb, false);
+  EXPECT_NEAR(core.distance, centre, kTol * centre);
+  EXPECT_TRUE(core.point_a.isApprox(xa.position, Real(1e-5)));
+  const GjkResult full = gjk_distance(a, xa, b, xb, true);
+  EXPECT_FALSE(full.overlap);
+  EXPECT_NEAR(full.distance, centre - Real(0.75), kTol * centre);
+  const Vec3 n = (xb.position - xa.position) / centre;
+  EXPECT_LT((full.point_a - (xa.position + Real(0.5) * n)).norm(), 1e-3);
+  EXPECT_LT((full.point_b - (xb.position - Real(0.25) * n)).norm(), 1e-3);
+}
+
+TEST(Gjk, SphereBoxMatchesClosedForm) {
+  const Shape a = sphere(0.5), b = box(1, 2, 3);
+  // Face region: closest point (1, 0.5, 0.2) on the +x face.
+  GjkResult g = gjk_distance(a, at(3, 0.5, 0.2), b, at(0, 0, 0));
+  EXPECT_NEAR(g.distance, 1.5, kTol);
+  // The rounded support converges in distance much faster than in direction (the error in the
+  // closest point is the square root of the distance's); the core query is exact.
+  EXPECT_LT((g.point_b - Vec3(1, 0.5, 0.2)).norm(), 1e-2);
+  g = gjk_distance(a, at(3, 0.5, 0.2), b, at(0, 0, 0), false);
+  EXPECT_NEAR(g.distance, 2, kTol);
+  EXPECT_TRUE(g.point_b.isApprox(Vec3(1, 0.5, 0.2), Real(1e-5)));
+  // Corner region: centre at (2, 3, 4), corner (1, 2, 3): sqrt(3) - 0.5.
+  g = gjk_distance(a, at(2, 3, 4), b, at(0, 0, 0));
+  EXPECT_NEAR(g.distance, std::sqrt(3.0) - 0.5, kTol);
+  EXPECT_TRUE(g.point_b.isApprox(Vec3(1, 2, 3), Real(1e-4)));
+}
+
+TEST(Gjk, BoxBoxFaceEdgeVertexMatchClosedForms) {
+  const Shape a = box(1, 1, 1), b = box(1, 1, 1);
+  const Real s2 = std::sqrt(Real(2)), s3 = std::sqrt(Real(3));
+  // Face-face: gap 1 along x, offsets across keep the faces overlapping.
+  EXPECT_NEAR(gjk_distance(a, at(0, 0, 0), b, at(3, 0.2, 0.1)).distance, 1.0, kTol);
+  // Edge-edge: A turned 45 deg about z (edge along z at x = sqrt 2), B about y (edge along y at
+  // x = 4 - sqrt 2): crossing edges, gap 4 - 2 sqrt 2.
+  const GjkResult e = gjk_distance(a, at(0, 0, 0, axis_angle(std::numbers::pi / 4, Vec3::UnitZ())),
+                                   b, at(4, 0, 0, axis_angle(std::numbers::pi / 4, Vec3::UnitY())));
+  EXPECT_NEAR(e.distance, 4 - 2 * s2, kTol);
+  EXPECT_TRUE(e.point_a.isApprox(Vec3(s2, 0, 0), Real(1e-3)));
+  // Vertex-face: A's (1,1,1) corner turned onto +x, B's face at x = 4 - 1.
+  const Quat q = Quat::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3::UnitX());
+  const GjkResult v = gjk_distance(a, at(0, 0, 0, q), b, at(4, 0.1, -0.2));
+  EXPECT_NEAR(v.distance, 3 - s3, kTol * 3);
+  EXPECT_TRUE(v.point_a.isApprox(Vec3(s3, 0, 0), Real(1e-3)));
+}
+
+TEST(Gjk, CapsuleCapsuleParallelAndSkewMatchClosedForms) {
+  const Shape a = capsule(0.3, 1), b = capsule(0.2, 0.5);
+  // Parallel along y, 2 apart: core distance 2.
+  GjkResult g = gjk_distance(a, at(0, 0, 0), b, at(2, 0.4, 0), false);
+  EXPECT_NEAR(g.distance, 2, kTol * 2);
+  EXPECT_NEAR((g.point_b - g.point_a).normalized().x(), 1, 1e-4);
+  g = gjk_distance(a, at(0, 0, 0), b, at(2, 0.4, 0), true);
+  EXPECT_NEAR(g.distance, 1.5, kTol * 2);
+  // Skew: B along z through (2, 0.3, *): closest core points (0, 0.3, 0) and (2, 0.3, 0).
+  const Transform xb = at(2, 0.3, 0.1, axis_angle(std::numbers::pi / 2, Vec3::UnitX()));
+  g = gjk_distance(a, at(0, 0, 0), b, xb, false);
+  EXPECT_NEAR(g.distance, 2, kTol * 2);
+  EXPECT_TRUE(g.point_a.isApprox(Vec3(0, 0.3, 0), Real(1e-4)));
+  EXPECT_LT((g.point_b - Vec3(2, 0.3, 0)).norm(), 1e-4);
+}
+
+// Hundreds of random hull pairs: disjoint ones (by exact SAT) must match the exact polytope
+// distance to 1e-4 relative, overlapping ones must report overlap.
+TEST(Gjk, MatchesExactDistanceOnRandomHulls) {
+  std::mt19937 rng(1234);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int disjoint = 0, overlapping = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Shape a = oracle::random_hull(rng, 6 + i % 20, 1.0);
+    const Shape b = oracle::random_hull(rng, 6 + (i * 7) % 30, 0.7);
+    const Transform xa = at(Real(u(rng)), Real(u(rng)), Real(u(rng)), oracle::random_rotation(rng));
+    const Vec3 offset = Vec3(Real(u(rng)), Real(u(rng)), Real(u(rng))).normalized() *
+                        Real(0.3 + 1.5 * (u(rng) + 1) / 2);
+    const Transform xb = at(0, 0, 0, oracle::random_rotation(rng));
+    Transform xb2 = xb;
+    xb2.position = xa.position + offset;
+    const oracle::Poly pa = oracle::place_hull(a, xa), pb = oracle::place_hull(b, xb2);
+    const double depth = oracle::sat_depth(pa, pb);
+    const GjkResult g = gjk_distance(a, xa, b, xb2);
+    expect_finite(g);
+    if (depth < -1e-3) {
+      ++disjoint;
+      const double ref = oracle::polytope_distance(pa, pb);
+      ASSERT_FALSE(g.overlap) << i;
+      EXPECT_NEAR(g.distance, ref, 1e-4 * ref + 1e-6) << i;
+      EXPECT_NEAR((g.point_b - g.point_a).norm(), g.distance, 1e-4 * ref + 1e-6) << i;
+    } else if (depth > 1e-3) {
+      ++overlapping;
+      EXPECT_TRUE(g.overlap) << i;
+    }
+  }
+  EXPECT_GT(disjoint, 100);
+  EXPECT_GT(overlapping, 50);
+}
+
+TEST(Gjk, WarmStartGivesTheSameDistance) {
+  const Shape a = box(1, 0.5, 0.7), b = capsule(0.2, 0.6);
+  const Transform xa = at(0, 0, 0, axis_angle(0.3, Vec3(1, 2, 3)));
+  const Transform xb = at(1.5, 1.2, -0.4, axis_angle(1.1, Vec3(-1, 0, 2)));
+  const GjkResult cold = gjk_distance(a, xa, b, xb);
+  const Vec3 n = (cold.point_b - cold.point_a).normalized();
+  const GjkResult warm = gjk_distance(a, xa, b, xb, true, &n);
+  EXPECT_NEAR(warm.distance, cold.distance, kTol);
+  EXPECT_LE(warm.iterations, cold.iterations);
+}
+
+TEST(Gjk, DegenerateInputsStayFiniteAndTerminate) {
+  const Shape unit = box(1, 1, 1);
+  // Touching exactly: distance 0 within rounding, overlap or not.
+  GjkResult g = gjk_distance(unit, at(0, 0, 0), unit, at(2, 0.5, 0));
+  expect_finite(g);
+  EXPECT_LT(g.distance, 1e-5);
+  // Identical shapes at the same pose, and coincident sphere centres.
+  g = gjk_distance(unit, at(0, 0, 0), unit, at(0, 0, 0));
+  expect_finite(g);
+  EXPECT_TRUE(g.overlap);
+  g = gjk_distance(sphere(1), at(1, 1, 1), sphere(1), at(1, 1, 1), false);
+  expect_finite(g);
+  EXPECT_NEAR(g.distance, 0, 1e-6);
+  // Very thin boxes, 1e-3 thick, stacked 0.01 apart.
+  const Shape thin = box(1, Real(1e-3), 1);
+  g = gjk_distance(thin, at(0, 0, 0), thin, at(0.3, 0.012, 0.1));
+  expect_finite(g);
+  EXPECT_NEAR(g.distance, 0.01, 1e-5);
+  // Huge next to tiny: a 1e3 box and a 1e-2 sphere 0.05 above its face.
+  g = gjk_distance(box(1000, 1000, 1000), at(0, 0, 0), sphere(0.01), at(3, 1000.06, -7));
+  expect_finite(g);
+  EXPECT_NEAR(g.distance, 0.05, 1e-3);
+  EXPECT_LE(g.iterations, 64);
+}
+
+}  // namespace
+}  // namespace elan::detail
