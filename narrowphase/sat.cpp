@@ -59,16 +59,32 @@ FaceQuery query_faces(const Polyhedron& a, const Polyhedron& b) {
   return q;
 }
 
+// Per-edge data of B for the edge query, computed once per call instead of once per edge pair.
+struct EdgeData {
+  Vec3 c, d, dxc;  // -B's face normals (its Gauss-map arc on -B) and the arc's plane normal
+  Vec3 p, u;       // first vertex and direction
+};
+
 // Arcs (a, b) of A's Gauss map and (c, d) of -B's Gauss map cross exactly when the edges build a
 // face of the Minkowski difference; bxa and dxc are the arcs' plane normals (Gregorius 2013).
-bool is_minkowski_face(const Vec3& a, const Vec3& b, const Vec3& bxa, const Vec3& c, const Vec3& d,
-                       const Vec3& dxc) {
-  const Real cba = c.dot(bxa), dba = d.dot(bxa);
-  const Real adc = a.dot(dxc), bdc = b.dot(dxc);
-  return cba * dba < 0 && adc * bdc < 0 && cba * bdc > 0;
+// perf: the first test rejects most pairs, so its two dot products come first.
+bool is_minkowski_face(const Vec3& a, const Vec3& b, const Vec3& bxa, const EdgeData& e) {
+  const Real cba = e.c.dot(bxa), dba = e.d.dot(bxa);
+  if (cba * dba >= 0) return false;
+  const Real adc = a.dot(e.dxc), bdc = b.dot(e.dxc);
+  return adc * bdc < 0 && cba * bdc > 0;
 }
 
 EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b) {
+  std::array<EdgeData, kMaxPolyEdges> eb_data;
+  for (int eb = 0; eb < b.edge_count; ++eb) {
+    EdgeData& e = eb_data[eb];
+    e.c = -b.normals[b.edge_faces[eb][0]];
+    e.d = -b.normals[b.edge_faces[eb][1]];
+    e.dxc = e.d.cross(e.c);
+    e.p = b.vertices[b.edges[eb][0]];
+    e.u = b.vertices[b.edges[eb][1]] - e.p;
+  }
   EdgeQuery q;
   for (int ea = 0; ea < a.edge_count; ++ea) {
     const Vec3& pa = a.vertices[a.edges[ea][0]];
@@ -78,17 +94,14 @@ EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b) {
     const Vec3 bxa = nb.cross(na);
     const Real ua_len2 = ua.squaredNorm();
     for (int eb = 0; eb < b.edge_count; ++eb) {
-      const Vec3 nc = -b.normals[b.edge_faces[eb][0]];
-      const Vec3 nd = -b.normals[b.edge_faces[eb][1]];
-      if (!is_minkowski_face(na, nb, bxa, nc, nd, nd.cross(nc))) continue;
-      const Vec3& pb = b.vertices[b.edges[eb][0]];
-      const Vec3 ub = b.vertices[b.edges[eb][1]] - pb;
-      Vec3 axis = ua.cross(ub);
+      const EdgeData& e = eb_data[eb];
+      if (!is_minkowski_face(na, nb, bxa, e)) continue;
+      Vec3 axis = ua.cross(e.u);
       const Real len = axis.norm();
-      if (len <= kParallelSine * std::sqrt(ua_len2 * ub.squaredNorm())) continue;
+      if (len <= kParallelSine * std::sqrt(ua_len2 * e.u.squaredNorm())) continue;
       axis /= len;
       if (axis.dot(pa - a.centre) < 0) axis = -axis;
-      const Real s = axis.dot(pb - pa);
+      const Real s = axis.dot(e.p - pa);
       if (s > q.separation) {
         q.separation = s;
         q.edge_a = ea;
