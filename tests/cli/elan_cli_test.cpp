@@ -1,0 +1,410 @@
+// Runs the built `elan` binary: bad scenes and bad arguments exit 2 with a one-line message naming
+// the field, the summary has the contract's keys, trajectories and recordings round-trip.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Json = nlohmann::json;
+
+struct Result {
+  int status = -1;  // exit status; a death by signal shows as 128 + signal through the shell
+  std::string out;
+  std::string err;
+};
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) {
+    if (c == '\'') {
+      q.append("'\\''");
+    } else {
+      q.push_back(c);
+    }
+  }
+  q.push_back('\'');
+  return q;
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// A path unique to the running test, so ctest may run tests in parallel.
+std::string temp_path(const std::string& name) {
+  std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  for (char& c : test) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return ::testing::TempDir() + "elan_cli_" + std::to_string(getpid()) + "_" + test + "_" + name;
+}
+
+Result run_elan(const std::vector<std::string>& args) {
+  const std::string out = temp_path("stdout"), err = temp_path("stderr");
+  std::string cmd = quote(ELAN_CLI);
+  // Appends only: GCC 12 warns falsely (-Wrestrict) on `" " + std::string`.
+  for (const std::string& a : args) cmd.append(" ").append(quote(a));
+  cmd.append(" >").append(quote(out)).append(" 2>").append(quote(err)).append(" </dev/null");
+  const int rc = std::system(cmd.c_str());
+  Result r;
+  r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  r.out = read(out);
+  r.err = read(err);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+std::size_t count_lines(const std::string& s) {
+  std::size_t n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+// One static ground, two spheres and a box falling onto it.
+const char* kSmallScene = R"({
+  "timestep": 0.01,
+  "bodies": [
+    {"name": "ground", "motion": "static", "shape": {"type": "box", "half_extents": [10, 1, 10]},
+     "position": [0, -1, 0]},
+    {"name": "a", "shape": {"type": "sphere", "radius": 0.5}, "position": [0, 0.6, 0]},
+    {"name": "b", "shape": {"type": "sphere", "radius": 0.5}, "position": [1.5, 2, 0],
+     "linear_velocity": [0, 0, 1]},
+    {"shape": {"type": "box", "half_extents": [0.4, 0.3, 0.2]}, "position": [-1.5, 1, 0.2],
+     "angular_velocity": [0, 2, 0]}
+  ]
+})";
+
+std::string small_scene() {
+  const std::string path = temp_path("scene.json");
+  write(path, kSmallScene);
+  return path;
+}
+
+struct BadScene {
+  const char* file;
+  const char* field;  // must appear in the message
+};
+
+void PrintTo(const BadScene& c, std::ostream* os) {
+  *os << c.file;
+}
+
+class BadSceneFile : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneFile, ExitsTwoWithOneLineNamingTheField) {
+  const BadScene& c = GetParam();
+  const Result r = run_elan({"run", std::string(ELAN_BAD_SCENES) + "/" + c.file, "--steps", "1"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find(c.file), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(c.field), std::string::npos) << "expected '" << c.field << "' in " << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadSceneFile,
+    ::testing::Values(
+        BadScene{"malformed.json", ":3:15: malformed JSON"},
+        BadScene{"nan_token.json", "malformed JSON at gravity[1]"},
+        BadScene{"infinity_token.json", "malformed JSON at gravity[1]"},
+        BadScene{"overflow.json", "shape.radius: number overflow"},
+        BadScene{"empty.json", "empty file"}, BadScene{"top_level_array.json", "JSON object"},
+        BadScene{"trailing_garbage.json", "end of input"}, BadScene{"deep_nesting.json", "nesting"},
+        BadScene{"missing_shape.json", "body 0: shape: missing"},
+        BadScene{"missing_radius.json", "body 0: shape.radius: missing"},
+        BadScene{"wrong_type_radius.json", "body 0 (\"ball\"): shape.radius: expected a number"},
+        BadScene{"wrong_type_sleep.json", "allow_sleep"},
+        BadScene{"wrong_type_bodies.json", "bodies: expected an array"},
+        BadScene{"short_vector.json", "body 0: position: expected 3 numbers, got 2"},
+        BadScene{"long_vector.json", "gravity: expected 3 numbers, got 4"},
+        BadScene{"negative_radius.json", "body 1 (\"ball\"): shape.radius: must be positive"},
+        BadScene{"zero_half_extent.json", "shape.half_extents[1]: must be positive"},
+        BadScene{"zero_half_height.json", "shape.half_height: must be positive"},
+        BadScene{"zero_mass.json", "body 0: mass: must be positive"},
+        BadScene{"negative_density.json", "body 0: density: must be positive"},
+        BadScene{"negative_friction.json", "body 0: friction"},
+        BadScene{"mass_and_density.json", "mass: give either mass or density"},
+        BadScene{"degenerate_hull.json", "body 0: shape.points: degenerate hull"},
+        BadScene{"few_hull_points.json", "body 0: shape.points"},
+        BadScene{"unknown_world_key.json", "gravty: unknown key"},
+        BadScene{"unknown_body_key.json", "body 0: colour: unknown key"},
+        BadScene{"unknown_shape_key.json", "shape.half_extents: unknown key for a sphere"},
+        BadScene{"unknown_generator_key.json", "generator 0 (pyramid): size: unknown key"},
+        BadScene{"unknown_shape_type.json", "shape.type: unknown shape type \"torus\""},
+        BadScene{"unknown_motion.json", "motion: unknown motion"},
+        BadScene{"unknown_generator_type.json", "generator 0 (spiral): type"},
+        BadScene{"dynamic_plane.json", "motion: a plane must be static"},
+        BadScene{"zero_plane_normal.json", "shape.normal"},
+        BadScene{"duplicate_name.json", "body 1 (\"a\"): name: duplicate name"},
+        BadScene{"duplicate_key.json", "body 0: shape.radius: duplicate key"},
+        BadScene{"huge_grid.json", "generator 0 (grid): count: too many bodies"},
+        BadScene{"huge_pyramid.json", "generator 0 (pyramid): base: too many bodies"},
+        BadScene{"huge_total.json", "too many bodies"},
+        BadScene{"grid_template_error.json", "generator 0 (grid): body.shape.radius"},
+        BadScene{"grid_missing_body.json", "body: missing"},
+        BadScene{"grid_zero_count.json", "count[1]: must be at least 1"},
+        BadScene{"grid_named_body.json", "body.name"},
+        BadScene{"pyramid_fraction_base.json", "base: expected an integer"},
+        BadScene{"zero_timestep.json", "timestep: must be positive"},
+        BadScene{"negative_timestep.json", "timestep: must be positive"},
+        BadScene{"zero_substeps.json", "substeps: must be at least 1"},
+        BadScene{"zero_iterations.json", "iterations: must be at least 1"},
+        BadScene{"zero_quaternion.json", "body 0: orientation: zero quaternion"}),
+    [](const ::testing::TestParamInfo<BadScene>& info) {
+      std::string name = info.param.file;
+      name = name.substr(0, name.find('.'));
+      return name;
+    });
+
+TEST(Cli, MissingSceneFileExitsTwo) {
+  const Result r = run_elan({"run", "/nonexistent/scene.json"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("/nonexistent/scene.json: cannot open"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadArgumentsExitTwoNamingTheOption) {
+  const std::string scene = small_scene();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{}, "usage"},
+      {{"fly"}, "unknown command 'fly'"},
+      {{"run"}, "missing SCENE.json"},
+      {{"run", scene, "--steps", "-1"}, "--steps"},
+      {{"run", scene, "--steps", "abc"}, "--steps"},
+      {{"run", scene, "--steps", "99999999999999999999"}, "--steps"},
+      {{"run", scene, "--steps"}, "--steps: missing value"},
+      {{"run", scene, "--threads", "0"}, "--threads"},
+      {{"run", scene, "--broadphase", "octree"}, "--broadphase"},
+      {{"run", scene, "--timestep", "0"}, "--timestep"},
+      {{"run", scene, "--timestep", "nan"}, "--timestep"},
+      {{"run", scene, "--timestep", "1e999"}, "--timestep"},
+      {{"run", scene, "--substeps", "0"}, "--substeps"},
+      {{"run", scene, "--iterations", "1.5"}, "--iterations"},
+      {{"run", scene, "--every", "0"}, "--every"},
+      {{"run", scene, "--bogus"}, "unknown option '--bogus'"},
+      {{"run", scene, scene}, "unexpected argument"},
+      {{"run", scene, "--steps", "1", "--trajectory", "/nonexistent/dir/t.csv"}, "t.csv"},
+      {{"run", scene, "--steps", "1", "--record", "/nonexistent/dir/r.rec"}, "r.rec"},
+      {{"replay"}, "missing FILE"},
+      {{"replay", "/nonexistent/r.rec"}, "/nonexistent/r.rec"},
+      {{"replay", scene, "--threads", "x"}, "--threads"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const Result r = run_elan(args);
+    std::string shown;
+    for (const std::string& a : args) shown += a + " ";
+    EXPECT_EQ(r.status, 2) << shown << "\n" << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << shown << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << shown << "\n" << r.out;
+  }
+}
+
+TEST(Cli, HelpGoesToStdoutWithStatusZero) {
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{{"--help"}, {"run", "--help"}, {"replay", "--help"}}) {
+    const Result r = run_elan(args);
+    EXPECT_EQ(r.status, 0);
+    EXPECT_NE(r.out.find("usage: elan"), std::string::npos) << r.out;
+  }
+  EXPECT_NE(run_elan({"run", "--help"}).out.find("--trajectory"), std::string::npos);
+}
+
+TEST(Cli, SummaryHasTheContractKeys) {
+  const Result r = run_elan({"run", small_scene(), "--steps", "10", "--threads", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(count_lines(r.out), 1u) << r.out;
+  const Json j = Json::parse(r.out);
+  for (const char* key :
+       {"bodies", "steps", "threads", "broadphase", "wall_seconds", "ms_per_step", "state_hash",
+        "kinetic_energy", "linear_momentum", "angular_momentum", "pairs", "contacts", "awake",
+        "timestep", "substeps", "iterations", "profile_ms"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["bodies"], 4);
+  EXPECT_EQ(j["steps"], 10);
+  EXPECT_EQ(j["threads"], 1);
+  EXPECT_EQ(j["broadphase"], "sap");
+  EXPECT_DOUBLE_EQ(j["timestep"].get<double>(), double(0.01f));
+  const std::string hash = j["state_hash"];
+  EXPECT_EQ(hash.size(), 16u);
+  EXPECT_EQ(hash.find_first_not_of("0123456789abcdef"), std::string::npos) << hash;
+  EXPECT_EQ(j["linear_momentum"].size(), 3u);
+  EXPECT_EQ(j["angular_momentum"].size(), 3u);
+  EXPECT_GE(j["wall_seconds"].get<double>(), 0.0);
+  EXPECT_GT(j["kinetic_energy"].get<double>(), 0.0);  // sphere b slides, the box spins
+  for (const char* stage : {"bounds", "pairs", "collide", "solve", "total"}) {
+    EXPECT_TRUE(j["profile_ms"].contains(stage)) << stage;
+  }
+}
+
+TEST(Cli, OverridesReachTheSummary) {
+  const Result r =
+      run_elan({"run", small_scene(), "--steps", "2", "--threads", "2", "--timestep", "0.005",
+                "--substeps", "3", "--iterations", "2", "--broadphase=all-pairs"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_EQ(j["threads"], 2);
+  EXPECT_EQ(j["broadphase"], "all-pairs");
+  EXPECT_EQ(j["substeps"], 3);
+  EXPECT_EQ(j["iterations"], 2);
+  EXPECT_DOUBLE_EQ(j["timestep"].get<double>(), double(float(0.005)));
+}
+
+TEST(Cli, ZeroStepsLoadsOnly) {
+  const Result r = run_elan({"run", small_scene(), "--steps", "0"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_EQ(j["steps"], 0);
+  EXPECT_EQ(j["bodies"], 4);
+  EXPECT_EQ(j["awake"], 3);
+  // Initial kinetic energy: b moves at 1 m/s, m = 1000 * 4/3 pi 0.5^3.
+  const double mass_b = 1000.0 * 4.0 / 3.0 * M_PI * 0.125;
+  EXPECT_GT(j["kinetic_energy"].get<double>(), 0.5 * mass_b * 0.999);
+}
+
+TEST(Cli, StateHashIndependentOfThreadsAndBroadphase) {
+  const std::string scene = small_scene();
+  const Json one = Json::parse(run_elan({"run", scene, "--steps", "30", "--threads", "1"}).out);
+  const Json two = Json::parse(
+      run_elan({"run", scene, "--steps", "30", "--threads", "2", "--broadphase", "all-pairs"}).out);
+  EXPECT_EQ(one["state_hash"], two["state_hash"]);
+}
+
+TEST(Cli, TrajectoryHasHeaderAndOneRowPerMovingBodyPerSample) {
+  const std::string csv = temp_path("t.csv");
+  const Result r = run_elan({"run", small_scene(), "--steps", "5", "--every", "2", "--trajectory",
+                             csv, "--threads", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream in(read(csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+  // Samples at steps 0, 2, 4 and the last (5); three non-static bodies (indices 1..3).
+  std::vector<std::string> keys;
+  while (std::getline(in, line)) {
+    std::size_t commas = 0;
+    for (char c : line) commas += c == ',';
+    EXPECT_EQ(commas, 15u) << line;
+    keys.push_back(line.substr(0, line.find(',', line.find(',') + 1) + 2));
+  }
+  const std::vector<std::string> expected = {"0,0,1", "0,0,2", "0,0,3"};
+  ASSERT_EQ(keys.size(), 12u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(keys[i], expected[i]);
+  EXPECT_EQ(keys[3].substr(0, 2), "2,");
+  EXPECT_EQ(keys[6].substr(0, 2), "4,");
+  EXPECT_EQ(keys[9].substr(0, 2), "5,");
+  std::remove(csv.c_str());
+}
+
+TEST(Cli, TrajectoryRowsReadBackToTheSameValues) {
+  const std::string csv = temp_path("t.csv");
+  ASSERT_EQ(run_elan({"run", small_scene(), "--steps", "1", "--trajectory", csv}).status, 0);
+  std::istringstream in(read(csv));
+  std::string line;
+  std::getline(in, line);
+  std::getline(in, line);
+  // Step 0 of body 1: the scene's position [0, 0.6, 0] as a float prints as 0.600000024.
+  EXPECT_EQ(line.substr(0, line.find(",1,", 0) + 3), "0,0,1,");
+  EXPECT_NE(line.find(sizeof(float) == 4 ? ",0.600000024," : ",0.59999999999999998,"),
+            std::string::npos)
+      << line;
+  std::remove(csv.c_str());
+}
+
+// FNV-1a 64 as the recording format specifies it, to forge a valid file with a wrong hash.
+uint64_t fnv1a(const std::string& s, std::size_t n) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= uint8_t(s[i]);
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+class Recording : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    path_ = temp_path("r.rec");
+    const Result r =
+        run_elan({"run", small_scene(), "--steps", "3", "--threads", "1", "--record", path_});
+    ASSERT_EQ(r.status, 0) << r.err;
+    summary_ = Json::parse(r.out);
+    bytes_ = read(path_);
+    ASSERT_GT(bytes_.size(), 100u);
+  }
+  void TearDown() override { std::remove(path_.c_str()); }
+  std::string path_;
+  std::string bytes_;
+  Json summary_;
+};
+
+TEST_F(Recording, ReplayMatchesWithAnyThreadsAndBroadphase) {
+  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+           {}, {"--threads", "1"}, {"--threads", "2", "--broadphase", "all-pairs"}}) {
+    std::vector<std::string> args = {"replay", path_};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Result r = run_elan(args);
+    EXPECT_EQ(r.status, 0) << r.err;
+    const Json j = Json::parse(r.out);
+    EXPECT_EQ(j["match"], true);
+    EXPECT_EQ(j["steps"], 3);
+    EXPECT_EQ(j["state_hash"], summary_["state_hash"]);
+  }
+}
+
+TEST_F(Recording, ReplayReportsTheFirstDifferingStep) {
+  // The last hash (step 3) sits just before the 8-byte checksum; change it and re-seal.
+  std::string forged = bytes_;
+  forged[forged.size() - 16] ^= 1;
+  const uint64_t sum = fnv1a(forged, forged.size() - 8);
+  for (int i = 0; i < 8; ++i) forged[forged.size() - 8 + i] = char(uint8_t(sum >> (8 * i)));
+  write(path_, forged);
+  const Result r = run_elan({"replay", path_});
+  EXPECT_EQ(r.status, 1) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_EQ(j["match"], false);
+  EXPECT_EQ(j["first_mismatch_step"], 3);
+}
+
+TEST_F(Recording, CorruptByteIsRefused) {
+  std::string corrupt = bytes_;
+  corrupt[corrupt.size() / 2] ^= 0x20;
+  write(path_, corrupt);
+  const Result r = run_elan({"replay", path_});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("corrupt"), std::string::npos) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u);
+}
+
+TEST_F(Recording, EveryTruncationIsRefused) {
+  for (std::size_t n = 0; n < bytes_.size(); ++n) {
+    write(path_, bytes_.substr(0, n));
+    const Result r = run_elan({"replay", path_});
+    EXPECT_EQ(r.status, 2) << "length " << n << ": " << r.err;
+    EXPECT_NE(r.err.find(path_), std::string::npos) << "length " << n << ": " << r.err;
+    EXPECT_TRUE(r.out.empty());
+  }
+}
+
+TEST_F(Recording, SceneFileIsNotARecording) {
+  const Result r = run_elan({"replay", small_scene()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("not an elan recording"), std::string::npos) << r.err;
+}
+
+}  // namespace
