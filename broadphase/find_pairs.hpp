@@ -50,7 +50,9 @@ class AllPairs {
 };
 
 // Sweep-and-prune on the axis of largest spread, keeping last step's order so the re-sort is
-// of nearly sorted input; the sweep is split into parallel chunks.
+// of nearly sorted input; the sweep is split into parallel chunks. The sorted list is dealt, in
+// order, into strips along the axis of second spread, each swept alone: in a dense pile a single
+// sweep meets every box of a whole slab, a strip only its neighbours.
 class SweepAndPrune {
  public:
   void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
@@ -60,13 +62,22 @@ class SweepAndPrune {
   void sort_full(const BroadphaseInput& in);
   bool sort_incremental();
   void gather_sorted(const BroadphaseInput& in);
+  void deal_strips(const BroadphaseInput& in);
+  uint32_t strip_of(Real v) const;
 
   std::vector<uint32_t> order_;   // body indices sorted by min on the sweep axis
   std::vector<Real> sorted_min_;  // min on the axis, in order_ (planes, NaN: +inf)
   Column<Real> sorted_max_;       // the rest of each box, in order_: max on the axis and
   Column<Real> sorted_lo1_, sorted_hi1_, sorted_lo2_, sorted_hi2_;  // the two other axes
   int axis_ = 0;
-  std::vector<double> axis_partials_;  // per block: count, sum and sum of squares of centres
+  int strip_axis_ = 1;  // 1 or 2: which of the other axes (lo1/lo2) the strips cut
+  Real strip_lo_ = 0, strip_width_ = 1;
+  uint32_t strip_count_ = 1;
+  // Entries: one per (box, strip it overlaps), strip by strip, each strip in sweep order.
+  Column<Real> entry_min_, entry_max_, entry_lo1_, entry_hi1_, entry_lo2_, entry_hi2_;
+  std::vector<uint32_t> entry_body_, entry_strip_, entry_end_;
+  std::vector<uint32_t> strip_cursor_;
+  std::vector<double> axis_partials_;  // per block: statistics of box centres and sizes
   std::vector<uint32_t> planes_;
   std::vector<std::vector<uint64_t>> block_pairs_;  // sweep chunks, then plane blocks
   std::vector<uint64_t> sort_keys_;

@@ -1,5 +1,6 @@
 // Sweep-and-prune: boxes sorted by min on the axis of largest spread, order kept between updates
-// so the re-sort is an insertion sort of nearly sorted input; the sweep runs in parallel chunks.
+// so the re-sort is an insertion sort of nearly sorted input, then dealt into strips along the
+// axis of second spread; the strips' sweep runs in parallel chunks.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -24,6 +25,11 @@ constexpr std::size_t kPlaneGrain = 4096;
 constexpr double kAxisHysteresis = 1.25;
 // Insertion sort costs n + inversions; past this many moves per body a full sort is cheaper.
 constexpr std::size_t kMaxMovesPerBody = 8;
+// Strips twice the mean box size wide: a box lands in one or two. At least 16 boxes per strip on
+// average, so sparse scenes do not pay for many empty strips.
+constexpr double kStripWidthInBoxes = 2;
+constexpr std::size_t kMinBoxesPerStrip = 16;
+constexpr std::size_t kStats = 16;  // count, sum[3], sum of squares[3], size[3], min[3], max[3]
 
 const Real* axis_min(const BoundsColumns& b, int axis) {
   return axis == 0 ? b.min_x.data() : axis == 1 ? b.min_y.data() : b.min_z.data();
@@ -40,34 +46,56 @@ Real sweep_key(const BroadphaseInput& in, const Real* mins, uint32_t i) {
 
 }  // namespace
 
-// Returns true when the axis changed (the kept order is then useless).
+// Picks the sweep axis (largest variance of box centres) and the strips on the axis of second
+// variance. Returns true when the sweep axis changed (the kept order is then useless).
 bool SweepAndPrune::choose_axis(const BroadphaseInput& in) {
   const BoundsColumns& b = *in.bounds;
   const std::size_t n = b.size();
   const std::size_t blocks = block_count(n, kStatsGrain);
-  axis_partials_.resize(blocks * 7);
+  constexpr double kHuge = std::numeric_limits<double>::infinity();
+  axis_partials_.resize(blocks * kStats);
   // determinism: block partials in double, summed in block order (rule 3).
   for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
-    double acc[7] = {0, 0, 0, 0, 0, 0, 0};
+    double acc[kStats] = {};
+    for (int a = 0; a < 3; ++a) {
+      acc[10 + a] = kHuge;
+      acc[13 + a] = -kHuge;
+    }
     const Real* mins[3] = {b.min_x.data(), b.min_y.data(), b.min_z.data()};
     const Real* maxs[3] = {b.max_x.data(), b.max_y.data(), b.max_z.data()};
     for (std::size_t i = begin; i < end; ++i) {
       if (in.is_plane[i]) continue;
-      double c[3];
-      for (int a = 0; a < 3; ++a) c[a] = 0.5 * (double(mins[a][i]) + double(maxs[a][i]));
-      if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2])) continue;
+      double c[3], e[3];
+      for (int a = 0; a < 3; ++a) {
+        c[a] = 0.5 * (double(mins[a][i]) + double(maxs[a][i]));
+        e[a] = double(maxs[a][i]) - double(mins[a][i]);
+      }
+      if (!(std::isfinite(e[0]) && std::isfinite(e[1]) && std::isfinite(e[2]))) continue;
       acc[0] += 1;
       for (int a = 0; a < 3; ++a) {
         acc[1 + a] += c[a];
         acc[4 + a] += c[a] * c[a];
+        acc[7 + a] += e[a];
+        acc[10 + a] = std::min(acc[10 + a], c[a]);
+        acc[13 + a] = std::max(acc[13 + a], c[a]);
       }
     }
-    std::copy(acc, acc + 7, axis_partials_.begin() + std::ptrdiff_t(blk * 7));
+    std::copy(acc, acc + kStats, axis_partials_.begin() + std::ptrdiff_t(blk * kStats));
   });
-  double acc[7] = {0, 0, 0, 0, 0, 0, 0};
-  for (std::size_t blk = 0; blk < blocks; ++blk) {
-    for (int k = 0; k < 7; ++k) acc[k] += axis_partials_[blk * 7 + std::size_t(k)];
+  double acc[kStats] = {};
+  for (int a = 0; a < 3; ++a) {
+    acc[10 + a] = kHuge;
+    acc[13 + a] = -kHuge;
   }
+  for (std::size_t blk = 0; blk < blocks; ++blk) {
+    const double* p = axis_partials_.data() + blk * kStats;
+    for (std::size_t k = 0; k < 10; ++k) acc[k] += p[k];
+    for (int a = 0; a < 3; ++a) {
+      acc[10 + a] = std::min(acc[10 + a], p[10 + a]);
+      acc[13 + a] = std::max(acc[13 + a], p[13 + a]);
+    }
+  }
+  strip_count_ = 1;
   if (acc[0] < 2) return false;
   double var[3];
   for (int a = 0; a < 3; ++a) {
@@ -78,9 +106,22 @@ bool SweepAndPrune::choose_axis(const BroadphaseInput& in) {
   for (int a = 0; a < 3; ++a) {
     if (var[a] > var[best]) best = a;
   }
-  if (best == axis_ || !(var[best] > kAxisHysteresis * var[axis_])) return false;
-  axis_ = best;
-  return true;
+  const bool changed = best != axis_ && var[best] > kAxisHysteresis * var[axis_];
+  if (changed) axis_ = best;
+
+  const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
+  strip_axis_ = var[a1] >= var[a2] ? 1 : 2;
+  const int sa = strip_axis_ == 1 ? a1 : a2;
+  const double spread = acc[13 + sa] - acc[10 + sa];
+  const double width = kStripWidthInBoxes * acc[7 + sa] / acc[0];
+  if (width > 0 && spread > width) {
+    const double most = double(std::max<std::size_t>(1, n / kMinBoxesPerStrip));
+    const double count = std::min(std::floor(spread / width) + 1, most);
+    strip_count_ = uint32_t(count);
+    strip_lo_ = Real(acc[10 + sa]);
+    strip_width_ = Real(std::max(width, spread / count));
+  }
+  return changed;
 }
 
 void SweepAndPrune::sort_full(const BroadphaseInput& in) {
@@ -164,6 +205,64 @@ void SweepAndPrune::gather_sorted(const BroadphaseInput& in) {
   });
 }
 
+uint32_t SweepAndPrune::strip_of(Real v) const {
+  if (!(v > strip_lo_)) return 0;
+  const Real t = (v - strip_lo_) / strip_width_;
+  return t < Real(strip_count_) ? uint32_t(t) : strip_count_ - 1;
+}
+
+// Deals the sorted boxes into strips in sweep order (a stable counting sort), so every strip
+// comes out sorted without a sort of its own. Planes and boxes with a NaN bound never overlap
+// anything and get no entry.
+void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
+  const std::size_t n = order_.size();
+  const Real* mins = axis_min(*in.bounds, axis_);
+  const Real* slo = strip_axis_ == 1 ? sorted_lo1_.data() : sorted_lo2_.data();
+  const Real* shi = strip_axis_ == 1 ? sorted_hi1_.data() : sorted_hi2_.data();
+  const auto valid = [&](std::size_t k) {
+    return !(std::isnan(mins[order_[k]]) || std::isnan(sorted_max_[k]) ||
+             std::isnan(sorted_lo1_[k]) || std::isnan(sorted_hi1_[k]) ||
+             std::isnan(sorted_lo2_[k]) || std::isnan(sorted_hi2_[k]));
+  };
+  strip_cursor_.assign(strip_count_ + 1, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!valid(k)) continue;
+    const uint32_t s0 = strip_of(slo[k]), s1 = strip_of(shi[k]);
+    for (uint32_t s = s0; s <= s1; ++s) ++strip_cursor_[s + 1];
+  }
+  for (uint32_t s = 0; s < strip_count_; ++s) strip_cursor_[s + 1] += strip_cursor_[s];
+  const std::size_t entries = strip_cursor_[strip_count_];
+  entry_min_.resize(entries);
+  entry_max_.resize(entries);
+  entry_lo1_.resize(entries);
+  entry_hi1_.resize(entries);
+  entry_lo2_.resize(entries);
+  entry_hi2_.resize(entries);
+  entry_body_.resize(entries);
+  entry_strip_.resize(entries);
+  entry_end_.resize(entries);
+  for (uint32_t s = 0; s < strip_count_; ++s) {
+    for (uint32_t e = strip_cursor_[s]; e < strip_cursor_[s + 1]; ++e) {
+      entry_strip_[e] = s;
+      entry_end_[e] = strip_cursor_[s + 1];
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!valid(k)) continue;
+    const uint32_t s0 = strip_of(slo[k]), s1 = strip_of(shi[k]);
+    for (uint32_t s = s0; s <= s1; ++s) {
+      const uint32_t e = strip_cursor_[s]++;
+      entry_min_[e] = sorted_min_[k];
+      entry_max_[e] = sorted_max_[k];
+      entry_lo1_[e] = sorted_lo1_[k];
+      entry_hi1_[e] = sorted_hi1_[k];
+      entry_lo2_[e] = sorted_lo2_[k];
+      entry_hi2_[e] = sorted_hi2_[k];
+      entry_body_[e] = order_[k];
+    }
+  }
+}
+
 void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs) {
   const BoundsColumns& b = *in.bounds;
   const std::size_t n = b.size();
@@ -181,34 +280,41 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
   if (!sorted) sort_full(in);
   gather_sorted(in);
 
+  deal_strips(in);
+
   planes_.clear();
   for (uint32_t i = 0; i < n; ++i) {
     if (in.is_plane[i]) planes_.push_back(i);
   }
-  const std::size_t sweep_blocks = block_count(n, kSweepGrain);
+  const std::size_t entries = entry_body_.size();
+  const std::size_t sweep_blocks = block_count(entries, kSweepGrain);
   const std::size_t plane_blocks = planes_.empty() ? 0 : block_count(n, kPlaneGrain);
   const std::size_t blocks = sweep_blocks + plane_blocks;
   // perf: buffers only grow, so after warm-up an update allocates nothing.
   if (block_pairs_.size() < blocks) block_pairs_.resize(blocks);
   for (std::size_t t = blocks; t < block_pairs_.size(); ++t) block_pairs_[t].clear();
 
-  // Each chunk scans forward from its own items, possibly past its end: a pair is found once,
-  // from whichever box comes first in the order (ties in min included: key_j == key_i <= max_i).
+  // Each chunk scans forward from its own entries to the end of their strip, possibly past the
+  // chunk's end: within a strip a pair is met once, from whichever box comes first (ties in min
+  // included: key_j == key_i <= max_i). A pair overlapping on the strip axis shares every strip
+  // holding m = max(lo_a, lo_b), and is kept only in strip_of(m), so it is reported once.
   // determinism: one buffer per chunk, joined in chunk order, then sorted (rule 1).
-  for_blocks(n, kSweepGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
+  const Real* strip_lo = strip_axis_ == 1 ? entry_lo1_.data() : entry_lo2_.data();
+  for_blocks(entries, kSweepGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
     std::vector<uint64_t>& out = block_pairs_[blk];
     out.clear();
-    const Real* key = sorted_min_.data();
+    const Real* key = entry_min_.data();
+    const Real *lo1 = entry_lo1_.data(), *hi1 = entry_hi1_.data();
+    const Real *lo2 = entry_lo2_.data(), *hi2 = entry_hi2_.data();
     for (std::size_t k = begin; k < end; ++k) {
-      const Real hi = sorted_max_[k];
-      const Real l1 = sorted_lo1_[k], h1 = sorted_hi1_[k];
-      const Real l2 = sorted_lo2_[k], h2 = sorted_hi2_[k];
-      for (std::size_t j = k + 1; j < n && key[j] <= hi; ++j) {
-        if ((sorted_lo1_[j] <= h1) & (l1 <= sorted_hi1_[j]) & (sorted_lo2_[j] <= h2) &
-            (l2 <= sorted_hi2_[j])) {
-          const uint32_t i0 = order_[k], i1 = order_[j];
-          if (accept_pair(in, i0, i1)) out.push_back(make_pair_key(i0, i1));
-        }
+      const Real hi = entry_max_[k];
+      const Real l1 = lo1[k], h1 = hi1[k], l2 = lo2[k], h2 = hi2[k], ls = strip_lo[k];
+      const uint32_t strip = entry_strip_[k], stop = entry_end_[k];
+      for (std::size_t j = k + 1; j < stop && key[j] <= hi; ++j) {
+        if (!((lo1[j] <= h1) & (l1 <= hi1[j]) & (lo2[j] <= h2) & (l2 <= hi2[j]))) continue;
+        if (strip_count_ > 1 && strip_of(std::max(ls, strip_lo[j])) != strip) continue;
+        const uint32_t i0 = entry_body_[k], i1 = entry_body_[j];
+        if (accept_pair(in, i0, i1)) out.push_back(make_pair_key(i0, i1));
       }
     }
   });

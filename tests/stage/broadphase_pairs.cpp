@@ -293,6 +293,8 @@ TEST(SweepAndPrune, NonFiniteBoxesPairWithNothing) {
   s.bounds.min_x[4] = nan;
   s.bounds.max_y[9] = nan;
   s.bounds.min_z[17] = nan;
+  // A box unbounded above on every axis reaches the NaN boxes in any sweep order.
+  s.bounds.max_x[20] = s.bounds.max_y[20] = s.bounds.max_z[20] = kInf;
   std::vector<uint64_t> oracle;
   find_pairs_brute_force(s.input(), oracle);
   for (uint64_t key : oracle) {
