@@ -76,6 +76,7 @@ class SweepAndPrune {
   // Entries: one per (box, strip it overlaps), strip by strip, each strip in sweep order.
   Column<Real> entry_min_, entry_max_, entry_lo1_, entry_hi1_, entry_lo2_, entry_hi2_;
   std::vector<uint32_t> entry_body_, entry_strip_, entry_end_;
+  std::vector<uint32_t> entry_first_;  // strip of the box's low end on the strip axis
   std::vector<uint32_t> strip_cursor_;
   std::vector<double> axis_partials_;  // per block: statistics of box centres and sizes
   std::vector<uint32_t> planes_;

@@ -241,6 +241,7 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
   entry_body_.resize(entries);
   entry_strip_.resize(entries);
   entry_end_.resize(entries);
+  entry_first_.resize(entries);
   for (uint32_t s = 0; s < strip_count_; ++s) {
     for (uint32_t e = strip_cursor_[s]; e < strip_cursor_[s + 1]; ++e) {
       entry_strip_[e] = s;
@@ -259,6 +260,7 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
       entry_lo2_[e] = sorted_lo2_[k];
       entry_hi2_[e] = sorted_hi2_[k];
       entry_body_[e] = order_[k];
+      entry_first_[e] = s0;
     }
   }
 }
@@ -297,9 +299,9 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
   // Each chunk scans forward from its own entries to the end of their strip, possibly past the
   // chunk's end: within a strip a pair is met once, from whichever box comes first (ties in min
   // included: key_j == key_i <= max_i). A pair overlapping on the strip axis shares every strip
-  // holding m = max(lo_a, lo_b), and is kept only in strip_of(m), so it is reported once.
+  // holding m = max(lo_a, lo_b), and is kept only in strip_of(m), so it is reported once;
+  // strip_of is monotonic, so strip_of(m) = max(strip_of(lo_a), strip_of(lo_b)) = max(first).
   // determinism: one buffer per chunk, joined in chunk order, then sorted (rule 1).
-  const Real* strip_lo = strip_axis_ == 1 ? entry_lo1_.data() : entry_lo2_.data();
   for_blocks(entries, kSweepGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
     std::vector<uint64_t>& out = block_pairs_[blk];
     out.clear();
@@ -308,11 +310,11 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
     const Real *lo2 = entry_lo2_.data(), *hi2 = entry_hi2_.data();
     for (std::size_t k = begin; k < end; ++k) {
       const Real hi = entry_max_[k];
-      const Real l1 = lo1[k], h1 = hi1[k], l2 = lo2[k], h2 = hi2[k], ls = strip_lo[k];
-      const uint32_t strip = entry_strip_[k], stop = entry_end_[k];
+      const Real l1 = lo1[k], h1 = hi1[k], l2 = lo2[k], h2 = hi2[k];
+      const uint32_t strip = entry_strip_[k], stop = entry_end_[k], first = entry_first_[k];
       for (std::size_t j = k + 1; j < stop && key[j] <= hi; ++j) {
         if (!((lo1[j] <= h1) & (l1 <= hi1[j]) & (lo2[j] <= h2) & (l2 <= hi2[j]))) continue;
-        if (strip_count_ > 1 && strip_of(std::max(ls, strip_lo[j])) != strip) continue;
+        if (std::max(first, entry_first_[j]) != strip) continue;
         const uint32_t i0 = entry_body_[k], i1 = entry_body_[j];
         if (accept_pair(in, i0, i1)) out.push_back(make_pair_key(i0, i1));
       }
