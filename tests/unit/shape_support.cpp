@@ -150,13 +150,13 @@ TEST(ShapeSupport, MatchesBruteForceOverSurfaceSamples) {
     SCOPED_TRACE(name_of(s));
     const std::vector<Vec3> samples = surface_samples(s);
     for (const Vec3& d0 : dirs) {
+      const Vec3 u = d0.normalized();
+      double best = -1e30;
+      for (const Vec3& q : samples) best = std::max(best, double(u.dot(q)));
       // Non-unit lengths, down to ones whose squared norm underflows in float.
       for (const Real scale : {Real(1e-30), Real(1e-3), Real(1), Real(250)}) {
         const Vec3 d = d0 * scale;
         const Vec3 p = support(s, d);
-        const Vec3 u = d0.normalized();
-        double best = -1e30;
-        for (const Vec3& q : samples) best = std::max(best, double(u.dot(q)));
         // The support point is on the surface (so its height is at most the true maximum)...
         EXPECT_NEAR(signed_distance(s, p), 0, 1e-5) << p.transpose();
         // ...and at least as high as every sample. Samples lie on the surface, so together these
