@@ -335,17 +335,16 @@ ConvexHull build_convex_hull(std::span<const Vec3> points) {
   std::vector<Polygon> polys = merge_coplanar(tris, p, tol);
 
   // A vertex on only two faces lies on their common edge (an input point on a hull edge that
-  // quickhull kept): it is not an extreme point, so drop it from both loops.
-  std::vector<int> face_count(p.size(), 0);
-  for (const Polygon& f : polys) {
-    for (int v : f.loop) ++face_count[v];
+  // quickhull kept): it is not an extreme point. It leaves both loops or neither (a loop keeps
+  // three vertices), so the two faces still share the shortened edge.
+  std::vector<std::vector<int>> faces_of(p.size());
+  for (int f = 0; f < static_cast<int>(polys.size()); ++f) {
+    for (int v : polys[f].loop) faces_of[v].push_back(f);
   }
-  for (Polygon& f : polys) {
-    std::vector<int> kept;
-    for (int v : f.loop) {
-      if (face_count[v] >= 3) kept.push_back(v);
-    }
-    if (kept.size() >= 3) f.loop = std::move(kept);
+  for (size_t v = 0; v < p.size(); ++v) {
+    const std::vector<int>& fs = faces_of[v];
+    if (fs.size() != 2 || polys[fs[0]].loop.size() <= 3 || polys[fs[1]].loop.size() <= 3) continue;
+    for (int f : fs) std::erase(polys[f].loop, static_cast<int>(v));
   }
 
   // Renumber the vertices in order of first appearance in the input.
