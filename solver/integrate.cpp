@@ -35,19 +35,22 @@ void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBo
     SolverBody& b = packets[i];
     const SolverBodyParams& p = params[i];
     b.dp += h * b.v;
-    const Quat step = rotation_from_angular_velocity(b.w, h);
     if (!p.gyroscopic) {
-      b.dq = (step * b.dq).normalized();
+      b.dq = (rotation_from_angular_velocity(b.w, h) * b.dq).normalized();
       continue;
     }
+    // Midpoint rule on the rotation group with L fixed (second order and symmetric, so the
+    // energy error stays bounded instead of drifting as with a first-order update):
+    //   L = I(q) w,  q_mid = exp(h/2 w) q,  w_mid = I(q_mid)^-1 L,  q' = exp(h w_mid) q,
+    //   w' = I(q')^-1 L.
     const Quat q0 = bodies.orientation(p.body);
     const Quat before = b.dq * q0;
-    b.dq = (step * b.dq).normalized();
-    const Quat after = b.dq * q0;
-    // L = R D R^T w is kept: w' = R' D^-1 R'^T L, computed in the body frames.
     const Vec3& d = p.inertia;
-    const Vec3 l_body_before = d.cwiseProduct(before.conjugate() * b.w);
-    const Vec3 l_world = before * l_body_before;
+    const Vec3 l_world = before * d.cwiseProduct(before.conjugate() * b.w);
+    const Quat mid = (rotation_from_angular_velocity(b.w, Real(0.5) * h) * before).normalized();
+    const Vec3 w_mid = mid * (mid.conjugate() * l_world).cwiseQuotient(d);
+    b.dq = (rotation_from_angular_velocity(w_mid, h) * b.dq).normalized();
+    const Quat after = b.dq * q0;
     b.w = after * (after.conjugate() * l_world).cwiseQuotient(d);
   }
 }
