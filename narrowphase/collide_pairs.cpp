@@ -15,20 +15,36 @@ namespace {
 constexpr std::size_t kPairGrain = 64;
 
 // Copies impulses from the previous step's manifold with the same key into `m`, point by point
-// where the feature ids agree. A manifold whose A/B order flipped (a motion type changed) gets
-// no warm start, since its normal points the other way.
+// where the feature ids agree. A point whose id has no match takes the impulses of the previous
+// point nearest to it within kMatchDistance: when two faces tie for reference (a box resting
+// level on a large ground) the clipper may swap reference and incident face from one step to
+// the next, which renames the same physical points; matching them by position keeps the warm
+// start (Jolt's contact cache matches by position alone). A manifold whose A/B order flipped (a
+// motion type changed) or whose normal turned gets no warm start.
+constexpr Real kMatchDistance = Real(0.02);  // m
+constexpr Real kMatchNormalCos = Real(0.95);
+
 void warm_start(const Manifold& old, Manifold& m) {
-  if (old.body_a != m.body_a) return;
+  if (old.body_a != m.body_a || old.normal.dot(m.normal) < kMatchNormalCos) return;
   for (int i = 0; i < m.point_count; ++i) {
     ContactPoint& p = m.points[i];
+    int match = -1;
+    Real best = kMatchDistance * kMatchDistance;
     for (int j = 0; j < old.point_count; ++j) {
       if (old.points[j].feature_id == p.feature_id) {
-        p.normal_impulse = old.points[j].normal_impulse;
-        p.tangent_impulse[0] = old.points[j].tangent_impulse[0];
-        p.tangent_impulse[1] = old.points[j].tangent_impulse[1];
+        match = j;
         break;
       }
+      const Real d2 = (old.points[j].anchor_a - p.anchor_a).squaredNorm();
+      if (d2 < best) {
+        best = d2;
+        match = j;
+      }
     }
+    if (match < 0) continue;
+    p.normal_impulse = old.points[match].normal_impulse;
+    p.tangent_impulse[0] = old.points[match].tangent_impulse[0];
+    p.tangent_impulse[1] = old.points[match].tangent_impulse[1];
   }
 }
 
