@@ -232,20 +232,28 @@ Vec3 support(const Shape& shape, const Vec3& d) {
     case ShapeType::Sphere:
       return shape.radius * direction_or(d, Vec3::UnitY());
     case ShapeType::Box:
-      // Ties (d_i = 0) go to +h_i: any corner of the face is a support point.
-      return Vec3(d.x() >= 0 ? shape.half_extents.x() : -shape.half_extents.x(),
-                  d.y() >= 0 ? shape.half_extents.y() : -shape.half_extents.y(),
-                  d.z() >= 0 ? shape.half_extents.z() : -shape.half_extents.z());
+      // perf: copysign is branch-free (random-sign directions mispredict a compare). A zero
+      // component gives +h or -h by the sign of zero: either corner of that face is a support.
+      return Vec3(std::copysign(shape.half_extents.x(), d.x()),
+                  std::copysign(shape.half_extents.y(), d.y()),
+                  std::copysign(shape.half_extents.z(), d.z()));
     case ShapeType::Capsule: {
       // Minkowski sum of the Y segment and a sphere: support of each, added.
-      const Vec3 tip(0, d.y() >= 0 ? shape.half_height : -shape.half_height, 0);
+      const Vec3 tip(0, std::copysign(shape.half_height, d.y()), 0);
       return tip + shape.radius * direction_or(d, Vec3::UnitY());
     }
     case ShapeType::Cylinder: {
-      // Cap side by sign of d_y, rim point along the radial part of d (cap centre if none).
+      // Cap side by the sign of d_y, rim point along the radial part of d (the cap centre when
+      // there is none). The 2D length is taken directly: squared, it only underflows for
+      // |d| < 1e-19 (float), where the rescaling of direction_or is used instead.
+      const Real y = std::copysign(shape.half_height, d.y());
+      const Real n2 = d.x() * d.x() + d.z() * d.z();
+      if (n2 > std::numeric_limits<Real>::min()) {
+        const Real k = shape.radius / std::sqrt(n2);
+        return Vec3(d.x() * k, y, d.z() * k);
+      }
       const Vec3 radial = direction_or(Vec3(d.x(), 0, d.z()), Vec3::Zero());
-      return shape.radius * radial +
-             Vec3(0, d.y() >= 0 ? shape.half_height : -shape.half_height, 0);
+      return shape.radius * radial + Vec3(0, y, 0);
     }
     case ShapeType::ConvexHull: {
       // determinism: ties go to the lowest vertex index.
