@@ -15,6 +15,7 @@ struct GjkResult {
 };
 
 // `include_radius` false treats spheres as points and capsules as segments (their "core").
+// `initial_direction`, if given, points from A towards B (e.g. last step's normal): the warm start.
 GjkResult gjk_distance(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                        bool include_radius = true, const Vec3* initial_direction = nullptr);
 
