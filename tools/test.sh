@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Builds and runs the whole test suite twice: Release, then Debug under AddressSanitizer and
+# UndefinedBehaviorSanitizer. Installs missing packages first (through tools/setup.sh's list).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+jobs=$(nproc)
+
+packages=(build-essential cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libgtest-dev
+          libgmock-dev libbenchmark-dev python3)
+missing=()
+for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}"
+fi
+
+echo "== Release build and tests"
+cmake -S . -B build/test-release -DCMAKE_BUILD_TYPE=Release
+cmake --build build/test-release -j"$jobs"
+ctest --test-dir build/test-release -j"$jobs" --output-on-failure --timeout 300
+
+echo "== Debug build with AddressSanitizer + UndefinedBehaviorSanitizer, and tests"
+# -O1 keeps the sanitized physics tests fast enough; benchmarks are not built here.
+cmake -S . -B build/test-asan -DCMAKE_BUILD_TYPE=Debug -DELAN_SANITIZE=ON -DELAN_BUILD_BENCH=OFF \
+      -DCMAKE_CXX_FLAGS_DEBUG="-g -O1"
+cmake --build build/test-asan -j"$jobs"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build/test-asan -j"$jobs" --output-on-failure --timeout 600
+echo "== all tests passed (Release and ASan+UBSan)"
