@@ -1,0 +1,102 @@
+// Snapshots (the whole world, restorable into any World), compact rollback states (only what a
+// step changes, restorable onto the same world) and a divergence finder for two worlds.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "elan/math.hpp"
+#include "elan/world.hpp"
+
+namespace elan {
+
+/// Format version written by save_snapshot and save_rollback; other versions are refused.
+inline constexpr uint32_t kSnapshotVersion = 1;
+
+/// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built
+/// (hull vertices, faces and edges in the principal frame, frames, mass properties), every body
+/// column as stored, the id slots, generations and free list, and every field of every contact
+/// manifold (the next step's warm start). Restoring it and stepping gives the same bits as never
+/// having stopped, for any thread count and broadphase.
+///
+/// Format (all integers and `Real` bit patterns little-endian, written value by value):
+///
+///     magic "\x89ELANSNP" (8 bytes) | u32 version | u32 sizeof(Real)
+///     | world: gravity 3R, i32 substeps, i32 iterations, u8 allow_sleep, i32 threads,
+///       u8 broadphase, u64 step count, u32 reported status flags
+///     | u32 shapes, each: u8 type, R radius, R half_height, 3R half_extents, 3R plane normal,
+///       R plane offset, 3R frame position, 4R frame rotation (w x y z), R volume,
+///       3R unit inertia, 3R local min, 3R local max, R bounding radius, u8 has hull
+///       [u32 n, n x 3R vertices | u32 n, n x (3R normal, R offset, u32 first, u32 count) faces
+///        | u32 n, n x u32 face vertices | u32 n, n x 2 u32 edges]
+///     | u32 bodies n, then each BodyStore column in declaration order, n values each
+///     | u32 slots m, m x u32 slot index, m x u32 generation | u32 f, f x u32 free slots
+///     | u32 manifolds, each: u64 key, u32 body a, u32 body b, 3R normal, u8 point count,
+///       4 points x (3R anchor a, 3R anchor b, R separation, u32 feature id, R normal impulse,
+///       2R tangent impulses, R max normal impulse)
+///     | u64 checksum: 64-bit FNV-1a over 8-byte little-endian words of every byte before it
+///       (the tail zero-padded), so any single changed byte changes it.
+///
+/// R is sizeof(Real) bytes. A leading 0x89 keeps a text file from passing as a snapshot.
+std::vector<uint8_t> save_snapshot(const World& world);
+
+/// Replaces the whole state of `world` (bodies, shapes, ids, contacts, gravity, substeps,
+/// iterations, sleep setting, step count) with the snapshot's. The world keeps its own thread
+/// count and broadphase: results do not depend on them. Throws elan::Error (field "snapshot")
+/// for a file that is not a snapshot, another format version or `Real` size, a truncated or
+/// corrupt file, or inconsistent contents; `world` is then left unchanged.
+void restore_snapshot(World& world, std::span<const uint8_t> bytes);
+
+/// A new world from a snapshot, with the saved thread count and broadphase. Throws as
+/// restore_snapshot.
+World load_snapshot(std::span<const uint8_t> bytes);
+
+/// Saves only what a step changes, for rolling back a world whose bodies and shapes stay the
+/// same (no body created or destroyed in between): for every non-static body its pose,
+/// velocities, applied force and torque, sleep timer and flags (20 R + 1 byte: 81 bytes per
+/// body with float), the step count, and every contact manifold with its impulses, keyed by pair
+/// key and feature id. The manifold geometry (normal, anchors, separation) is kept too: a
+/// sleeping island's manifolds are carried from step to step as they are and solved as stored
+/// when the island wakes, and a point whose feature id finds no match is warm-started by
+/// position, so neither can be re-derived from the poses.
+///
+/// Format: magic "\x89ELANRBK" | u32 version | u32 sizeof(Real) | u32 bodies | u64 layout
+/// fingerprint (shape, slot and motion of every body) | u64 step count | per non-static body
+/// in index order: px py pz qw qx qy qz vx vy vz wx wy wz fx fy fz tx ty tz sleep_time (R each),
+/// u8 flags | u32 manifolds, each: u64 key, u8 (1 when body A is the higher index), 3R normal,
+/// u8 point count, per point: 3R anchor a, 3R anchor b, R separation, u32 feature id,
+/// R normal impulse, 2R tangent impulses, R max normal impulse | u64 checksum as above.
+std::vector<uint8_t> save_rollback(const World& world);
+/// As above, into `out` (cleared first), reusing its capacity: no allocation once warm.
+void save_rollback(const World& world, std::vector<uint8_t>& out);
+
+/// Puts `world` back into the saved state. Throws elan::Error (field "rollback") for another
+/// world's state (body count or layout differs), another version or `Real` size, or a
+/// truncated or corrupt buffer; `world` is then left unchanged.
+void restore_rollback(World& world, std::span<const uint8_t> bytes);
+
+/// Where two worlds first differ.
+struct Divergence {
+  bool found = false;    ///< false: no difference in the steps compared
+  uint64_t step = 0;     ///< steps taken by find_divergence when seen (0: before stepping)
+  std::size_t body = 0;  ///< dense body index
+  /// "px", "py", "pz", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz" (centre of
+  /// mass pose and velocities as stored, the state hash's fields), then "sleep_time", "flags";
+  /// "body_count" when the worlds hold different numbers of bodies.
+  std::string field;
+  double value_a = 0;  ///< the field's value in each world (for body_count: the counts)
+  double value_b = 0;
+};
+
+/// Compares the stored state of every body of `a` and `b`, bit for bit (so -0 and +0 differ),
+/// in index order and, within a body, in the field order above. Returns the first difference.
+Divergence compare_worlds(const World& a, const World& b);
+
+/// Compares `a` and `b`, then steps both by `dt` side by side, comparing after each step, for
+/// at most `steps` steps. Returns the first difference (with its step) or found == false.
+Divergence find_divergence(World& a, World& b, uint64_t steps, Real dt);
+
+}  // namespace elan

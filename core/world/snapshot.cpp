@@ -1,0 +1,591 @@
+// Snapshots and compact rollback states of a World (formats in elan/snapshot.hpp), and the
+// divergence finder that compares two worlds body by body.
+#include "elan/snapshot.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "core/base/pair_key.hpp"
+#include "core/world/byte_io.hpp"
+#include "core/world/snapshot_columns.hpp"
+#include "core/world/world_state.hpp"
+
+namespace elan {
+
+using detail::BodyStore;
+using detail::ByteReader;
+using detail::ByteWriter;
+using detail::Column;
+using detail::ContactPoint;
+using detail::Manifold;
+using detail::Shape;
+using detail::WorldState;
+
+namespace {
+
+constexpr uint8_t kSnapshotMagic[8] = {0x89, 'E', 'L', 'A', 'N', 'S', 'N', 'P'};
+constexpr uint8_t kRollbackMagic[8] = {0x89, 'E', 'L', 'A', 'N', 'R', 'B', 'K'};
+constexpr std::size_t kHeaderBytes = 16;  // magic, version, sizeof(Real)
+constexpr std::size_t kPointReals = 11;  // anchors 6, separation, impulses 4; plus a u32 id
+// Per non-static body in a rollback state: 20 Reals and the flags byte.
+constexpr std::size_t kRollbackBodyBytes = 20 * sizeof(Real) + 1;
+
+void begin(ByteWriter& w, const uint8_t (&magic)[8]) {
+  w.bytes(magic, 8);
+  w.u32(kSnapshotVersion);
+  w.u32(uint32_t(sizeof(Real)));
+}
+
+void seal(std::vector<uint8_t>& out) {
+  const uint64_t sum = detail::checksum_words(out);
+  ByteWriter(out).u64(sum);
+}
+
+// Checks magic, version, Real size and checksum, in that order (a future version may seal
+// differently, so the version is read before the checksum is trusted). Returns the payload.
+std::span<const uint8_t> open(std::span<const uint8_t> bytes, const uint8_t (&magic)[8],
+                              const char* field, const char* what) {
+  const std::size_t seen = std::min<std::size_t>(bytes.size(), 8);
+  if (bytes.empty() || !std::equal(bytes.begin(), bytes.begin() + seen, magic)) {
+    throw Error(field, std::string("not an elan ") + what + " (the magic bytes do not match)");
+  }
+  if (bytes.size() < kHeaderBytes + 8) {
+    throw Error(field,
+                std::string("truncated ") + what + " (" + std::to_string(bytes.size()) + " bytes)");
+  }
+  ByteReader header(bytes.subspan(8, 8), field);
+  const uint32_t version = header.u32();
+  const uint32_t real_bytes = header.u32();
+  if (version != kSnapshotVersion) {
+    throw Error(field, std::string("unsupported ") + what + " format version " +
+                           std::to_string(version) + " (this build reads version " +
+                           std::to_string(kSnapshotVersion) + ")");
+  }
+  if (real_bytes != sizeof(Real)) {
+    throw Error(field, std::string(what) + " saved with " + std::to_string(real_bytes * 8) +
+                           "-bit Real, this build uses " + std::to_string(sizeof(Real) * 8) +
+                           "-bit Real");
+  }
+  const std::size_t body = bytes.size() - 8;
+  ByteReader tail(bytes.subspan(body), field);
+  if (tail.u64() != detail::checksum_words(bytes.first(body))) {
+    throw Error(field, std::string("truncated or corrupt ") + what + " (checksum mismatch)");
+  }
+  return bytes.subspan(kHeaderBytes, body - kHeaderBytes);
+}
+
+// --- full snapshot -------------------------------------------------------------------------
+
+void write_hull(ByteWriter& w, const detail::ConvexHull& h) {
+  w.u32(uint32_t(h.vertices.size()));
+  for (const Vec3& v : h.vertices) w.vec3(v);
+  w.u32(uint32_t(h.faces.size()));
+  for (const detail::HullFace& f : h.faces) {
+    w.vec3(f.normal);
+    w.real(f.offset);
+    w.u32(f.first);
+    w.u32(f.count);
+  }
+  w.u32(uint32_t(h.face_vertices.size()));
+  for (uint32_t v : h.face_vertices) w.u32(v);
+  w.u32(uint32_t(h.edges.size()));
+  for (const auto& e : h.edges) {
+    w.u32(e[0]);
+    w.u32(e[1]);
+  }
+}
+
+detail::ConvexHull read_hull(ByteReader& r) {
+  detail::ConvexHull h;
+  h.vertices.resize(r.count(3 * sizeof(Real), "hull vertex"));
+  for (Vec3& v : h.vertices) v = r.vec3();
+  h.faces.resize(r.count(4 * sizeof(Real) + 8, "hull face"));
+  for (detail::HullFace& f : h.faces) {
+    f.normal = r.vec3();
+    f.offset = r.real();
+    f.first = r.u32();
+    f.count = r.u32();
+  }
+  h.face_vertices.resize(r.count(4, "hull face vertex"));
+  for (uint32_t& v : h.face_vertices) {
+    v = r.u32();
+    if (v >= h.vertices.size()) r.fail("hull face vertex out of range");
+  }
+  for (const detail::HullFace& f : h.faces) {
+    if (f.count < 3 || uint64_t(f.first) + f.count > h.face_vertices.size()) {
+      r.fail("hull face loop out of range");
+    }
+  }
+  h.edges.resize(r.count(8, "hull edge"));
+  for (auto& e : h.edges) {
+    e[0] = r.u32();
+    e[1] = r.u32();
+    if (e[0] >= h.vertices.size() || e[1] >= h.vertices.size()) r.fail("hull edge out of range");
+  }
+  if (h.vertices.size() < 4 || h.faces.size() < 4) r.fail("hull has too few vertices or faces");
+  return h;
+}
+
+void write_shape(ByteWriter& w, const Shape& s) {
+  w.u8(uint8_t(s.type));
+  w.real(s.radius);
+  w.real(s.half_height);
+  w.vec3(s.half_extents);
+  w.vec3(s.plane_normal);
+  w.real(s.plane_offset);
+  w.vec3(s.frame_position);
+  w.real(s.frame_rotation.w());
+  w.real(s.frame_rotation.x());
+  w.real(s.frame_rotation.y());
+  w.real(s.frame_rotation.z());
+  w.real(s.volume);
+  w.vec3(s.unit_inertia);
+  w.vec3(s.local_min);
+  w.vec3(s.local_max);
+  w.real(s.bounding_radius);
+  w.u8(s.hull ? 1 : 0);
+  if (s.hull) write_hull(w, *s.hull);
+}
+
+Shape read_shape(ByteReader& r) {
+  Shape s;
+  const uint8_t type = r.u8();
+  if (type > uint8_t(ShapeType::Plane)) r.fail("unknown shape type " + std::to_string(type));
+  s.type = ShapeType(type);
+  s.radius = r.real();
+  s.half_height = r.real();
+  s.half_extents = r.vec3();
+  s.plane_normal = r.vec3();
+  s.plane_offset = r.real();
+  s.frame_position = r.vec3();
+  const Real qw = r.real(), qx = r.real(), qy = r.real();
+  s.frame_rotation = Quat(qw, qx, qy, r.real());
+  s.volume = r.real();
+  s.unit_inertia = r.vec3();
+  s.local_min = r.vec3();
+  s.local_max = r.vec3();
+  s.bounding_radius = r.real();
+  const uint8_t has_hull = r.u8();
+  if (has_hull > 1 || (has_hull == 1) != (s.type == ShapeType::ConvexHull)) {
+    r.fail("hull data does not match the shape type");
+  }
+  if (has_hull) s.hull = std::make_shared<const detail::ConvexHull>(read_hull(r));
+  return s;
+}
+
+template <class T>
+void write_value(ByteWriter& w, T v) {
+  if constexpr (std::is_same_v<T, Real>) {
+    w.real(v);
+  } else if constexpr (std::is_same_v<T, uint32_t>) {
+    w.u32(v);
+  } else {
+    static_assert(std::is_same_v<T, uint8_t>);
+    w.u8(v);
+  }
+}
+
+template <class T>
+T read_value(ByteReader& r) {
+  if constexpr (std::is_same_v<T, Real>) {
+    return r.real();
+  } else if constexpr (std::is_same_v<T, uint32_t>) {
+    return r.u32();
+  } else {
+    static_assert(std::is_same_v<T, uint8_t>);
+    return r.u8();
+  }
+}
+
+void write_point(ByteWriter& w, const ContactPoint& p) {
+  w.vec3(p.anchor_a);
+  w.vec3(p.anchor_b);
+  w.real(p.separation);
+  w.u32(p.feature_id);
+  w.real(p.normal_impulse);
+  w.real(p.tangent_impulse[0]);
+  w.real(p.tangent_impulse[1]);
+  w.real(p.max_normal_impulse);
+}
+
+ContactPoint read_point(ByteReader& r) {
+  ContactPoint p;
+  p.anchor_a = r.vec3();
+  p.anchor_b = r.vec3();
+  p.separation = r.real();
+  p.feature_id = r.u32();
+  p.normal_impulse = r.real();
+  p.tangent_impulse[0] = r.real();
+  p.tangent_impulse[1] = r.real();
+  p.max_normal_impulse = r.real();
+  return p;
+}
+
+// Everything a snapshot holds, decoded and checked before any of it reaches a world.
+struct Decoded {
+  WorldDef def;
+  uint64_t step_count = 0;
+  uint32_t reported_status = 0;
+  std::vector<Shape> shapes;
+  BodyStore bodies;
+  std::vector<uint32_t> slot_index, slot_generation, free_slots;
+  std::vector<Manifold> contacts;
+};
+
+void check_def(ByteReader& r, const WorldDef& d) {
+  if (!d.gravity.allFinite()) r.fail("gravity is not finite");
+  if (d.substeps < 1 || d.substeps > 64) r.fail("substeps out of range");
+  if (d.iterations < 1 || d.iterations > 64) r.fail("iterations out of range");
+  if (d.threads < 0 || d.threads > 1024) r.fail("threads out of range");
+}
+
+void check_bodies(ByteReader& r, const Decoded& d) {
+  const BodyStore& b = d.bodies;
+  const std::size_t n = b.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (b.shape[i] >= d.shapes.size()) r.fail("body " + std::to_string(i) + ": bad shape index");
+    if (b.motion[i] > uint8_t(MotionType::Dynamic)) {
+      r.fail("body " + std::to_string(i) + ": bad motion type");
+    }
+    if (b.slot[i] >= d.slot_index.size() || d.slot_index[b.slot[i]] != i) {
+      r.fail("body " + std::to_string(i) + ": id slot does not point back at it");
+    }
+  }
+  std::size_t live = 0;
+  for (uint32_t index : d.slot_index) {
+    if (index != UINT32_MAX && index >= n) r.fail("id slot points past the bodies");
+    live += index != UINT32_MAX;
+  }
+  if (live != n) r.fail("id slots and bodies disagree");
+  for (uint32_t slot : d.free_slots) {
+    if (slot >= d.slot_index.size() || d.slot_index[slot] != UINT32_MAX) {
+      r.fail("free list holds a live or unknown slot");
+    }
+  }
+}
+
+void check_manifold(ByteReader& r, const Manifold& m, std::size_t n, uint64_t previous_key,
+                    bool first) {
+  if (m.body_a >= n || m.body_b >= n || m.body_a == m.body_b) {
+    r.fail("manifold body index out of range");
+  }
+  if (m.key != detail::make_pair_key(m.body_a, m.body_b)) r.fail("manifold key does not match");
+  if (!first && m.key <= previous_key) r.fail("manifolds are not sorted by key");
+  if (m.point_count < 0 || m.point_count > detail::kMaxManifoldPoints) {
+    r.fail("manifold point count out of range");
+  }
+}
+
+Decoded decode_snapshot(std::span<const uint8_t> bytes) {
+  ByteReader r(open(bytes, kSnapshotMagic, "snapshot", "snapshot"), "snapshot");
+  Decoded d;
+  d.def.gravity = r.vec3();
+  d.def.substeps = int32_t(r.u32());
+  d.def.iterations = int32_t(r.u32());
+  d.def.allow_sleep = r.u8() != 0;
+  d.def.threads = int32_t(r.u32());
+  const uint8_t broadphase = r.u8();
+  if (broadphase > uint8_t(BroadphaseType::AllPairs)) r.fail("unknown broadphase");
+  d.def.broadphase = BroadphaseType(broadphase);
+  check_def(r, d.def);
+  d.step_count = r.u64();
+  d.reported_status = r.u32();
+
+  d.shapes.resize(r.count(1, "shape"));
+  for (Shape& s : d.shapes) s = read_shape(r);
+
+  const uint32_t n = r.count(detail::snapshot_bytes_per_body(), "body");
+  d.bodies.reserve(n);
+  for (uint32_t i = 0; i < n; ++i) d.bodies.push_back();
+  detail::visit_snapshot_columns(d.bodies, [&r](auto& column) {
+    using T = typename std::remove_reference_t<decltype(column)>::value_type;
+    for (T& v : column) v = read_value<T>(r);
+  });
+
+  const uint32_t slots = r.count(8, "id slot");
+  d.slot_index.resize(slots);
+  d.slot_generation.resize(slots);
+  for (uint32_t& v : d.slot_index) v = r.u32();
+  for (uint32_t& v : d.slot_generation) v = r.u32();
+  d.free_slots.resize(r.count(4, "free slot"));
+  for (uint32_t& v : d.free_slots) v = r.u32();
+  check_bodies(r, d);
+
+  constexpr std::size_t kManifoldBytes =
+      16 + 3 * sizeof(Real) + 1 + detail::kMaxManifoldPoints * (kPointReals * sizeof(Real) + 4);
+  d.contacts.resize(r.count(kManifoldBytes, "manifold"));
+  for (std::size_t k = 0; k < d.contacts.size(); ++k) {
+    Manifold& m = d.contacts[k];
+    m.key = r.u64();
+    m.body_a = r.u32();
+    m.body_b = r.u32();
+    m.normal = r.vec3();
+    m.point_count = r.u8();
+    for (ContactPoint& p : m.points) p = read_point(r);
+    check_manifold(r, m, n, k > 0 ? d.contacts[k - 1].key : 0, k == 0);
+  }
+  if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
+  return d;
+}
+
+// Replaces the world's state with `d`. Scratch of the step (bounds, pairs, the sweep's kept
+// order, solver buffers) is rebuilt by the next step; the kept sweep order only speeds up the
+// re-sort and every broadphase returns the same sorted pair list, so it need not be saved.
+void commit(WorldState& s, Decoded&& d) {
+  s.def.gravity = d.def.gravity;
+  s.def.substeps = d.def.substeps;
+  s.def.iterations = d.def.iterations;
+  s.def.allow_sleep = d.def.allow_sleep;
+  s.step_count = d.step_count;
+  s.reported_status = d.reported_status;
+  s.shapes = std::move(d.shapes);
+  s.bodies = std::move(d.bodies);
+  s.slot_index = std::move(d.slot_index);
+  s.slot_generation = std::move(d.slot_generation);
+  s.free_slots = std::move(d.free_slots);
+  s.contacts = std::move(d.contacts);
+  s.previous_contacts.clear();
+  s.contact_slots.clear();
+  s.pairs.clear();
+  s.sap = detail::SweepAndPrune{};
+  s.all_pairs = detail::AllPairs{};
+  s.stats = StepStats{};
+}
+
+// --- compact rollback ----------------------------------------------------------------------
+
+uint64_t mix(uint64_t h, uint64_t w) {
+  h = (h ^ w) * 0xBF58476D1CE4E5B9ull;
+  return h ^ (h >> 31);
+}
+
+uint64_t layout_fingerprint(const BodyStore& b) {
+  uint64_t h = 0x726F6C6C6261636Bull ^ b.size();
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    h = mix(h, (uint64_t(b.shape[i]) << 32) | b.slot[i]);
+    h = mix(h, b.motion[i]);
+  }
+  return h;
+}
+
+// Walks a rollback payload. With Apply false it only checks it (every count, index and key),
+// so a bad buffer is refused before the world is touched; with Apply true it writes.
+template <bool Apply>
+void read_rollback(ByteReader& r, WorldState& s) {
+  BodyStore& b = s.bodies;
+  const std::size_t n = b.size();
+  if (r.u32() != n) r.fail("saved from a world with a different number of bodies");
+  if (r.u64() != layout_fingerprint(b)) r.fail("saved from a world with other bodies or shapes");
+  const uint64_t step_count = r.u64();
+  if constexpr (Apply) s.step_count = step_count;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (b.is_static(i)) continue;
+    if constexpr (Apply) {
+      for (Column<Real>* c :
+           {&b.px, &b.py, &b.pz, &b.qw, &b.qx, &b.qy, &b.qz, &b.vx, &b.vy, &b.vz,
+            &b.wx, &b.wy, &b.wz, &b.fx, &b.fy, &b.fz, &b.tx, &b.ty, &b.tz, &b.sleep_time}) {
+        (*c)[i] = r.real();
+      }
+      b.flags[i] = r.u8();
+    } else {
+      r.need(kRollbackBodyBytes);
+      for (std::size_t k = 0; k < 20; ++k) r.real();
+      r.u8();
+    }
+  }
+  const uint32_t count = r.count(8 + 1 + 3 * sizeof(Real) + 1, "manifold");
+  if constexpr (Apply) s.contacts.resize(count);
+  uint64_t previous_key = 0;
+  for (uint32_t k = 0; k < count; ++k) {
+    Manifold m;
+    m.key = r.u64();
+    const uint8_t swapped = r.u8();
+    m.body_a = detail::pair_first(m.key);
+    m.body_b = detail::pair_second(m.key);
+    if (swapped > 1) r.fail("bad manifold order flag");
+    if (swapped) std::swap(m.body_a, m.body_b);
+    m.normal = r.vec3();
+    m.point_count = r.u8();
+    check_manifold(r, m, n, previous_key, k == 0);
+    previous_key = m.key;
+    for (int p = 0; p < m.point_count; ++p) m.points[p] = read_point(r);
+    if constexpr (Apply) s.contacts[k] = m;
+  }
+  if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
+}
+
+// --- divergence ----------------------------------------------------------------------------
+
+template <class T>
+uint64_t bits_of(T v) {
+  if constexpr (sizeof(T) == 8) {
+    return std::bit_cast<uint64_t>(v);
+  } else if constexpr (sizeof(T) == 4) {
+    return std::bit_cast<uint32_t>(v);
+  } else {
+    return v;
+  }
+}
+
+}  // namespace
+
+std::vector<uint8_t> save_snapshot(const World& world) {
+  const WorldState& s = world.state();
+  std::vector<uint8_t> out;
+  out.reserve(4096 + s.bodies.size() * detail::snapshot_bytes_per_body() +
+              s.contacts.size() * (32 + detail::kMaxManifoldPoints * 52));
+  ByteWriter w(out);
+  begin(w, kSnapshotMagic);
+  w.vec3(s.def.gravity);
+  w.u32(uint32_t(s.def.substeps));
+  w.u32(uint32_t(s.def.iterations));
+  w.u8(s.def.allow_sleep ? 1 : 0);
+  w.u32(uint32_t(s.def.threads));
+  w.u8(uint8_t(s.def.broadphase));
+  w.u64(s.step_count);
+  w.u32(s.reported_status);
+
+  w.u32(uint32_t(s.shapes.size()));
+  for (const Shape& shape : s.shapes) write_shape(w, shape);
+
+  w.u32(uint32_t(s.bodies.size()));
+  detail::visit_snapshot_columns(s.bodies, [&w](const auto& column) {
+    for (auto v : column) write_value(w, v);
+  });
+
+  w.u32(uint32_t(s.slot_index.size()));
+  for (uint32_t v : s.slot_index) w.u32(v);
+  for (uint32_t v : s.slot_generation) w.u32(v);
+  w.u32(uint32_t(s.free_slots.size()));
+  for (uint32_t v : s.free_slots) w.u32(v);
+
+  w.u32(uint32_t(s.contacts.size()));
+  for (const Manifold& m : s.contacts) {
+    w.u64(m.key);
+    w.u32(m.body_a);
+    w.u32(m.body_b);
+    w.vec3(m.normal);
+    w.u8(uint8_t(m.point_count));
+    for (const ContactPoint& p : m.points) write_point(w, p);
+  }
+  seal(out);
+  return out;
+}
+
+void restore_snapshot(World& world, std::span<const uint8_t> bytes) {
+  commit(world.state(), decode_snapshot(bytes));
+}
+
+World load_snapshot(std::span<const uint8_t> bytes) {
+  Decoded d = decode_snapshot(bytes);
+  World world(d.def);
+  commit(world.state(), std::move(d));
+  return world;
+}
+
+void save_rollback(const World& world, std::vector<uint8_t>& out) {
+  const WorldState& s = world.state();
+  const BodyStore& b = s.bodies;
+  out.clear();
+  ByteWriter w(out);
+  begin(w, kRollbackMagic);
+  w.u32(uint32_t(b.size()));
+  w.u64(layout_fingerprint(b));
+  w.u64(s.step_count);
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b.is_static(i)) continue;
+    for (const Column<Real>* c :
+         {&b.px, &b.py, &b.pz, &b.qw, &b.qx, &b.qy, &b.qz, &b.vx, &b.vy, &b.vz,
+          &b.wx, &b.wy, &b.wz, &b.fx, &b.fy, &b.fz, &b.tx, &b.ty, &b.tz, &b.sleep_time}) {
+      w.real((*c)[i]);
+    }
+    w.u8(b.flags[i]);
+  }
+  w.u32(uint32_t(s.contacts.size()));
+  for (const Manifold& m : s.contacts) {
+    w.u64(m.key);
+    w.u8(m.body_a > m.body_b ? 1 : 0);
+    w.vec3(m.normal);
+    w.u8(uint8_t(m.point_count));
+    for (int p = 0; p < m.point_count; ++p) write_point(w, m.points[p]);
+  }
+  seal(out);
+}
+
+std::vector<uint8_t> save_rollback(const World& world) {
+  std::vector<uint8_t> out;
+  save_rollback(world, out);
+  return out;
+}
+
+void restore_rollback(World& world, std::span<const uint8_t> bytes) {
+  const std::span<const uint8_t> payload =
+      open(bytes, kRollbackMagic, "rollback", "rollback state");
+  WorldState& s = world.state();
+  ByteReader check(payload, "rollback");
+  read_rollback<false>(check, s);
+  ByteReader apply(payload, "rollback");
+  read_rollback<true>(apply, s);
+  s.previous_contacts.clear();
+}
+
+Divergence compare_worlds(const World& a, const World& b) {
+  const BodyStore& x = a.state().bodies;
+  const BodyStore& y = b.state().bodies;
+  Divergence d;
+  if (x.size() != y.size()) {
+    d.found = true;
+    d.field = "body_count";
+    d.value_a = double(x.size());
+    d.value_b = double(y.size());
+    return d;
+  }
+  struct Field {
+    const char* name;
+    Column<Real> BodyStore::*column;
+  };
+  static constexpr Field kFields[] = {
+      {"px", &BodyStore::px}, {"py", &BodyStore::py},
+      {"pz", &BodyStore::pz}, {"qw", &BodyStore::qw},
+      {"qx", &BodyStore::qx}, {"qy", &BodyStore::qy},
+      {"qz", &BodyStore::qz}, {"vx", &BodyStore::vx},
+      {"vy", &BodyStore::vy}, {"vz", &BodyStore::vz},
+      {"wx", &BodyStore::wx}, {"wy", &BodyStore::wy},
+      {"wz", &BodyStore::wz}, {"sleep_time", &BodyStore::sleep_time}};
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    for (const Field& f : kFields) {
+      const Real va = (x.*f.column)[i], vb = (y.*f.column)[i];
+      if (bits_of(va) != bits_of(vb)) {
+        d.found = true;
+        d.body = i;
+        d.field = f.name;
+        d.value_a = double(va);
+        d.value_b = double(vb);
+        return d;
+      }
+    }
+    if (x.flags[i] != y.flags[i]) {
+      d.found = true;
+      d.body = i;
+      d.field = "flags";
+      d.value_a = x.flags[i];
+      d.value_b = y.flags[i];
+      return d;
+    }
+  }
+  return d;
+}
+
+Divergence find_divergence(World& a, World& b, uint64_t steps, Real dt) {
+  Divergence d = compare_worlds(a, b);
+  for (uint64_t step = 1; step <= steps && !d.found; ++step) {
+    a.step(dt);
+    b.step(dt);
+    d = compare_worlds(a, b);
+    d.step = step;
+  }
+  return d;
+}
+
+}  // namespace elan
