@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "core/world/events.hpp"
 #include "narrowphase/collide.hpp"
 
 namespace elan::detail {
@@ -77,6 +78,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   } else {
     w.sap.find_pairs(input, w.pairs);
   }
+  filter_pairs(w);
   const auto t2 = clock::now();
 
   w.previous_contacts.swap(w.contacts);
@@ -99,6 +101,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   prepare_solve(bodies, w.contacts, solve_settings, w.solver, solve_stats);
   const auto t4 = clock::now();
   solve(bodies, w.contacts, solve_settings, w.solver);
+  compute_contact_events(w);
   const auto t5 = clock::now();
   const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   const auto t6 = clock::now();

@@ -12,6 +12,7 @@
 #include "core/base/body_store.hpp"
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
+#include "core/world/api_state.hpp"
 #include "elan/defs.hpp"
 #include "elan/profile.hpp"
 #include "solver/solve.hpp"
@@ -50,6 +51,7 @@ struct WorldState {
   std::vector<Manifold> contact_slots;
 
   SolverState solver;
+  ApiState api;
   StepStats stats;
   uint32_t reported_status = 0;  // flags already reported once
   uint64_t step_count = 0;
