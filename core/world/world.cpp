@@ -3,44 +3,39 @@
 
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "core/base/pair_key.hpp"
 #include "core/base/state_hash.hpp"
+#include "core/world/events.hpp"
 #include "core/world/step.hpp"
+#include "core/world/world_access.hpp"
 #include "core/world/world_state.hpp"
 
 namespace elan {
 
 using detail::WorldState;
 
-namespace {
+using detail::check_arg;
+using detail::index_of;
 
-void check(bool ok, const char* field, const std::string& message) {
-  if (!ok) throw Error(field, message);
-}
+namespace {
 
 bool finite(const Vec3& v) {
   return v.allFinite();
 }
 
 void validate(const WorldDef& def) {
-  check(finite(def.gravity), "gravity", "must be finite");
-  check(def.substeps >= 1 && def.substeps <= 64, "substeps", "must be in 1..64");
-  check(def.iterations >= 1 && def.iterations <= 64, "iterations", "must be in 1..64");
-  check(def.threads >= 0 && def.threads <= 1024, "threads", "must be in 0..1024");
+  check_arg(finite(def.gravity), "gravity", "must be finite");
+  check_arg(def.substeps >= 1 && def.substeps <= 64, "substeps", "must be in 1..64");
+  check_arg(def.iterations >= 1 && def.iterations <= 64, "iterations", "must be in 1..64");
+  check_arg(def.threads >= 0 && def.threads <= 1024, "threads", "must be in 0..1024");
 }
 
 int resolve_threads(int threads) {
   return threads > 0 ? threads : std::max(1, tbb::info::default_concurrency());
-}
-
-std::size_t index_of(const WorldState& s, BodyId id) {
-  if (id.slot >= s.slot_index.size() || s.slot_generation[id.slot] != id.generation ||
-      s.slot_index[id.slot] == UINT32_MAX) {
-    throw Error("body", "invalid or destroyed body id");
-  }
-  return s.slot_index[id.slot];
 }
 
 }  // namespace
@@ -48,8 +43,12 @@ std::size_t index_of(const WorldState& s, BodyId id) {
 World::World(const WorldDef& def) : state_(std::make_unique<WorldState>()) {
   validate(def);
   state_->def = def;
-  state_->threads = resolve_threads(def.threads);
-  state_->arena = std::make_unique<tbb::task_arena>(state_->threads);
+  if (def.arena) {
+    state_->threads = std::max(1, def.arena->max_concurrency());
+  } else {
+    state_->threads = resolve_threads(def.threads);
+    state_->arena = std::make_unique<tbb::task_arena>(state_->threads);
+  }
 }
 
 World::~World() = default;
@@ -61,28 +60,46 @@ ShapeId World::create_shape(const ShapeDef& def) {
   return ShapeId{uint32_t(state_->shapes.size() - 1)};
 }
 
+void World::destroy_shape(ShapeId id) {
+  WorldState& s = *state_;
+  check_arg(detail::shape_live(s, id), "shape", "invalid or destroyed shape id");
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    check_arg(s.bodies.shape[i] != id.index, "shape", "still used by a body");
+  }
+  // Indices are not reused (ShapeId has no generation), so a stale id can never alias.
+  s.api.shape_destroyed.resize(s.shapes.size(), 0);
+  s.api.shape_destroyed[id.index] = 1;
+  s.shapes[id.index] = detail::Shape{};
+}
+
+bool World::is_valid(ShapeId id) const {
+  return detail::shape_live(*state_, id);
+}
+
 BodyId World::create_body(const BodyDef& def) {
   WorldState& s = *state_;
-  check(!def.shape.is_null() && def.shape.index < s.shapes.size(), "shape", "invalid shape id");
+  check_arg(detail::shape_live(s, def.shape), "shape", "invalid or destroyed shape id");
   const detail::Shape& shape = s.shapes[def.shape.index];
-  check(finite(def.position), "position", "must be finite");
-  check(def.orientation.coeffs().allFinite(), "orientation", "must be finite");
-  check(def.orientation.norm() > Real(1e-12), "orientation", "zero quaternion");
-  check(finite(def.linear_velocity), "linear_velocity", "must be finite");
-  check(finite(def.angular_velocity), "angular_velocity", "must be finite");
-  check(std::isfinite(def.friction) && def.friction >= 0, "friction", "must be finite and >= 0");
-  check(std::isfinite(def.restitution) && def.restitution >= 0, "restitution",
-        "must be finite and >= 0");
-  check(std::isfinite(def.linear_damping) && def.linear_damping >= 0, "linear_damping",
-        "must be finite and >= 0");
-  check(std::isfinite(def.angular_damping) && def.angular_damping >= 0, "angular_damping",
-        "must be finite and >= 0");
+  check_arg(finite(def.position), "position", "must be finite");
+  check_arg(def.orientation.coeffs().allFinite(), "orientation", "must be finite");
+  check_arg(def.orientation.norm() > Real(1e-12), "orientation", "zero quaternion");
+  check_arg(finite(def.linear_velocity), "linear_velocity", "must be finite");
+  check_arg(finite(def.angular_velocity), "angular_velocity", "must be finite");
+  check_arg(std::isfinite(def.friction) && def.friction >= 0, "friction",
+            "must be finite and >= 0");
+  check_arg(std::isfinite(def.restitution) && def.restitution >= 0, "restitution",
+            "must be finite and >= 0");
+  check_arg(std::isfinite(def.linear_damping) && def.linear_damping >= 0, "linear_damping",
+            "must be finite and >= 0");
+  check_arg(std::isfinite(def.angular_damping) && def.angular_damping >= 0, "angular_damping",
+            "must be finite and >= 0");
   if (def.mass) {
-    check(std::isfinite(*def.mass) && *def.mass > 0, "mass", "must be finite and positive");
+    check_arg(std::isfinite(*def.mass) && *def.mass > 0, "mass", "must be finite and positive");
   }
-  check(std::isfinite(def.density) && def.density > 0, "density", "must be finite and positive");
+  check_arg(std::isfinite(def.density) && def.density > 0, "density",
+            "must be finite and positive");
   if (shape.type == ShapeType::Plane) {
-    check(def.motion == MotionType::Static, "motion", "a plane must be static");
+    check_arg(def.motion == MotionType::Static, "motion", "a plane must be static");
   }
 
   const Quat q_user = def.orientation.normalized();
@@ -96,7 +113,7 @@ BodyId World::create_body(const BodyDef& def) {
   b.set_angular_velocity(i, moving ? def.angular_velocity : Vec3::Zero());
   if (def.motion == MotionType::Dynamic) {
     const Real mass = def.mass ? *def.mass : def.density * shape.volume;
-    check(std::isfinite(mass) && mass > 0, "mass", "computed mass is not positive");
+    check_arg(std::isfinite(mass) && mass > 0, "mass", "computed mass is not positive");
     b.inv_mass[i] = 1 / mass;
     const Vec3 inertia = mass * shape.unit_inertia;
     b.inv_ix[i] = 1 / inertia.x();
@@ -127,7 +144,52 @@ BodyId World::create_body(const BodyDef& def) {
   }
   s.slot_index[slot] = uint32_t(i);
   b.slot[i] = slot;
+  ++s.api.mutations;
   return BodyId{slot, s.slot_generation[slot]};
+}
+
+void World::destroy_body(BodyId id) {
+  WorldState& s = *state_;
+  const uint32_t i = uint32_t(index_of(s, id));
+  const uint32_t last = uint32_t(s.bodies.size() - 1);
+  // Contacts: drop the body's own (an end event for each touching one, partners woken); the
+  // last body takes index i, so its manifolds get new keys and the list is re-sorted by key.
+  std::vector<detail::Manifold>& contacts = s.contacts;
+  std::size_t kept = 0;
+  bool resort = false;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    detail::Manifold m = contacts[k];
+    if (m.body_a == i || m.body_b == i) {
+      if (m.point_count > 0) {
+        s.api.end_events.push_back(
+            {detail::body_id_at(s, m.body_a), detail::body_id_at(s, m.body_b)});
+      }
+      const uint32_t other = m.body_a == i ? m.body_b : m.body_a;
+      if (s.bodies.is_dynamic(other)) detail::wake_index(s, other);
+      continue;
+    }
+    if (i != last && (m.body_a == last || m.body_b == last)) {
+      if (m.body_a == last) m.body_a = i;
+      if (m.body_b == last) m.body_b = i;
+      m.key = detail::make_pair_key(m.body_a, m.body_b);
+      resort = true;
+    }
+    contacts[kept++] = m;
+  }
+  contacts.resize(kept);
+  if (resort) {
+    // determinism: keys are unique, so the sorted order is a function of the keys alone.
+    std::sort(contacts.begin(), contacts.end(),
+              [](const detail::Manifold& x, const detail::Manifold& y) { return x.key < y.key; });
+  }
+  // The sweep-and-prune's kept order is a permutation of 0..n-1 re-sorted every update (a full
+  // sort when the count changes), and its output is canonical, so it needs no fix-up.
+  s.bodies.swap_remove(i);
+  if (i != last) s.slot_index[s.bodies.slot[i]] = i;
+  s.slot_index[id.slot] = UINT32_MAX;
+  ++s.slot_generation[id.slot];
+  s.free_slots.push_back(id.slot);
+  ++s.api.mutations;
 }
 
 uint32_t World::step(Real dt) {
@@ -137,7 +199,8 @@ uint32_t World::step(Real dt) {
     return kStepBadTimestep;
   }
   uint32_t status = 0;
-  s.arena->execute([&] { status = detail::run_step(s, dt); });
+  tbb::task_arena* arena = s.def.arena ? s.def.arena : s.arena.get();
+  arena->execute([&] { status = detail::run_step(s, dt); });
   return status;
 }
 
@@ -193,42 +256,25 @@ bool World::is_awake(BodyId id) const {
   return state_->bodies.is_dynamic(i) && state_->bodies.is_awake(i);
 }
 
-void World::set_linear_velocity(BodyId id, const Vec3& v) {
-  check(finite(v), "linear_velocity", "must be finite");
-  const std::size_t i = index_of(*state_, id);
-  if (state_->bodies.is_static(i)) return;
-  state_->bodies.set_linear_velocity(i, v);
-  state_->bodies.flags[i] |= detail::kAwake;
-  state_->bodies.sleep_time[i] = 0;
-}
-
-void World::set_angular_velocity(BodyId id, const Vec3& w) {
-  check(finite(w), "angular_velocity", "must be finite");
-  const std::size_t i = index_of(*state_, id);
-  if (state_->bodies.is_static(i)) return;
-  state_->bodies.set_angular_velocity(i, w);
-  state_->bodies.flags[i] |= detail::kAwake;
-  state_->bodies.sleep_time[i] = 0;
-}
-
 const WorldDef& World::settings() const {
   return state_->def;
 }
 
 void World::set_substeps(int substeps) {
-  check(substeps >= 1 && substeps <= 64, "substeps", "must be in 1..64");
+  check_arg(substeps >= 1 && substeps <= 64, "substeps", "must be in 1..64");
   state_->def.substeps = substeps;
 }
 void World::set_iterations(int iterations) {
-  check(iterations >= 1 && iterations <= 64, "iterations", "must be in 1..64");
+  check_arg(iterations >= 1 && iterations <= 64, "iterations", "must be in 1..64");
   state_->def.iterations = iterations;
 }
 void World::set_broadphase(BroadphaseType type) {
   state_->def.broadphase = type;
 }
 void World::set_threads(int threads) {
-  check(threads >= 0 && threads <= 1024, "threads", "must be in 0..1024");
+  check_arg(threads >= 0 && threads <= 1024, "threads", "must be in 0..1024");
   state_->def.threads = threads;
+  state_->def.arena = nullptr;
   state_->threads = resolve_threads(threads);
   state_->arena = std::make_unique<tbb::task_arena>(state_->threads);
 }

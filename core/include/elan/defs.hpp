@@ -1,6 +1,8 @@
 // Creation structs of the public API: shapes, bodies, worlds. All units SI, frames noted.
 #pragma once
 
+#include <tbb/task_arena.h>
+
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -53,8 +55,11 @@ struct WorldDef {
   int substeps = 4;                        ///< soft-step substeps per step
   int iterations = 1;                      ///< solver iterations per substep
   bool allow_sleep = true;
-  int threads = 0;  ///< worker count; 0 = all cores
+  int threads = 0;  ///< worker count; 0 = all cores (ignored when `arena` is set)
   BroadphaseType broadphase = BroadphaseType::SweepAndPrune;
+  /// The caller's arena: when set, the world runs its step inside it (with its concurrency as
+  /// the worker count) instead of creating its own. Must outlive the world.
+  tbb::task_arena* arena = nullptr;
 };
 
 }  // namespace elan

@@ -4,12 +4,17 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <span>
+#include <vector>
 
 #include "elan/defs.hpp"
 #include "elan/error.hpp"
+#include "elan/events.hpp"
 #include "elan/ids.hpp"
 #include "elan/math.hpp"
 #include "elan/profile.hpp"
+#include "elan/queries.hpp"
 
 namespace elan {
 
@@ -18,8 +23,13 @@ struct WorldState;
 }
 
 /// A physics world. Not thread-safe: call its methods from one thread at a time; the step
-/// itself runs in parallel on the world's own TBB arena of `WorldDef::threads` workers.
-/// Results are bit-identical for any thread count and broadphase on one build.
+/// itself runs in parallel on the world's own TBB arena of `WorldDef::threads` workers (or on
+/// `WorldDef::arena`). Results are bit-identical for any thread count and broadphase on one
+/// build, also across creating and destroying bodies between steps.
+///
+/// Every call taking a BodyId or ShapeId throws elan::Error (field "body" / "shape") for an id
+/// that is stale, destroyed or from another world's range; setters throw elan::Error naming the
+/// field for non-finite or out-of-range values. None of them may be called during a step.
 class World {
  public:
   /// Throws elan::Error for invalid settings (non-finite gravity, substeps < 1, ...).
@@ -32,9 +42,18 @@ class World {
 
   /// Creates an immutable shape that any number of bodies may share. Throws elan::Error.
   ShapeId create_shape(const ShapeDef& def);
+  /// Destroys a shape no body uses (elan::Error "shape" if one does). Its id stays invalid:
+  /// shape ids are not reused.
+  void destroy_shape(ShapeId id);
+  bool is_valid(ShapeId id) const;
   /// Creates a body. Throws elan::Error naming the field for invalid input (a stale shape id,
   /// non-finite values, zero orientation, non-positive mass or density, a non-static plane).
   BodyId create_body(const BodyDef& def);
+  /// Destroys a body between steps. Its contacts are dropped, with a ContactEndEvent for each
+  /// touching one (appended to contact_end_events() at once), and the dynamic bodies it touched
+  /// are woken. The last body moves into its dense index (swap-remove), so dense indices and
+  /// bulk views are invalidated; other ids stay valid.
+  void destroy_body(BodyId id);
 
   /// Advances the world by `dt` seconds. Never throws; returns StepStatus flags.
   uint32_t step(Real dt);
@@ -56,15 +75,94 @@ class World {
   MotionType motion_type(BodyId id) const;
   bool is_awake(BodyId id) const;
 
-  void set_linear_velocity(BodyId id, const Vec3& v);   ///< wakes the body
-  void set_angular_velocity(BodyId id, const Vec3& w);  ///< wakes the body
+  Real friction(BodyId id) const;
+  Real restitution(BodyId id) const;
+  uint32_t category_bits(BodyId id) const;
+  uint32_t mask_bits(BodyId id) const;
+
+  /// Setters of one body, between steps. Those that move or push a non-static body wake it; on
+  /// a static body velocity setters, forces and impulses are ignored.
+  void set_linear_velocity(BodyId id, const Vec3& v);   ///< m/s, world, of the centre of mass
+  void set_angular_velocity(BodyId id, const Vec3& w);  ///< rad/s, world
+  /// Teleports the shape frame (as BodyDef::position), m, world. Velocities are kept.
+  void set_position(BodyId id, const Vec3& position);
+  /// Shape frame to world; normalised (elan::Error for a zero or non-finite quaternion).
+  void set_orientation(BodyId id, const Quat& orientation);
+  void set_transform(BodyId id, const Transform& pose);  ///< both at once
+  /// Force (N, world) through the centre of mass for the next step only (cleared by the step).
+  void apply_force(BodyId id, const Vec3& force);
+  /// Force (N, world) at a world point (m): adds the torque (point - centre of mass) x force.
+  void apply_force_at(BodyId id, const Vec3& force, const Vec3& point);
+  void apply_torque(BodyId id, const Vec3& torque);  ///< N m, world, for the next step only
+  /// Instant velocity change: dv = J / m, dw = I^-1 ((point - centre of mass) x J);
+  /// J in N s, world; point in m, world. Dynamic bodies only (ignored otherwise).
+  void apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point);
+  void apply_linear_impulse(BodyId id, const Vec3& impulse);   ///< N s, world: dv = J / m
+  void apply_angular_impulse(BodyId id, const Vec3& impulse);  ///< N m s, world: dw = I^-1 L
+  /// Kinematic bodies: sets the velocities that carry the shape frame to `target` (world) in
+  /// `dt` seconds (> 0), the rotation by the shorter arc. elan::Error "body" if not kinematic.
+  void move_kinematic(BodyId id, const Transform& target, Real dt);
+  void wake(BodyId id);   ///< dynamic bodies: simulate again (its island wakes with it)
+  void sleep(BodyId id);  ///< dynamic bodies: stop simulating now, velocities zeroed
+  void set_friction(BodyId id, Real friction);        ///< >= 0, mixed as sqrt(f1 f2)
+  void set_restitution(BodyId id, Real restitution);  ///< >= 0, mixed as max(e1, e2)
+  /// kg, > 0, dynamic bodies only; the inertia follows from the shape (I = mass * unit inertia).
+  void set_mass(BodyId id, Real mass);
+  /// Collision filter bits (see BodyDef); takes effect in the next step's broadphase.
+  void set_collision_filter(BodyId id, uint32_t category_bits, uint32_t mask_bits);
+
+  /// Bulk, zero-copy views of the body columns in dense index order; element i belongs to
+  /// body_ids()[i]. Positions are those of the centre of mass and orientations those of the
+  /// principal axes (the store's own pose): for every shape but the convex hull this is the
+  /// shape frame; a hull's shape frame is offset by its frame (use position()/orientation()).
+  /// Invalidated by create_body and destroy_body (and snapshot restore); step() and setters do
+  /// not reallocate, so a view stays valid across steps and shows the new values.
+  struct BodyColumns {
+    std::span<const Real> px, py, pz;      ///< m, world: centre of mass
+    std::span<const Real> qw, qx, qy, qz;  ///< principal axes to world, unit
+    std::span<const Real> vx, vy, vz;      ///< m/s, world
+    std::span<const Real> wx, wy, wz;      ///< rad/s, world
+  };
+  BodyColumns body_columns() const;
+  /// Dense index -> id, valid until the next create_body / destroy_body.
+  std::span<const BodyId> body_ids() const;
+  /// Bulk setters: one value per body in dense index order. Each span must have body_count()
+  /// elements of finite values (elan::Error "positions" / ... otherwise, nothing changed).
+  /// Same effect as the per-body setter on every body: moved or pushed non-static bodies wake.
+  void set_center_of_mass_positions(std::span<const Real> x, std::span<const Real> y,
+                                    std::span<const Real> z);
+  void set_linear_velocities(std::span<const Real> x, std::span<const Real> y,
+                             std::span<const Real> z);
+  void set_angular_velocities(std::span<const Real> x, std::span<const Real> y,
+                              std::span<const Real> z);
+
+  /// Contact events of the last step, in pair-key order (by the pair's dense indices), plus
+  /// end events of destroy_body calls since. Cleared when the next step starts.
+  std::span<const ContactBeginEvent> contact_begin_events() const;
+  std::span<const ContactEndEvent> contact_end_events() const;
+  /// Installs (or, with an empty function, removes) the pair filter; see PairFilter.
+  void set_pair_filter(PairFilter filter);
+
+  /// Closest body the ray from `origin` (m, world) along `direction` (any non-zero length)
+  /// enters within `max_distance` (m); ties go to the lower dense index. Tests every body's
+  /// exact shape; candidates come from a brute-force pass over cached bounding boxes (rebuilt
+  /// after a step or change, O(bodies)), so a cast costs O(bodies).
+  std::optional<RayHit> cast_ray(const Vec3& origin, const Vec3& direction,
+                                 Real max_distance) const;
+  /// Every body the ray enters within max_distance, into `out` (cleared), sorted by distance
+  /// then dense index.
+  void cast_ray_all(const Vec3& origin, const Vec3& direction, Real max_distance,
+                    std::vector<RayHit>& out) const;
+  /// Bodies whose bounding box overlaps the box [lo, hi] (m, world), in dense index order, into
+  /// `out` (cleared). Boxes are conservative: a body listed may not touch the box exactly.
+  void overlap_box(const Vec3& lo, const Vec3& hi, std::vector<BodyId>& out) const;
 
   /// Settings that may change between steps.
   const WorldDef& settings() const;
   void set_substeps(int substeps);
   void set_iterations(int iterations);
   void set_broadphase(BroadphaseType type);
-  /// Changes the worker count (1 or more; 0 = all cores).
+  /// Changes the worker count (1 or more; 0 = all cores); the world then uses its own arena.
   void set_threads(int threads);
 
   /// Counts and times of the last step.
@@ -83,5 +181,11 @@ class World {
  private:
   std::unique_ptr<detail::WorldState> state_;
 };
+
+/// Steps several independent worlds by `dt` each, concurrently: a tbb::parallel_for over the
+/// worlds inside the caller's current arena, each world's own parallel stages nested in the same
+/// pool (the worlds' own arenas are not used). Each world ends with the same bits as if stepped
+/// alone. Worlds must be distinct. Returns the OR of the worlds' StepStatus flags.
+uint32_t step_all(std::span<World* const> worlds, Real dt);
 
 }  // namespace elan

@@ -1,0 +1,212 @@
+// Per-body control of the public API between steps: pose, velocities, forces and impulses,
+// kinematic targets, sleep, material, mass and filter bits. All validated, all by id.
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+#include "core/world/world_access.hpp"
+#include "elan/world.hpp"
+
+namespace elan {
+
+using detail::check_arg;
+using detail::index_of;
+using detail::WorldState;
+
+namespace {
+
+void check_vec(const Vec3& v, const char* field) {
+  check_arg(v.allFinite(), field, "must be finite");
+}
+
+Quat checked_rotation(const Quat& q, const char* field) {
+  check_arg(q.coeffs().allFinite(), field, "must be finite");
+  check_arg(q.norm() > Real(1e-12), field, "zero quaternion");
+  return q.normalized();
+}
+
+// World inverse inertia applied to a vector: R diag(inv_i) R^T x, R the principal axes.
+Vec3 apply_inv_inertia(const detail::BodyStore& b, std::size_t i, const Vec3& x) {
+  const Quat q = b.orientation(i);
+  const Vec3 local = q.conjugate() * x;
+  return q * Vec3(b.inv_ix[i] * local.x(), b.inv_iy[i] * local.y(), b.inv_iz[i] * local.z());
+}
+
+// Stores a shape-frame pose as the principal-frame pose the store keeps.
+void store_pose(WorldState& s, std::size_t i, const Vec3& position, const Quat& rotation) {
+  const detail::Shape& shape = s.shapes[s.bodies.shape[i]];
+  s.bodies.set_position(i, position + rotation * shape.frame_position);
+  s.bodies.set_orientation(i, (rotation * shape.frame_rotation).normalized());
+  detail::wake_index(s, i);
+  ++s.api.mutations;
+}
+
+}  // namespace
+
+Real World::friction(BodyId id) const {
+  return state_->bodies.friction[index_of(*state_, id)];
+}
+Real World::restitution(BodyId id) const {
+  return state_->bodies.restitution[index_of(*state_, id)];
+}
+uint32_t World::category_bits(BodyId id) const {
+  return state_->bodies.category[index_of(*state_, id)];
+}
+uint32_t World::mask_bits(BodyId id) const {
+  return state_->bodies.mask[index_of(*state_, id)];
+}
+
+void World::set_linear_velocity(BodyId id, const Vec3& v) {
+  check_vec(v, "linear_velocity");
+  const std::size_t i = index_of(*state_, id);
+  if (state_->bodies.is_static(i)) return;
+  state_->bodies.set_linear_velocity(i, v);
+  detail::wake_index(*state_, i);
+}
+
+void World::set_angular_velocity(BodyId id, const Vec3& w) {
+  check_vec(w, "angular_velocity");
+  const std::size_t i = index_of(*state_, id);
+  if (state_->bodies.is_static(i)) return;
+  state_->bodies.set_angular_velocity(i, w);
+  detail::wake_index(*state_, i);
+}
+
+void World::set_position(BodyId id, const Vec3& position) {
+  check_vec(position, "position");
+  const std::size_t i = index_of(*state_, id);
+  store_pose(*state_, i, position, orientation(id));
+}
+
+void World::set_orientation(BodyId id, const Quat& orientation) {
+  const Quat q = checked_rotation(orientation, "orientation");
+  const std::size_t i = index_of(*state_, id);
+  store_pose(*state_, i, position(id), q);
+}
+
+void World::set_transform(BodyId id, const Transform& pose) {
+  check_vec(pose.position, "position");
+  const Quat q = checked_rotation(pose.rotation, "orientation");
+  store_pose(*state_, index_of(*state_, id), pose.position, q);
+}
+
+void World::apply_force(BodyId id, const Vec3& force) {
+  check_vec(force, "force");
+  detail::BodyStore& b = state_->bodies;
+  const std::size_t i = index_of(*state_, id);
+  if (!b.is_dynamic(i)) return;
+  b.fx[i] += force.x();
+  b.fy[i] += force.y();
+  b.fz[i] += force.z();
+  detail::wake_index(*state_, i);
+}
+
+void World::apply_force_at(BodyId id, const Vec3& force, const Vec3& point) {
+  check_vec(force, "force");
+  check_vec(point, "point");
+  const std::size_t i = index_of(*state_, id);
+  apply_force(id, force);
+  apply_torque(id, (point - state_->bodies.position(i)).cross(force));
+}
+
+void World::apply_torque(BodyId id, const Vec3& torque) {
+  check_vec(torque, "torque");
+  detail::BodyStore& b = state_->bodies;
+  const std::size_t i = index_of(*state_, id);
+  if (!b.is_dynamic(i)) return;
+  b.tx[i] += torque.x();
+  b.ty[i] += torque.y();
+  b.tz[i] += torque.z();
+  detail::wake_index(*state_, i);
+}
+
+void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
+  check_vec(impulse, "impulse");
+  check_vec(point, "point");
+  const std::size_t i = index_of(*state_, id);
+  apply_linear_impulse(id, impulse);
+  apply_angular_impulse(id, (point - state_->bodies.position(i)).cross(impulse));
+}
+
+void World::apply_linear_impulse(BodyId id, const Vec3& impulse) {
+  check_vec(impulse, "impulse");
+  detail::BodyStore& b = state_->bodies;
+  const std::size_t i = index_of(*state_, id);
+  if (!b.is_dynamic(i)) return;
+  b.set_linear_velocity(i, b.linear_velocity(i) + b.inv_mass[i] * impulse);
+  detail::wake_index(*state_, i);
+}
+
+void World::apply_angular_impulse(BodyId id, const Vec3& impulse) {
+  check_vec(impulse, "angular_impulse");
+  detail::BodyStore& b = state_->bodies;
+  const std::size_t i = index_of(*state_, id);
+  if (!b.is_dynamic(i)) return;
+  b.set_angular_velocity(i, b.angular_velocity(i) + apply_inv_inertia(b, i, impulse));
+  detail::wake_index(*state_, i);
+}
+
+void World::move_kinematic(BodyId id, const Transform& target, Real dt) {
+  check_vec(target.position, "target.position");
+  const Quat q_target = checked_rotation(target.rotation, "target.rotation");
+  check_arg(std::isfinite(dt) && dt > 0, "dt", "must be finite and positive");
+  WorldState& s = *state_;
+  const std::size_t i = index_of(s, id);
+  check_arg(s.bodies.motion[i] == uint8_t(MotionType::Kinematic), "body", "not kinematic");
+  const detail::Shape& shape = s.shapes[s.bodies.shape[i]];
+  // The centre of mass travels in a straight line and the principal frame turns about it, so
+  // both must reach the target's: v = dx / dt, w = axis * angle / dt of dq = q1 q0^-1.
+  const Vec3 com_target = target.position + q_target * shape.frame_position;
+  const Quat q1 = (q_target * shape.frame_rotation).normalized();
+  Quat dq = q1 * s.bodies.orientation(i).conjugate();
+  if (dq.w() < 0) dq.coeffs() = -dq.coeffs();  // the shorter arc
+  const Eigen::AngleAxis<Real> aa(dq.normalized());
+  s.bodies.set_linear_velocity(i, (com_target - s.bodies.position(i)) / dt);
+  s.bodies.set_angular_velocity(i, aa.axis() * (aa.angle() / dt));
+}
+
+void World::wake(BodyId id) {
+  const std::size_t i = index_of(*state_, id);
+  if (state_->bodies.is_dynamic(i)) detail::wake_index(*state_, i);
+}
+
+void World::sleep(BodyId id) {
+  detail::BodyStore& b = state_->bodies;
+  const std::size_t i = index_of(*state_, id);
+  if (!b.is_dynamic(i)) return;
+  b.flags[i] &= uint8_t(~detail::kAwake);
+  b.set_linear_velocity(i, Vec3::Zero());
+  b.set_angular_velocity(i, Vec3::Zero());
+  b.sleep_time[i] = 0;
+}
+
+void World::set_friction(BodyId id, Real friction) {
+  check_arg(std::isfinite(friction) && friction >= 0, "friction", "must be finite and >= 0");
+  state_->bodies.friction[index_of(*state_, id)] = friction;
+}
+
+void World::set_restitution(BodyId id, Real restitution) {
+  check_arg(std::isfinite(restitution) && restitution >= 0, "restitution",
+            "must be finite and >= 0");
+  state_->bodies.restitution[index_of(*state_, id)] = restitution;
+}
+
+void World::set_mass(BodyId id, Real mass) {
+  check_arg(std::isfinite(mass) && mass > 0, "mass", "must be finite and positive");
+  WorldState& s = *state_;
+  const std::size_t i = index_of(s, id);
+  check_arg(s.bodies.is_dynamic(i), "body", "mass applies to dynamic bodies only");
+  const Vec3 inertia = mass * s.shapes[s.bodies.shape[i]].unit_inertia;
+  s.bodies.inv_mass[i] = 1 / mass;
+  s.bodies.inv_ix[i] = 1 / inertia.x();
+  s.bodies.inv_iy[i] = 1 / inertia.y();
+  s.bodies.inv_iz[i] = 1 / inertia.z();
+}
+
+void World::set_collision_filter(BodyId id, uint32_t category_bits, uint32_t mask_bits) {
+  const std::size_t i = index_of(*state_, id);
+  state_->bodies.category[i] = category_bits;
+  state_->bodies.mask[i] = mask_bits;
+}
+
+}  // namespace elan

@@ -1,0 +1,36 @@
+// Checks shared by the World API's source files: id lookup and argument validation.
+#pragma once
+
+#include <string>
+
+#include "core/world/world_state.hpp"
+#include "elan/error.hpp"
+
+namespace elan::detail {
+
+inline void check_arg(bool ok, const char* field, const std::string& message) {
+  if (!ok) throw Error(field, message);
+}
+
+// Dense index of a live body; elan::Error "body" for a stale, destroyed or foreign id.
+inline std::size_t index_of(const WorldState& s, BodyId id) {
+  if (id.slot >= s.slot_index.size() || s.slot_generation[id.slot] != id.generation ||
+      s.slot_index[id.slot] == UINT32_MAX) {
+    throw Error("body", "invalid or destroyed body id");
+  }
+  return s.slot_index[id.slot];
+}
+
+inline bool shape_live(const WorldState& s, ShapeId id) {
+  return !id.is_null() && id.index < s.shapes.size() &&
+         !(id.index < s.api.shape_destroyed.size() && s.api.shape_destroyed[id.index]);
+}
+
+// A non-static body was moved or pushed: simulate it again from this step on.
+inline void wake_index(WorldState& s, std::size_t i) {
+  if (s.bodies.is_static(i)) return;
+  s.bodies.flags[i] |= kAwake;
+  s.bodies.sleep_time[i] = 0;
+}
+
+}  // namespace elan::detail
