@@ -1,0 +1,131 @@
+// A pile of mixed bodies (boxes, spheres, capsules, hulls) dropped into a walled container
+// settles: no non-finite state, nothing leaves the container, kinetic energy near zero at 15 s.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+
+#include "physics/physics_util.hpp"
+
+namespace elan {
+namespace {
+
+using test::add_body;
+using test::at;
+
+struct Container {
+  Real inner_half = 0;  ///< m: the walls' inner faces are at |x|, |z| = inner_half
+  Real height = 0;      ///< m: wall height above the ground y = 0
+};
+
+// A deterministic mixed pile of nx * ny * nz bodies on a grid above a ground inside four walls.
+Container build_mixed_pile(World& world, int nx, int ny, int nz) {
+  const Real spacing = Real(1.1);
+  const Container c{Real(0.5) * spacing * Real(std::max(nx, nz)) + Real(0.3),
+                    spacing * Real(ny) + 2};
+  const Real wall = Real(0.5);
+  add_body(world, test::box_shape(Vec3(c.inner_half + 2 * wall, 1, c.inner_half + 2 * wall)),
+           at(Vec3(0, -1, 0), MotionType::Static));
+  const Real h = Real(0.5) * c.height;
+  for (int side = -1; side <= 1; side += 2) {
+    const Real off = Real(side) * (c.inner_half + wall);
+    add_body(world, test::box_shape(Vec3(wall, h, c.inner_half + 2 * wall)),
+             at(Vec3(off, h, 0), MotionType::Static));
+    add_body(world, test::box_shape(Vec3(c.inner_half, h, wall)),
+             at(Vec3(0, h, off), MotionType::Static));
+  }
+  uint32_t seed = 12345;
+  auto uniform = [&](Real lo, Real hi) {
+    seed = seed * 1664525u + 1013904223u;  // Numerical Recipes LCG: same pile on every platform
+    return lo + (hi - lo) * Real(seed >> 8) / Real(1u << 24);
+  };
+  std::vector<ShapeId> shapes;
+  for (int k = 0; k < 16; ++k) {
+    ShapeDef s;
+    switch (k % 4) {
+      case 0:
+        s = test::box_shape(Vec3(uniform(Real(0.2), Real(0.45)), uniform(Real(0.2), Real(0.45)),
+                                 uniform(Real(0.2), Real(0.45))));
+        break;
+      case 1:
+        s = test::sphere_shape(uniform(Real(0.25), Real(0.45)));
+        break;
+      case 2:
+        s = test::capsule_shape(uniform(Real(0.15), Real(0.25)), uniform(Real(0.1), Real(0.25)));
+        break;
+      default:
+        s.type = ShapeType::ConvexHull;
+        for (int p = 0; p < 12; ++p) {
+          s.points.push_back(Vec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)).normalized() *
+                             Real(0.42));
+        }
+        break;
+    }
+    shapes.push_back(world.create_shape(s));
+  }
+  const Real x0 = -Real(0.5) * spacing * Real(nx - 1), z0 = -Real(0.5) * spacing * Real(nz - 1);
+  for (int y = 0; y < ny; ++y) {
+    for (int z = 0; z < nz; ++z) {
+      for (int x = 0; x < nx; ++x) {
+        BodyDef d =
+            at(Vec3(x0 + spacing * Real(x), Real(0.6) + spacing * Real(y), z0 + spacing * Real(z)));
+        d.orientation = Quat(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+        d.shape = shapes[std::size_t(uniform(0, Real(15.99)))];
+        world.create_body(d);
+      }
+    }
+  }
+  return c;
+}
+
+// Runs `seconds` and checks every step for non-finite state, then at the end that every
+// dynamic body's centre of mass is inside the container (inner faces, above the ground) and
+// the mean kinetic energy is below 1e-3 J per body: a 0.5 kg-to-1 t body at 1e-3 J moves at
+// ~1-6 cm/s, i.e. the pile has come to rest.
+void expect_settles(World& world, const Container& c, Real dt, Real seconds) {
+  const int steps = int(std::lround(seconds / dt));
+  for (int n = 1; n <= steps; ++n) {
+    const uint32_t status = world.step(dt);
+    ASSERT_EQ(status & kStepFrozeNonFinite, 0u) << "a body went non-finite at step " << n;
+  }
+  ASSERT_TRUE(test::all_finite(world));
+  std::size_t dynamic = 0, outside = 0;
+  for (std::size_t i = 0; i < world.body_count(); ++i) {
+    const BodyId id = world.body_at(i);
+    if (world.motion_type(id) != MotionType::Dynamic) continue;
+    ++dynamic;
+    const Vec3 x = world.center_of_mass(id);
+    if (std::abs(x.x()) > c.inner_half || std::abs(x.z()) > c.inner_half || x.y() < 0) {
+      ++outside;
+      ADD_FAILURE() << "body " << i << " escaped to " << x.transpose();
+      if (outside > 5) break;
+    }
+  }
+  const Real ke = world.kinetic_energy();
+  std::printf("pile of %zu: KE %.4g J (%.3g J per body) after %.1f s, awake %zu, outside %zu\n",
+              dynamic, double(ke), double(ke) / double(dynamic), double(seconds),
+              world.last_step().awake, outside);
+  EXPECT_LT(ke, Real(1e-3) * Real(dynamic))
+      << "pile still moving after " << seconds << " s, awake " << world.last_step().awake;
+}
+
+TEST(Pile, Pile1kSettlesInItsContainer) {
+  Real dt = 0;
+  World world = test::load_world("pile1k.json", 2, dt);
+  // scenes/pile1k.json: walls' inner faces at |x|, |z| = 4.75.
+  expect_settles(world, Container{Real(4.75), 10}, dt, 15);
+}
+
+// About 2k bodies in Release; under the sanitizers (10x slower) a 500-body pile of the same
+// mix, so the run stays minutes, not tens of minutes.
+TEST(Pile, MixedPileSettlesInItsContainer) {
+  WorldDef def;
+  def.threads = 2;
+  World world(def);
+  const Container c =
+      test::kSanitized ? build_mixed_pile(world, 8, 8, 8) : build_mixed_pile(world, 13, 12, 13);
+  expect_settles(world, c, test::kDt, 15);
+}
+
+}  // namespace
+}  // namespace elan
