@@ -1,0 +1,448 @@
+// Whole steps: the standard scenes and a generated pile sweep at 1 and 2 threads, the same scenes
+// in Bullet, heap bytes per body, and the 2-thread ceiling of this machine (an FMA kernel and a
+// streaming kernel) measured in the same run. bench/run_suite.sh drives it; flags in usage().
+#include <benchmark/benchmark.h>
+#include <malloc.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "elan/scene.hpp"
+#include "elan/world.hpp"
+#ifdef ELAN_HAVE_BULLET
+#include "bench/peer/bullet_world.hpp"
+#endif
+
+namespace {
+
+using elan::Real;
+using elan::Vec3;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  int warmup = 20, steps = 20, reps = 3;
+  int sweep_warmup = 30, sweep_steps = 10, sweep_reps = 1;
+  int calib_reps = 5;
+  std::vector<std::string> scenes = {"jolt_pyramid", "pyramid20", "tower20", "many_pyramids",
+                                     "pile1k",       "pile4k",    "pile10k", "spheres_in_box",
+                                     "rain",         "tumbler"};
+  std::vector<int> sweep = {1000, 2000, 4000, 8000, 16000, 32000};
+  int allpairs_max = 8000;
+  bool bullet = true;
+};
+
+void usage() {
+  std::fprintf(stderr,
+               "bench_scenes [benchmark flags] [--warmup=N] [--steps=N] [--reps=N]\n"
+               "  [--sweep_warmup=N] [--sweep_steps=N] [--sweep_reps=N] [--calib_reps=N]\n"
+               "  [--scenes=a,b,...] [--sweep=1000,2000,...] [--allpairs_max=N] [--no_bullet]\n");
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// Takes our flags out of argv so that Google Benchmark sees only its own.
+Options parse_options(int& argc, char** argv) {
+  Options o;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto eq = a.find('=');
+    const std::string key = a.substr(0, eq),
+                      value = eq == std::string::npos ? "" : a.substr(eq + 1);
+    const auto number = [&] { return std::atoi(value.c_str()); };
+    if (key == "--warmup")
+      o.warmup = number();
+    else if (key == "--steps")
+      o.steps = number();
+    else if (key == "--reps")
+      o.reps = number();
+    else if (key == "--sweep_warmup")
+      o.sweep_warmup = number();
+    else if (key == "--sweep_steps")
+      o.sweep_steps = number();
+    else if (key == "--sweep_reps")
+      o.sweep_reps = number();
+    else if (key == "--calib_reps")
+      o.calib_reps = number();
+    else if (key == "--allpairs_max")
+      o.allpairs_max = number();
+    else if (key == "--scenes")
+      o.scenes = split(value);
+    else if (key == "--no_bullet")
+      o.bullet = false;
+    else if (key == "--sweep") {
+      o.sweep.clear();
+      for (const auto& n : split(value)) o.sweep.push_back(std::atoi(n.c_str()));
+    } else if (key == "--help_scenes") {
+      usage();
+      std::exit(0);
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  if (o.steps < 1 || o.reps < 1 || o.sweep_steps < 1 || o.warmup < 0) {
+    usage();
+    std::exit(2);
+  }
+  return o;
+}
+
+// A container filling up: n mixed bodies (boxes, spheres, capsules, hulls of about 0.3-0.4 m)
+// on a 1.1 m lattice ten layers deep, over a floor sized for n, inside four static walls. The
+// bodies drop 0..10 m, so after the warm-up the lower layers are colliding while the upper fall.
+elan::Scene make_pile(int n) {
+  elan::Scene s;
+  const int side = int(std::ceil(std::sqrt(n / 10.0)));
+  const Real half = Real(0.55 * side + 0.5);
+  const auto wall = [&](const Vec3& he, const Vec3& pos) {
+    elan::SceneBody b;
+    b.shape.type = elan::ShapeType::Box;
+    b.shape.half_extents = he;
+    b.body.motion = elan::MotionType::Static;
+    b.body.position = pos;
+    s.bodies.push_back(b);
+  };
+  wall(Vec3(half + 1, 1, half + 1), Vec3(0, -1, 0));
+  wall(Vec3(0.5, 7, half), Vec3(-half - 0.5, 7, 0));
+  wall(Vec3(0.5, 7, half), Vec3(half + 0.5, 7, 0));
+  wall(Vec3(half, 7, 0.5), Vec3(0, 7, -half - 0.5));
+  wall(Vec3(half, 7, 0.5), Vec3(0, 7, half + 0.5));
+  std::mt19937 rng(1234);
+  std::uniform_real_distribution<double> size(0.3, 0.42), jitter(-0.05, 0.05), unit(-1, 1);
+  for (int i = 0; i < n; ++i) {
+    const int col = i % (side * side), layer = i / (side * side);
+    elan::SceneBody b;
+    const Real r = Real(size(rng));
+    switch (i % 4) {
+      case 0:
+        b.shape.type = elan::ShapeType::Box;
+        b.shape.half_extents = Vec3(r, Real(size(rng)), Real(size(rng)));
+        break;
+      case 1:
+        b.shape.type = elan::ShapeType::Sphere;
+        b.shape.radius = r;
+        break;
+      case 2:
+        b.shape.type = elan::ShapeType::Capsule;
+        b.shape.radius = r * Real(0.6);
+        b.shape.half_height = r * Real(0.5);
+        break;
+      default:
+        b.shape.type = elan::ShapeType::ConvexHull;
+        for (int k = 0; k < 10; ++k) {
+          Vec3 d(Real(unit(rng)), Real(unit(rng)), Real(unit(rng)));
+          b.shape.points.push_back(d.normalized() * r);
+        }
+        break;
+    }
+    b.body.position =
+        Vec3(Real(-0.55 * side + 0.55 + 1.1 * (col % side) + jitter(rng)), Real(0.6 + 1.1 * layer),
+             Real(-0.55 * side + 0.55 + 1.1 * (col / side) + jitter(rng)));
+    b.body.orientation =
+        elan::Quat(Real(1), Real(unit(rng) * 0.1), Real(unit(rng) * 0.1), Real(unit(rng) * 0.1))
+            .normalized();
+    s.bodies.push_back(b);
+  }
+  return s;
+}
+
+// Indices of the highest dynamic bodies (the tops of pyramids and towers) at the start.
+std::vector<std::size_t> top_bodies(const elan::Scene& s) {
+  Real top = -std::numeric_limits<Real>::infinity();
+  for (const auto& b : s.bodies)
+    if (b.body.motion == elan::MotionType::Dynamic) top = std::max(top, b.body.position.y());
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < s.bodies.size(); ++i)
+    if (s.bodies[i].body.motion == elan::MotionType::Dynamic &&
+        s.bodies[i].body.position.y() > top - Real(1e-3))
+      out.push_back(i);
+  return out;
+}
+
+template <class PositionOf>
+double max_moved_cm(const elan::Scene& s, const std::vector<std::size_t>& tops, PositionOf pos) {
+  double m = 0;
+  for (std::size_t i : tops) m = std::max(m, double((pos(i) - s.bodies[i].body.position).norm()));
+  return 100 * m;
+}
+
+// The state hash after warm-up + steps must be one value whatever the thread count, broadphase
+// and repetition; the first run of a (scene, step count) sets it, every later run is checked.
+struct HashBook {
+  std::map<std::string, uint64_t> expected;
+  bool check(const std::string& key, uint64_t hash) {
+    auto [it, inserted] = expected.emplace(key, hash);
+    return inserted || it->second == hash;
+  }
+};
+
+struct Case {
+  std::string name;  // scene name, also the hash key's stem
+  std::shared_ptr<const elan::Scene> scene;
+  int warmup, steps;
+};
+
+void set_hash_counters(benchmark::State& state, uint64_t hash) {
+  // Counters are doubles: the 64-bit hash goes in two exact 32-bit halves (and the label).
+  state.counters["hash_hi"] = double(hash >> 32);
+  state.counters["hash_lo"] = double(hash & 0xffffffffu);
+  char label[32];
+  std::snprintf(label, sizeof label, "hash=%016llx", static_cast<unsigned long long>(hash));
+  state.SetLabel(label);
+}
+
+void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType bp,
+             HashBook* book) {
+  tbb::task_arena arena(threads);
+  const auto tops = top_bodies(*c.scene);
+  elan::StepProfile sum;
+  elan::StepStats last;
+  uint64_t hash = 0;
+  double moved = 0;
+  for (auto _ : state) {
+    double seconds = 0;
+    arena.execute([&] {
+      elan::WorldDef def = c.scene->world;
+      def.threads = threads;
+      def.broadphase = bp;
+      elan::World world(def);
+      elan::load_into(*c.scene, world, c.name);
+      for (int i = 0; i < c.warmup; ++i) world.step(c.scene->timestep);
+      sum = {};
+      const auto t0 = Clock::now();
+      for (int i = 0; i < c.steps; ++i) {
+        world.step(c.scene->timestep);
+        const elan::StepProfile& p = world.last_step().profile;
+        sum.bounds += p.bounds, sum.pairs += p.pairs, sum.collide += p.collide;
+        sum.islands += p.islands, sum.color += p.color, sum.solve += p.solve, sum.ccd += p.ccd;
+        sum.finalize += p.finalize, sum.total += p.total;
+      }
+      seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      last = world.last_step();
+      hash = world.state_hash();
+      moved = max_moved_cm(*c.scene, tops,
+                           [&](std::size_t i) { return world.position(world.body_at(i)); });
+    });
+    state.SetIterationTime(seconds);
+    state.counters["ms_per_step"] = 1000 * seconds / c.steps;
+  }
+  const double n = c.steps;
+  state.counters["bounds_ms"] = sum.bounds / n;
+  state.counters["pairs_ms"] = sum.pairs / n;
+  state.counters["collide_ms"] = sum.collide / n;
+  state.counters["islands_ms"] = sum.islands / n;
+  state.counters["color_ms"] = sum.color / n;
+  state.counters["solve_ms"] = sum.solve / n;
+  state.counters["ccd_ms"] = sum.ccd / n;
+  state.counters["finalize_ms"] = sum.finalize / n;
+  state.counters["total_ms"] = sum.total / n;
+  state.counters["pairs"] = double(last.pairs);
+  state.counters["contacts"] = double(last.contacts);
+  state.counters["colors"] = double(last.colors);
+  state.counters["awake"] = double(last.awake);
+  state.counters["bodies"] = double(c.scene->bodies.size());
+  state.counters["top_moved_cm"] = moved;
+  state.SetItemsProcessed(int64_t(c.scene->bodies.size()) * c.steps * state.iterations());
+  set_hash_counters(state, hash);
+  const std::string key = c.name + "/" + std::to_string(c.warmup) + "+" + std::to_string(c.steps);
+  if (!book->check(key, hash)) state.SkipWithError("state hash differs between runs of this scene");
+}
+
+#ifdef ELAN_HAVE_BULLET
+void bm_bullet(benchmark::State& state, Case c) {
+  const auto tops = top_bodies(*c.scene);
+  elan::peer::BulletCounts counts;
+  double moved = 0;
+  for (auto _ : state) {
+    elan::peer::BulletWorld world(*c.scene);
+    for (int i = 0; i < c.warmup; ++i) world.step();
+    const auto t0 = Clock::now();
+    for (int i = 0; i < c.steps; ++i) world.step();
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    state.SetIterationTime(seconds);
+    state.counters["ms_per_step"] = 1000 * seconds / c.steps;
+    counts = world.counts();
+    moved = max_moved_cm(*c.scene, tops, [&](std::size_t i) { return world.position(i); });
+  }
+  state.counters["contacts"] = double(counts.contacts);
+  state.counters["manifolds"] = double(counts.manifolds);
+  state.counters["awake"] = double(counts.awake);
+  state.counters["bodies"] = double(c.scene->bodies.size());
+  state.counters["top_moved_cm"] = moved;
+  state.SetItemsProcessed(int64_t(c.scene->bodies.size()) * c.steps * state.iterations());
+}
+#endif
+
+// Heap bytes in use (glibc mallinfo2: small-chunk arena plus mmapped blocks).
+double heap_in_use() {
+  const struct mallinfo2 m = mallinfo2();
+  return double(m.uordblks + m.hblkhd);
+}
+
+// Heap held by a live world after warm-up + steps, per body: what the engine keeps, the scene
+// description (held by the benchmark for both engines) excluded.
+void bm_memory(benchmark::State& state, Case c, bool bullet) {
+  double per_body = 0;
+  for (auto _ : state) {
+    const double before = heap_in_use();
+    double after = before;
+    if (bullet) {
+#ifdef ELAN_HAVE_BULLET
+      elan::peer::BulletWorld world(*c.scene);
+      for (int i = 0; i < c.warmup + c.steps; ++i) world.step();
+      after = heap_in_use();
+#endif
+    } else {
+      elan::WorldDef def = c.scene->world;
+      def.threads = 1;
+      elan::World world(def);
+      elan::load_into(*c.scene, world, c.name);
+      for (int i = 0; i < c.warmup + c.steps; ++i) world.step(c.scene->timestep);
+      after = heap_in_use();
+    }
+    per_body = (after - before) / double(c.scene->bodies.size());
+    state.SetIterationTime(1e-3);
+  }
+  state.counters["heap_bytes_per_body"] = per_body;
+  state.counters["bodies"] = double(c.scene->bodies.size());
+}
+
+// Calibration kernels: the same total work split into kChunks independent pieces, run in an
+// arena of 1 or 2 threads; the 2-thread speedup of each is the ceiling this machine allows now.
+constexpr int kChunks = 64;
+
+void bm_calib_fma(benchmark::State& state, int threads) {
+  tbb::task_arena arena(threads);
+  std::vector<float> out(kChunks);
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    arena.execute([&] {
+      tbb::parallel_for(0, kChunks, [&](int c) {
+        // 16 independent FMA chains keep the FMA units busy without touching memory.
+        float acc[16];
+        for (int k = 0; k < 16; ++k) acc[k] = float(c + k) * 1e-3f;
+        for (int it = 0; it < 200000; ++it)
+          for (int k = 0; k < 16; ++k) acc[k] = std::fma(acc[k], 0.999999f, 1e-7f);
+        float s = 0;
+        for (float a : acc) s += a;
+        out[std::size_t(c)] = s;
+      });
+    });
+    benchmark::DoNotOptimize(out.data());
+    state.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+}
+
+void bm_calib_stream(benchmark::State& state, int threads, std::vector<float>* a,
+                     std::vector<float>* b) {
+  tbb::task_arena arena(threads);
+  const std::size_t n = a->size(), chunk = n / kChunks;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    arena.execute([&] {
+      tbb::parallel_for(0, kChunks, [&](int c) {
+        float* __restrict pb = b->data() + std::size_t(c) * chunk;
+        const float* __restrict pa = a->data() + std::size_t(c) * chunk;
+        for (std::size_t i = 0; i < chunk; ++i) pb[i] = pa[i] * 1.0001f + pb[i];
+      });
+    });
+    benchmark::DoNotOptimize(b->data());
+    state.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  state.SetBytesProcessed(int64_t(3 * n * sizeof(float)) * state.iterations());
+}
+
+std::shared_ptr<const elan::Scene> load(const std::string& name) {
+  return std::make_shared<const elan::Scene>(
+      elan::load_scene(std::string(ELAN_SCENE_DIR) + "/" + name + ".json"));
+}
+
+void register_all(const Options& o, HashBook* book, std::vector<float>* a, std::vector<float>* b) {
+  for (int t : {1, 2}) {
+    benchmark::RegisterBenchmark(("calib/fma/threads:" + std::to_string(t)).c_str(), bm_calib_fma,
+                                 t)
+        ->UseManualTime()
+        ->Iterations(3)
+        ->Repetitions(o.calib_reps)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("calib/stream/threads:" + std::to_string(t)).c_str(),
+                                 bm_calib_stream, t, a, b)
+        ->UseManualTime()
+        ->Iterations(3)
+        ->Repetitions(o.calib_reps)
+        ->Unit(benchmark::kMillisecond);
+  }
+  const auto add = [&](const std::string& name, auto fn, int reps, auto... args) {
+    benchmark::RegisterBenchmark(name.c_str(), fn, args...)
+        ->UseManualTime()
+        ->Iterations(1)
+        ->Repetitions(reps)
+        ->Unit(benchmark::kMillisecond);
+  };
+  for (const auto& name : o.scenes) {
+    const Case c{name, load(name), o.warmup, o.steps};
+    for (int t : {1, 2})
+      add("elan/" + name + "/threads:" + std::to_string(t), bm_elan, o.reps, c, t,
+          elan::BroadphaseType::SweepAndPrune, book);
+#ifdef ELAN_HAVE_BULLET
+    if (o.bullet) add("bullet/" + name, bm_bullet, o.reps, c);
+#endif
+  }
+  for (int n : o.sweep) {
+    const Case c{"pile_n" + std::to_string(n), std::make_shared<const elan::Scene>(make_pile(n)),
+                 o.sweep_warmup, o.sweep_steps};
+    const std::string tail = "/N:" + std::to_string(n);
+    for (int t : {1, 2}) {
+      const std::string th = "/threads:" + std::to_string(t);
+      add("sweep/sap" + tail + th, bm_elan, o.sweep_reps, c, t, elan::BroadphaseType::SweepAndPrune,
+          book);
+      if (n <= o.allpairs_max)
+        add("sweep/all-pairs" + tail + th, bm_elan, o.sweep_reps, c, t,
+            elan::BroadphaseType::AllPairs, book);
+    }
+#ifdef ELAN_HAVE_BULLET
+    if (o.bullet) add("sweep/bullet" + tail, bm_bullet, o.sweep_reps, c);
+#endif
+  }
+  if (std::find(o.scenes.begin(), o.scenes.end(), "pile10k") != o.scenes.end()) {
+    const Case c{"pile10k", load("pile10k"), o.warmup, o.steps};
+    add("memory/elan/pile10k", bm_memory, 1, c, false);
+#ifdef ELAN_HAVE_BULLET
+    if (o.bullet) add("memory/bullet/pile10k", bm_memory, 1, c, true);
+#endif
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = parse_options(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  HashBook book;
+  // 2 x 64 MiB: well beyond the last-level cache, so the stream kernel measures DRAM bandwidth.
+  std::vector<float> a(std::size_t(16) << 20, 1.0f), b(std::size_t(16) << 20, 2.0f);
+  register_all(options, &book, &a, &b);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
