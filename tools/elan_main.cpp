@@ -1,19 +1,25 @@
 // The elan command: `elan run` simulates a scene file and prints a JSON summary, `elan replay`
-// re-simulates a recording and compares every step's state hash. Every error exits with status 2.
+// re-simulates a recording and compares every step's state hash, `elan diverge` steps a scene
+// under two settings side by side. Every error exits with status 2.
+#include <algorithm>
 #include <chrono>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "core/world/world_state.hpp"
 #include "elan/elan.hpp"
+#include "elan/snapshot.hpp"
 #include "tools/options.hpp"
 #include "tools/recording.hpp"
 #include "tools/trajectory.hpp"
@@ -72,6 +78,27 @@ void warn_status(uint32_t fresh, uint64_t step) {
   }
 }
 
+// The testing aid of --perturb: one ulp up on the stored x of the body's centre of mass.
+void nudge(World& world, uint64_t body) {
+  Real& px = world.state().bodies.px[body];
+  px = std::nextafter(px, std::numeric_limits<Real>::infinity());
+}
+
+void check_perturb_body(const std::optional<Perturbation>& p, const World& world) {
+  if (p && p->body >= world.body_count()) {
+    throw UsageError("--perturb: body " + std::to_string(p->body) +
+                     " out of range (the scene has " + std::to_string(world.body_count()) +
+                     " bodies)");
+  }
+}
+
+Json json_name(const Scene& scene, std::size_t body) {
+  if (body < scene.bodies.size() && !scene.bodies[body].name.empty()) {
+    return scene.bodies[body].name;
+  }
+  return nullptr;
+}
+
 class Progress {
  public:
   Progress(const char* verb, uint64_t total)
@@ -117,11 +144,20 @@ int run(const RunOptions& o) {
       throw std::runtime_error(o.record + ": cannot open for writing: " + std::strerror(errno));
   }
 
+  if (o.has_keyframe_every && o.record.empty()) {
+    std::fprintf(stderr, "elan: warning: --keyframe-every has no effect without --record\n");
+  }
   std::vector<uint64_t> hashes;
+  std::vector<Keyframe> keyframes;
+  const auto keyframe = [&](uint64_t step) {
+    if (o.record.empty() || o.keyframe_every == 0 || step % o.keyframe_every != 0) return;
+    keyframes.push_back(Keyframe{step, save_snapshot(world)});
+  };
   if (!o.record.empty()) {
     hashes.reserve(o.steps + 1);
     hashes.push_back(world.state_hash());
   }
+  keyframe(0);
   if (trajectory) trajectory->write(world, 0, 0.0);
 
   StepProfile total;
@@ -145,6 +181,7 @@ int run(const RunOptions& o) {
     total.finalize += p.finalize;
     total.total += p.total;
     if (!hashes.empty()) hashes.push_back(world.state_hash());
+    keyframe(step);
     if (trajectory && (step % o.every == 0 || step == o.steps)) {
       trajectory->write(world, step, double(step) * double(dt));
     }
@@ -162,6 +199,8 @@ int run(const RunOptions& o) {
     r.broadphase = uint32_t(def.broadphase);
     r.scene_name = o.scene;
     r.scene_text = text;
+    r.keyframe_every = o.keyframe_every;
+    r.keyframes = std::move(keyframes);
     r.hashes = std::move(hashes);
     const std::string bytes = encode_recording(r);
     record.write(bytes.data(), std::streamsize(bytes.size()));
@@ -208,6 +247,65 @@ int run(const RunOptions& o) {
   return 0;
 }
 
+// A world holding a keyframe, settings as recorded. A keyframe that does not load is a corrupt
+// recording.
+World load_keyframe(const Keyframe& k, const std::string& file) {
+  try {
+    return load_snapshot(k.snapshot);
+  } catch (const Error& e) {
+    throw RecordingError(file + ": corrupt recording: keyframe at step " + std::to_string(k.step) +
+                         ": " + e.what());
+  }
+}
+
+// Finds the first body and field that differ at step `d`, the first step whose hash differs.
+// The recorded state at d is known in full only where a keyframe sits at d; otherwise it is
+// rebuilt by restoring the last keyframe before d and stepping it to d with the recorded thread
+// count and broadphase, which reproduces the recording exactly when the difference comes from
+// the replay's own settings (or --perturb) and not from another build; the recorded hashes from
+// the keyframe to d check that, and when they do not match, no body is named.
+Json locate(const Recording& r, const std::string& file, const World& replayed, uint64_t d,
+            const Scene& scene) {
+  Json out;
+  const Keyframe* k = keyframe_at_or_before(r, d);
+  if (k == nullptr) {
+    out["body"] = nullptr;
+    out["reason"] = r.version < 2 ? "the recording has no keyframes (format version 1)"
+                                  : "the recording has no keyframes (--keyframe-every 0)";
+    return out;
+  }
+  World reference = load_keyframe(*k, file);
+  reference.set_threads(resolve_threads(int(r.threads)));
+  reference.set_broadphase(BroadphaseType(r.broadphase));
+  const Real dt = Real(r.timestep);
+  for (uint64_t step = k->step; step <= d; ++step) {
+    if (step > k->step) reference.step(dt);
+    if (reference.state_hash() != r.hashes[step]) {
+      out["body"] = nullptr;
+      out["keyframe"] = k->step;
+      out["reason"] = "re-simulating from the keyframe at step " + std::to_string(k->step) +
+                      " with the recorded settings does not reproduce the recorded hash at step " +
+                      std::to_string(step) +
+                      ": the recording comes from another build, or a step is not deterministic";
+      return out;
+    }
+  }
+  const Divergence div = compare_worlds(reference, replayed);
+  out["keyframe"] = k->step;
+  out["method"] = k->step == d ? "keyframe" : "re-simulated from keyframe";
+  if (!div.found) {
+    out["body"] = nullptr;
+    out["reason"] = "the recorded state and the replay agree in every stored bit";
+    return out;
+  }
+  out["body"] = div.body;
+  out["name"] = json_name(scene, div.body);
+  out["field"] = div.field;
+  out["recorded"] = div.value_a;
+  out["replayed"] = div.value_b;
+  return out;
+}
+
 int replay(const ReplayOptions& o) {
   const std::string bytes = read_file(o.file, "recording");
   const Recording r = decode_recording(bytes, o.file);
@@ -225,24 +323,28 @@ int replay(const ReplayOptions& o) {
   const Real dt = Real(r.timestep);
   World world = make_world(def, r.scene_name);
   load_into(scene, world, r.scene_name);
+  check_perturb_body(o.perturb, world);
 
   Json out;
   out["recording"] = o.file;
   out["steps"] = r.steps;
   out["threads"] = def.threads;
   out["broadphase"] = broadphase_name(def.broadphase);
+  out["keyframes"] = r.keyframes.size();
   Progress progress("replay", r.steps);
   for (uint64_t step = 0; step <= r.steps; ++step) {
     if (step > 0) {
       world.step(dt);
       progress.update(step);
     }
+    if (o.perturb && o.perturb->step == step) nudge(world, o.perturb->body);
     const uint64_t h = world.state_hash();
     if (h != r.hashes[step]) {
       out["match"] = false;
       out["first_mismatch_step"] = step;
       out["expected"] = hex(r.hashes[step]);
       out["actual"] = hex(h);
+      out["divergence"] = locate(r, o.file, world, step, scene);
       std::cout << out.dump() << std::endl;
       return 1;
     }
@@ -251,6 +353,77 @@ int replay(const ReplayOptions& o) {
   out["state_hash"] = hex(r.hashes.back());
   std::cout << out.dump() << std::endl;
   return 0;
+}
+
+Json side_json(const SideOptions& side, const World& world) {
+  Json j;
+  j["threads"] = side.threads;
+  j["broadphase"] = broadphase_name(side.broadphase);
+  j["substeps"] = world.settings().substeps;
+  j["iterations"] = world.settings().iterations;
+  if (side.perturb) {
+    j["perturb"] = {{"body", side.perturb->body}, {"step", side.perturb->step}};
+  }
+  return j;
+}
+
+// Steps `a` and `b` to `steps` with find_divergence, stopping after each perturbation's step to
+// apply it; the step numbers reported are counted from the start.
+Divergence step_side_by_side(World& a, World& b, const DivergeOptions& o, Real dt) {
+  std::vector<std::pair<uint64_t, int>> stops;  // (step, side) of each perturbation
+  if (o.a.perturb && o.a.perturb->step <= o.steps) stops.emplace_back(o.a.perturb->step, 0);
+  if (o.b.perturb && o.b.perturb->step <= o.steps) stops.emplace_back(o.b.perturb->step, 1);
+  std::sort(stops.begin(), stops.end());
+  uint64_t done = 0;
+  for (const auto& [step, side] : stops) {
+    Divergence d = find_divergence(a, b, step - done, dt);
+    if (d.found) {
+      d.step += done;
+      return d;
+    }
+    done = step;
+    nudge(side == 0 ? a : b, (side == 0 ? o.a : o.b).perturb->body);
+  }
+  Divergence d = find_divergence(a, b, o.steps - done, dt);
+  d.step += done;
+  return d;
+}
+
+int diverge(const DivergeOptions& o) {
+  const std::string text = read_file(o.scene, "scene");
+  const Scene scene = parse_scene(text, o.scene);
+  const Real dt = o.timestep ? Real(*o.timestep) : scene.timestep;
+  const auto make = [&](const SideOptions& side) {
+    WorldDef def = scene.world;
+    if (side.substeps) def.substeps = *side.substeps;
+    if (side.iterations) def.iterations = *side.iterations;
+    def.threads = side.threads;
+    def.broadphase = side.broadphase;
+    World world = make_world(def, o.scene);
+    load_into(scene, world, o.scene);
+    check_perturb_body(side.perturb, world);
+    return world;
+  };
+  World a = make(o.a);
+  World b = make(o.b);
+  const Divergence d = step_side_by_side(a, b, o, dt);
+
+  Json out;
+  out["scene"] = o.scene;
+  out["steps"] = o.steps;
+  out["a"] = side_json(o.a, a);
+  out["b"] = side_json(o.b, b);
+  out["diverged"] = d.found;
+  if (d.found) {
+    out["step"] = d.step;
+    out["body"] = d.body;
+    out["name"] = json_name(scene, d.body);
+    out["field"] = d.field;
+    out["value_a"] = d.value_a;
+    out["value_b"] = d.value_b;
+  }
+  std::cout << out.dump() << std::endl;
+  return d.found ? 1 : 0;
 }
 
 int dispatch(const std::vector<std::string>& args) {
@@ -283,6 +456,14 @@ int dispatch(const std::vector<std::string>& args) {
       return 0;
     }
     return replay(o);
+  }
+  if (command == "diverge") {
+    const DivergeOptions o = parse_diverge_options(rest);
+    if (o.help) {
+      std::fputs(kDivergeUsage, stdout);
+      return 0;
+    }
+    return diverge(o);
   }
   throw UsageError("unknown command '" + command + "'");
 }

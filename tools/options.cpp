@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <vector>
 
 namespace elan::cli {
 
@@ -18,8 +19,11 @@ const char* const kMainUsage =
     "commands:\n"
     "  run SCENE.json [options]   simulate a scene, print a JSON summary on stdout\n"
     "  replay FILE [options]      re-simulate a recording and compare every step's state hash\n"
+    "  diverge SCENE.json --a OPTS --b OPTS\n"
+    "                             step a scene under two settings side by side and report the\n"
+    "                             first step, body and field that differ\n"
     "\n"
-    "'elan run --help' and 'elan replay --help' list the options.\n";
+    "'elan COMMAND --help' lists a command's options.\n";
 
 const char* const kRunUsage =
     "usage: elan run SCENE.json [options]\n"
@@ -35,6 +39,8 @@ const char* const kRunUsage =
     "last\n"
     "  --every K            trajectory interval in steps (default 1)\n"
     "  --record FILE        save the scene, the settings and every step's state hash\n"
+    "  --keyframe-every K   with --record: also a full snapshot every K steps and at step 0\n"
+    "                       (default 60; 0 = none), used by replay to find the body that diverged\n"
     "\n"
     "Prints one JSON object on stdout at the end; progress and warnings go to stderr.\n"
     "Exit status: 0 ok, 2 bad arguments or input.\n";
@@ -44,9 +50,30 @@ const char* const kReplayUsage =
     "\n"
     "  --threads T          worker threads (default: all cores)\n"
     "  --broadphase B       sap or all-pairs (default: the recorded one)\n"
+    "  --perturb BODY:STEP  testing aid: nudge body BODY's x position up by one ulp after STEP\n"
+    "                       steps, to check that the divergence is found\n"
     "\n"
-    "Re-simulates a recording made with 'elan run --record' and prints one JSON line.\n"
+    "Re-simulates a recording made with 'elan run --record' and prints one JSON line. At the\n"
+    "first step whose hash differs it names the first body and field that differ, found against\n"
+    "the recording's keyframe at that step, or by re-simulating from the keyframe before it with\n"
+    "the recorded settings.\n"
     "Exit status: 0 all steps match, 1 a step's hash differs, 2 bad arguments or file.\n";
+
+const char* const kDivergeUsage =
+    "usage: elan diverge SCENE.json --a \"OPTIONS\" --b \"OPTIONS\" [options]\n"
+    "\n"
+    "  --steps N            steps to compare (default 600)\n"
+    "  --timestep S         seconds per step (default: the scene's, else 1/60)\n"
+    "  --a OPTIONS          settings of world a, e.g. \"--threads 1\"\n"
+    "  --b OPTIONS          settings of world b, e.g. \"--threads 2 --broadphase all-pairs\"\n"
+    "\n"
+    "OPTIONS (default --threads 1 --broadphase sap, the scene's substeps and iterations):\n"
+    "  --threads T, --broadphase sap|all-pairs, --substeps K, --iterations K,\n"
+    "  --perturb BODY:STEP (testing aid: nudge BODY's x position by one ulp after STEP steps)\n"
+    "\n"
+    "Steps both worlds side by side, compares every body's stored pose, velocities, sleep timer\n"
+    "and flags bit for bit after each step, and prints one JSON line.\n"
+    "Exit status: 0 no difference, 1 they diverged, 2 bad arguments or scene.\n";
 
 namespace {
 
@@ -84,6 +111,32 @@ BroadphaseType parse_broadphase(const std::string& option, const std::string& te
   if (text == "sap") return BroadphaseType::SweepAndPrune;
   if (text == "all-pairs") return BroadphaseType::AllPairs;
   throw UsageError(option + ": expected sap or all-pairs, got '" + text + "'");
+}
+
+Perturbation parse_perturbation(const std::string& option, const std::string& text) {
+  const std::size_t colon = text.find(':');
+  if (colon == std::string::npos) {
+    throw UsageError(option + ": expected BODY:STEP, got '" + text + "'");
+  }
+  Perturbation p;
+  p.body = parse_count(option, text.substr(0, colon), 0, UINT32_MAX);
+  p.step = parse_count(option, text.substr(colon + 1), 0, kMaxSteps);
+  return p;
+}
+
+// Splits an option string on spaces (no quoting: none of the values has a space).
+std::vector<std::string> split_words(const std::string& text) {
+  std::vector<std::string> words;
+  std::string word;
+  for (char c : text + " ") {
+    if (c == ' ' || c == '\t') {
+      if (!word.empty()) words.push_back(word);
+      word.clear();
+    } else {
+      word.push_back(c);
+    }
+  }
+  return words;
 }
 
 // Walks `args`, accepting `--name value` and `--name=value`; the single positional argument goes
@@ -130,7 +183,7 @@ RunOptions parse_run_options(std::span<const std::string> args) {
   const auto takes_value = [](const std::string& n) {
     return n == "--steps" || n == "--timestep" || n == "--substeps" || n == "--iterations" ||
            n == "--threads" || n == "--broadphase" || n == "--trajectory" || n == "--every" ||
-           n == "--record";
+           n == "--record" || n == "--keyframe-every";
   };
   const auto on_option = [&o](const std::string& n, const std::string& v) {
     if (n == "--steps") {
@@ -151,6 +204,9 @@ RunOptions parse_run_options(std::span<const std::string> args) {
     } else if (n == "--every") {
       o.every = parse_count(n, v, 1, kMaxSteps);
       o.has_every = true;
+    } else if (n == "--keyframe-every") {
+      o.keyframe_every = parse_count(n, v, 0, kMaxSteps);
+      o.has_keyframe_every = true;
     }
   };
   walk(args, "run", o.scene, o.help, on_option, takes_value);
@@ -161,17 +217,75 @@ RunOptions parse_run_options(std::span<const std::string> args) {
 ReplayOptions parse_replay_options(std::span<const std::string> args) {
   ReplayOptions o;
   const auto takes_value = [](const std::string& n) {
-    return n == "--threads" || n == "--broadphase";
+    return n == "--threads" || n == "--broadphase" || n == "--perturb";
   };
   const auto on_option = [&o](const std::string& n, const std::string& v) {
     if (n == "--threads") {
       o.threads = int(parse_count(n, v, 1, kMaxThreads));
+    } else if (n == "--perturb") {
+      o.perturb = parse_perturbation(n, v);
     } else {
       o.broadphase = parse_broadphase(n, v);
     }
   };
   walk(args, "replay", o.file, o.help, on_option, takes_value);
   if (!o.help && o.file.empty()) throw UsageError("elan replay: missing FILE");
+  return o;
+}
+
+namespace {
+
+SideOptions parse_side(const std::string& option, const std::string& text) {
+  SideOptions side;
+  const std::vector<std::string> words = split_words(text);
+  std::string positional;
+  bool help = false;
+  const auto takes_value = [](const std::string& n) {
+    return n == "--threads" || n == "--broadphase" || n == "--substeps" || n == "--iterations" ||
+           n == "--perturb";
+  };
+  const auto on_option = [&side](const std::string& n, const std::string& v) {
+    if (n == "--threads") {
+      side.threads = int(parse_count(n, v, 1, kMaxThreads));
+    } else if (n == "--broadphase") {
+      side.broadphase = parse_broadphase(n, v);
+    } else if (n == "--substeps") {
+      side.substeps = int(parse_count(n, v, 1, kMaxSolverCount));
+    } else if (n == "--iterations") {
+      side.iterations = int(parse_count(n, v, 1, kMaxSolverCount));
+    } else {
+      side.perturb = parse_perturbation(n, v);
+    }
+  };
+  try {
+    walk(words, "diverge " + option, positional, help, on_option, takes_value);
+  } catch (const UsageError& e) {
+    throw UsageError(option + " \"" + text + "\": " + e.what());
+  }
+  if (help || !positional.empty()) {
+    throw UsageError(option + ": unexpected '" + (help ? std::string("--help") : positional) + "'");
+  }
+  return side;
+}
+
+}  // namespace
+
+DivergeOptions parse_diverge_options(std::span<const std::string> args) {
+  DivergeOptions o;
+  const auto takes_value = [](const std::string& n) {
+    return n == "--steps" || n == "--timestep" || n == "--a" || n == "--b";
+  };
+  const auto on_option = [&o](const std::string& n, const std::string& v) {
+    if (n == "--steps") {
+      o.steps = parse_count(n, v, 0, kMaxSteps);
+    } else if (n == "--timestep") {
+      o.timestep = parse_seconds(n, v);
+    } else {
+      (n == "--a" ? o.a : o.b) = parse_side(n, v);
+    }
+  };
+  walk(args, "diverge", o.scene, o.help, on_option, takes_value);
+  if (!o.help && o.scene.empty()) throw UsageError("elan diverge: missing SCENE.json");
   return o;
 }
 

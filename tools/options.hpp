@@ -1,4 +1,5 @@
-// Command-line options of `elan run` and `elan replay`: hand-written parsing, strict numbers.
+// Command-line options of `elan run`, `elan replay` and `elan diverge`: hand-written parsing,
+// strict numbers.
 #pragma once
 
 #include <cstdint>
@@ -29,7 +30,16 @@ struct RunOptions {
   std::string trajectory;  // CSV path, empty = none
   uint64_t every = 1;
   bool has_every = false;
-  std::string record;  // recording path, empty = none
+  std::string record;            // recording path, empty = none
+  uint64_t keyframe_every = 60;  // a full snapshot in the recording every K steps; 0 = none
+  bool has_keyframe_every = false;
+};
+
+/// `--perturb BODY:STEP`, a testing aid: after STEP steps (0 = before the first), body BODY's
+/// stored x position is moved up by one ulp, so a divergence finder has something to find.
+struct Perturbation {
+  uint64_t body = 0;
+  uint64_t step = 0;
 };
 
 struct ReplayOptions {
@@ -37,11 +47,30 @@ struct ReplayOptions {
   std::string file;
   int threads = 0;                           // 0 = all cores
   std::optional<BroadphaseType> broadphase;  // default: the recorded one
+  std::optional<Perturbation> perturb;
+};
+
+/// The settings of one side of `elan diverge`.
+struct SideOptions {
+  int threads = 1;
+  BroadphaseType broadphase = BroadphaseType::SweepAndPrune;
+  std::optional<int> substeps;
+  std::optional<int> iterations;
+  std::optional<Perturbation> perturb;
+};
+
+struct DivergeOptions {
+  bool help = false;
+  std::string scene;
+  uint64_t steps = 600;
+  std::optional<double> timestep;  // s; overrides the scene's
+  SideOptions a, b;
 };
 
 /// `args` are the words after the command name. Throw UsageError.
 RunOptions parse_run_options(std::span<const std::string> args);
 ReplayOptions parse_replay_options(std::span<const std::string> args);
+DivergeOptions parse_diverge_options(std::span<const std::string> args);
 
 const char* broadphase_name(BroadphaseType type);
 /// Worker count that `threads` (0 = all cores) stands for.
@@ -50,5 +79,6 @@ int resolve_threads(int threads);
 extern const char* const kMainUsage;
 extern const char* const kRunUsage;
 extern const char* const kReplayUsage;
+extern const char* const kDivergeUsage;
 
 }  // namespace elan::cli

@@ -1,7 +1,10 @@
-// Recording file format, version 1 (all integers little-endian):
+// Recording file format, version 2 (all integers little-endian):
 //   magic "\x89ELANREC" | u32 version | u32 real_bytes | u64 steps | f64 timestep | i32 substeps |
-//   i32 iterations | u32 threads | u32 broadphase | u64 n, scene name | u64 n, scene text |
+//   i32 iterations | u32 threads | u32 broadphase | u64 keyframe_every | u64 n, scene name |
+//   u64 n, scene text | u64 k keyframes, each: u64 step, u64 n, n bytes of snapshot |
 //   u64 n, n hashes (u64) | u64 FNV-1a of every byte before it.
+// Version 1 is the same without keyframe_every and the keyframes; it is still read. The hashes
+// stay last so the newest step sits just before the checksum in both versions.
 // The leading 0x89 byte keeps a text file from ever passing as a recording (as in PNG).
 #include "tools/recording.hpp"
 
@@ -13,7 +16,8 @@ namespace elan::cli {
 namespace {
 
 constexpr char kMagic[8] = {'\x89', 'E', 'L', 'A', 'N', 'R', 'E', 'C'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;
+constexpr uint32_t kOldestVersion = 1;
 
 // FNV-1a, 64 bit: every single-byte change changes the sum (each step is a bijection), which is
 // what corruption and truncation checks need; no cryptographic strength is sought.
@@ -62,6 +66,14 @@ class Reader {
     pos_ += n;
     return s;
   }
+  std::vector<uint8_t> byte_vector(const char* what) {
+    const uint64_t n = u64(what);
+    need(n, what);
+    std::vector<uint8_t> v(bytes_.begin() + std::ptrdiff_t(pos_),
+                           bytes_.begin() + std::ptrdiff_t(pos_ + n));
+    pos_ += n;
+    return v;
+  }
   void need(uint64_t n, const char* what) {
     if (n > end_ - pos_)
       throw RecordingError(file_ + ": corrupt recording: " + what + " runs past the end");
@@ -89,8 +101,15 @@ std::string encode_recording(const Recording& r) {
   put_u32(out, uint32_t(r.iterations));
   put_u32(out, r.threads);
   put_u32(out, r.broadphase);
+  put_u64(out, r.keyframe_every);
   put_string(out, r.scene_name);
   put_string(out, r.scene_text);
+  put_u64(out, r.keyframes.size());
+  for (const Keyframe& k : r.keyframes) {
+    put_u64(out, k.step);
+    put_u64(out, k.snapshot.size());
+    out.append(reinterpret_cast<const char*>(k.snapshot.data()), k.snapshot.size());
+  }
   put_u64(out, r.hashes.size());
   for (uint64_t h : r.hashes) put_u64(out, h);
   put_u64(out, fnv1a(out.data(), out.size()));
@@ -116,11 +135,13 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
   in.need(sizeof kMagic, "magic");
   in.u64("magic");
   const uint32_t version = in.u32("version");
-  if (version != kVersion) {
+  if (version < kOldestVersion || version > kVersion) {
     throw RecordingError(file + ": unsupported recording version " + std::to_string(version) +
-                         " (this elan reads version " + std::to_string(kVersion) + ")");
+                         " (this elan reads versions " + std::to_string(kOldestVersion) + " to " +
+                         std::to_string(kVersion) + ")");
   }
   Recording r;
+  r.version = version;
   r.real_bytes = in.u32("real size");
   r.steps = in.u64("steps");
   const uint64_t dt_bits = in.u64("timestep");
@@ -133,8 +154,26 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
       r.broadphase > 1) {
     throw RecordingError(file + ": corrupt recording: invalid settings");
   }
+  if (version >= 2) r.keyframe_every = in.u64("keyframe interval");
   r.scene_name = in.string("scene name");
   r.scene_text = in.string("scene text");
+  if (version >= 2) {
+    const uint64_t keyframes = in.u64("keyframe count");
+    // Each keyframe takes at least its two 8-byte counts.
+    if (keyframes > (body - in.pos()) / 16) {
+      throw RecordingError(file + ": corrupt recording: keyframes run past the end");
+    }
+    r.keyframes.resize(keyframes);
+    for (std::size_t k = 0; k < r.keyframes.size(); ++k) {
+      r.keyframes[k].step = in.u64("keyframe step");
+      r.keyframes[k].snapshot = in.byte_vector("keyframe");
+      const bool ordered =
+          k == 0 ? r.keyframes[k].step == 0 : r.keyframes[k].step > r.keyframes[k - 1].step;
+      if (!ordered || r.keyframes[k].step > r.steps) {
+        throw RecordingError(file + ": corrupt recording: keyframe steps out of order");
+      }
+    }
+  }
   const uint64_t count = in.u64("hash count");
   if (count != r.steps + 1 || r.steps == UINT64_MAX) {
     throw RecordingError(file + ": corrupt recording: " + std::to_string(count) + " hashes for " +
@@ -145,6 +184,14 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
   for (uint64_t& h : r.hashes) h = in.u64("hashes");
   if (in.pos() != body) throw RecordingError(file + ": corrupt recording: trailing bytes");
   return r;
+}
+
+const Keyframe* keyframe_at_or_before(const Recording& r, uint64_t step) {
+  const Keyframe* best = nullptr;
+  for (const Keyframe& k : r.keyframes) {
+    if (k.step <= step) best = &k;
+  }
+  return best;
 }
 
 }  // namespace elan::cli

@@ -1,5 +1,6 @@
-// Recordings of `elan run --record`: the scene text, the settings and the state hash after every
-// step, in a versioned little-endian binary file closed by a checksum.
+// Recordings of `elan run --record`: the scene text, the settings, the state hash after every
+// step and a full snapshot every K steps (keyframes), in a versioned little-endian binary file
+// closed by a checksum.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +16,14 @@ class RecordingError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A full world snapshot (elan/snapshot.hpp) after `step` steps.
+struct Keyframe {
+  uint64_t step = 0;
+  std::vector<uint8_t> snapshot;
+};
+
 struct Recording {
+  uint32_t version = 0;     // of the file read; encode always writes the current version
   uint32_t real_bytes = 0;  // sizeof(Real) of the recording build: hashes depend on it
   uint64_t steps = 0;
   double timestep = 0;  // s, the Real value used, widened exactly
@@ -25,11 +33,16 @@ struct Recording {
   uint32_t broadphase = 0;  // BroadphaseType of the recording run
   std::string scene_name;   // the scene's path at record time, for messages
   std::string scene_text;
-  std::vector<uint64_t> hashes;  // steps + 1 entries: the state hash after k steps
+  uint64_t keyframe_every = 0;      // 0: no keyframes (always so in version 1 files)
+  std::vector<Keyframe> keyframes;  // ascending steps, the first at step 0
+  std::vector<uint64_t> hashes;     // steps + 1 entries: the state hash after k steps
 };
 
+/// The keyframe with the largest step <= `step`, or null when there is none.
+const Keyframe* keyframe_at_or_before(const Recording& r, uint64_t step);
+
 std::string encode_recording(const Recording& r);
-/// Throws RecordingError naming `file` and what is wrong.
+/// Reads versions 1 (no keyframes) and 2. Throws RecordingError naming `file` and what is wrong.
 Recording decode_recording(const std::string& bytes, const std::string& file);
 
 }  // namespace elan::cli
