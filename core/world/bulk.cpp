@@ -114,7 +114,13 @@ uint32_t step_all(std::span<World* const> worlds, Real dt) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, worlds.size(), 1),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                        status[k] = detail::run_step(worlds[k]->state(), dt);
+                        // perf: the worlds already fill the pool, so each solve runs on
+                        // its caller alone instead of spinning up stage workers.
+                        detail::WorldState& w = worlds[k]->state();
+                        const int threads = w.threads;
+                        w.threads = 1;
+                        status[k] = detail::run_step(w, dt);
+                        w.threads = threads;
                       }
                     });
   uint32_t all = 0;

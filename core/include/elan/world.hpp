@@ -183,9 +183,10 @@ class World {
 };
 
 /// Steps several independent worlds by `dt` each, concurrently: a tbb::parallel_for over the
-/// worlds inside the caller's current arena, each world's own parallel stages nested in the same
-/// pool (the worlds' own arenas are not used). Each world ends with the same bits as if stepped
-/// alone. Worlds must be distinct. Returns the OR of the worlds' StepStatus flags.
+/// worlds inside the caller's current arena, each world's own parallel loops nested in the same
+/// pool and its solver stages run by one thread (the worlds' own arenas are not used). Each world
+/// ends with the same bits as if stepped alone. Worlds must be distinct. Returns the OR of the
+/// worlds' StepStatus flags.
 uint32_t step_all(std::span<World* const> worlds, Real dt);
 
 }  // namespace elan
