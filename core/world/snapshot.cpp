@@ -27,7 +27,7 @@ namespace {
 constexpr uint8_t kSnapshotMagic[8] = {0x89, 'E', 'L', 'A', 'N', 'S', 'N', 'P'};
 constexpr uint8_t kRollbackMagic[8] = {0x89, 'E', 'L', 'A', 'N', 'R', 'B', 'K'};
 constexpr std::size_t kHeaderBytes = 16;  // magic, version, sizeof(Real)
-constexpr std::size_t kPointReals = 11;  // anchors 6, separation, impulses 4; plus a u32 id
+constexpr std::size_t kPointReals = 9;    // anchors 6, separation, impulses 2; plus a u32 id
 // Per non-static body in a rollback state: 20 Reals and the flags byte.
 constexpr std::size_t kRollbackBodyBytes = 20 * sizeof(Real) + 1;
 
@@ -204,8 +204,6 @@ void write_point(ByteWriter& w, const ContactPoint& p) {
   w.real(p.separation);
   w.u32(p.feature_id);
   w.real(p.normal_impulse);
-  w.real(p.tangent_impulse[0]);
-  w.real(p.tangent_impulse[1]);
   w.real(p.max_normal_impulse);
 }
 
@@ -216,10 +214,21 @@ ContactPoint read_point(ByteReader& r) {
   p.separation = r.real();
   p.feature_id = r.u32();
   p.normal_impulse = r.real();
-  p.tangent_impulse[0] = r.real();
-  p.tangent_impulse[1] = r.real();
   p.max_normal_impulse = r.real();
   return p;
+}
+
+// The manifold's friction impulses, carried to the next step like the normal impulses.
+void write_friction(ByteWriter& w, const Manifold& m) {
+  w.real(m.tangent_impulse[0]);
+  w.real(m.tangent_impulse[1]);
+  w.real(m.twist_impulse);
+}
+
+void read_friction(ByteReader& r, Manifold& m) {
+  m.tangent_impulse[0] = r.real();
+  m.tangent_impulse[1] = r.real();
+  m.twist_impulse = r.real();
 }
 
 // Everything a snapshot holds, decoded and checked before any of it reaches a world.
@@ -228,6 +237,7 @@ struct Decoded {
   uint64_t step_count = 0;
   uint32_t reported_status = 0;
   std::vector<Shape> shapes;
+  std::vector<uint8_t> shape_destroyed;  // per shape: 1 once World::destroy_shape was called
   BodyStore bodies;
   std::vector<uint32_t> slot_index, slot_generation, free_slots;
   std::vector<Manifold> contacts;
@@ -292,8 +302,13 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
   d.step_count = r.u64();
   d.reported_status = r.u32();
 
-  d.shapes.resize(r.count(1, "shape"));
-  for (Shape& s : d.shapes) s = read_shape(r);
+  d.shapes.resize(r.count(2, "shape"));
+  d.shape_destroyed.resize(d.shapes.size());
+  for (std::size_t k = 0; k < d.shapes.size(); ++k) {
+    d.shapes[k] = read_shape(r);
+    d.shape_destroyed[k] = r.u8();
+    if (d.shape_destroyed[k] > 1) r.fail("bad shape destroyed flag");
+  }
 
   const uint32_t n = r.count(detail::snapshot_bytes_per_body(), "body");
   d.bodies.reserve(n);
@@ -313,7 +328,7 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
   check_bodies(r, d);
 
   constexpr std::size_t kManifoldBytes =
-      16 + 3 * sizeof(Real) + 1 + detail::kMaxManifoldPoints * (kPointReals * sizeof(Real) + 4);
+      16 + 6 * sizeof(Real) + 1 + detail::kMaxManifoldPoints * (kPointReals * sizeof(Real) + 4);
   d.contacts.resize(r.count(kManifoldBytes, "manifold"));
   for (std::size_t k = 0; k < d.contacts.size(); ++k) {
     Manifold& m = d.contacts[k];
@@ -323,10 +338,21 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
     m.normal = r.vec3();
     m.point_count = r.u8();
     for (ContactPoint& p : m.points) p = read_point(r);
+    read_friction(r, m);
     check_manifold(r, m, n, k > 0 ? d.contacts[k - 1].key : 0, k == 0);
   }
   if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
   return d;
+}
+
+// The last step's events belong to the timeline left behind; the query cache is keyed on the
+// mutation count and step count, and the restored step count may equal the cached one. The
+// pair filter is the caller's code, not state: the world keeps its own.
+void forget_api_caches(WorldState& s) {
+  s.api.begin_events.clear();
+  s.api.end_events.clear();
+  s.api.body_ids.clear();
+  ++s.api.mutations;
 }
 
 // Replaces the world's state with `d`. Scratch of the step (bounds, pairs, the sweep's kept
@@ -351,6 +377,8 @@ void commit(WorldState& s, Decoded&& d) {
   s.sap = detail::SweepAndPrune{};
   s.all_pairs = detail::AllPairs{};
   s.stats = StepStats{};
+  s.api.shape_destroyed = std::move(d.shape_destroyed);
+  forget_api_caches(s);
 }
 
 // --- compact rollback ----------------------------------------------------------------------
@@ -394,7 +422,7 @@ void read_rollback(ByteReader& r, WorldState& s) {
       r.u8();
     }
   }
-  const uint32_t count = r.count(8 + 1 + 3 * sizeof(Real) + 1, "manifold");
+  const uint32_t count = r.count(8 + 1 + 6 * sizeof(Real) + 1, "manifold");
   if constexpr (Apply) s.contacts.resize(count);
   uint64_t previous_key = 0;
   for (uint32_t k = 0; k < count; ++k) {
@@ -410,6 +438,7 @@ void read_rollback(ByteReader& r, WorldState& s) {
     check_manifold(r, m, n, previous_key, k == 0);
     previous_key = m.key;
     for (int p = 0; p < m.point_count; ++p) m.points[p] = read_point(r);
+    read_friction(r, m);
     if constexpr (Apply) s.contacts[k] = m;
   }
   if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
@@ -447,7 +476,10 @@ std::vector<uint8_t> save_snapshot(const World& world) {
   w.u32(s.reported_status);
 
   w.u32(uint32_t(s.shapes.size()));
-  for (const Shape& shape : s.shapes) write_shape(w, shape);
+  for (std::size_t k = 0; k < s.shapes.size(); ++k) {
+    write_shape(w, s.shapes[k]);
+    w.u8(k < s.api.shape_destroyed.size() ? s.api.shape_destroyed[k] : 0);
+  }
 
   w.u32(uint32_t(s.bodies.size()));
   detail::visit_snapshot_columns(s.bodies, [&w](const auto& column) {
@@ -468,6 +500,7 @@ std::vector<uint8_t> save_snapshot(const World& world) {
     w.vec3(m.normal);
     w.u8(uint8_t(m.point_count));
     for (const ContactPoint& p : m.points) write_point(w, p);
+    write_friction(w, m);
   }
   seal(out);
   return out;
@@ -509,6 +542,7 @@ void save_rollback(const World& world, std::vector<uint8_t>& out) {
     w.vec3(m.normal);
     w.u8(uint8_t(m.point_count));
     for (int p = 0; p < m.point_count; ++p) write_point(w, m.points[p]);
+    write_friction(w, m);
   }
   seal(out);
 }
@@ -528,6 +562,7 @@ void restore_rollback(World& world, std::span<const uint8_t> bytes) {
   ByteReader apply(payload, "rollback");
   read_rollback<true>(apply, s);
   s.previous_contacts.clear();
+  forget_api_caches(s);
 }
 
 Divergence compare_worlds(const World& a, const World& b) {

@@ -1,4 +1,4 @@
-// A snapshot taken mid-run and restored into a fresh world continues with the same bits as the
+// A snapshot taken mid-run (step 100) and restored into a fresh world continues with the same bits as the
 // run that never stopped, at 1 and 2 threads and with either broadphase.
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 namespace elan {
 namespace {
 
-constexpr int kSaveAt = 200;
-constexpr int kEnd = 240;
+constexpr int kSaveAt = 100;
+constexpr int kEnd = 130;
 
 struct Reference {
   std::vector<uint8_t> snapshot;  // taken after kSaveAt steps

@@ -31,12 +31,12 @@ inline constexpr uint32_t kSnapshotVersion = 1;
 ///       R plane offset, 3R frame position, 4R frame rotation (w x y z), R volume,
 ///       3R unit inertia, 3R local min, 3R local max, R bounding radius, u8 has hull
 ///       [u32 n, n x 3R vertices | u32 n, n x (3R normal, R offset, u32 first, u32 count) faces
-///        | u32 n, n x u32 face vertices | u32 n, n x 2 u32 edges]
+///        | u32 n, n x u32 face vertices | u32 n, n x 2 u32 edges], u8 destroyed
 ///     | u32 bodies n, then each BodyStore column in declaration order, n values each
 ///     | u32 slots m, m x u32 slot index, m x u32 generation | u32 f, f x u32 free slots
 ///     | u32 manifolds, each: u64 key, u32 body a, u32 body b, 3R normal, u8 point count,
 ///       4 points x (3R anchor a, 3R anchor b, R separation, u32 feature id, R normal impulse,
-///       2R tangent impulses, R max normal impulse)
+///       R max normal impulse), 2R tangent impulses, R twist impulse
 ///     | u64 checksum: 64-bit FNV-1a over 8-byte little-endian words of every byte before it
 ///       (the tail zero-padded), so any single changed byte changes it.
 ///
@@ -45,9 +45,10 @@ std::vector<uint8_t> save_snapshot(const World& world);
 
 /// Replaces the whole state of `world` (bodies, shapes, ids, contacts, gravity, substeps,
 /// iterations, sleep setting, step count) with the snapshot's. The world keeps its own thread
-/// count and broadphase: results do not depend on them. Throws elan::Error (field "snapshot")
-/// for a file that is not a snapshot, another format version or `Real` size, a truncated or
-/// corrupt file, or inconsistent contents; `world` is then left unchanged.
+/// count, broadphase, caller arena and pair filter (results do not depend on the first three;
+/// the filter is the caller's code); the last step's events are cleared. Throws elan::Error (field
+/// "snapshot") for a file that is not a snapshot, another format version or `Real` size, a
+/// truncated or corrupt file, or inconsistent contents; `world` is then left unchanged.
 void restore_snapshot(World& world, std::span<const uint8_t> bytes);
 
 /// A new world from a snapshot, with the saved thread count and broadphase. Throws as
@@ -68,7 +69,8 @@ World load_snapshot(std::span<const uint8_t> bytes);
 /// in index order: px py pz qw qx qy qz vx vy vz wx wy wz fx fy fz tx ty tz sleep_time (R each),
 /// u8 flags | u32 manifolds, each: u64 key, u8 (1 when body A is the higher index), 3R normal,
 /// u8 point count, per point: 3R anchor a, 3R anchor b, R separation, u32 feature id,
-/// R normal impulse, 2R tangent impulses, R max normal impulse | u64 checksum as above.
+/// R normal impulse, R max normal impulse; then 2R tangent impulses, R twist impulse
+/// | u64 checksum as above.
 std::vector<uint8_t> save_rollback(const World& world);
 /// As above, into `out` (cleared first), reusing its capacity: no allocation once warm.
 void save_rollback(const World& world, std::vector<uint8_t>& out);
