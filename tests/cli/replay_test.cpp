@@ -1,0 +1,311 @@
+// `elan run --record` with keyframes, `elan replay` naming the first differing body and field,
+// `elan diverge`, and refusal (exit 2, one clear line) of old, future, corrupt and truncated files.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Json = nlohmann::json;
+
+struct Result {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) {
+    if (c == '\'') {
+      q.append("'\\''");
+    } else {
+      q.push_back(c);
+    }
+  }
+  q.push_back('\'');
+  return q;
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+std::string temp_path(const std::string& name) {
+  std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  for (char& c : test) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return ::testing::TempDir() + "elan_replay_" + std::to_string(getpid()) + "_" + test + "_" + name;
+}
+
+Result run_elan(const std::vector<std::string>& args) {
+  const std::string out = temp_path("stdout"), err = temp_path("stderr");
+  std::string cmd = quote(ELAN_CLI);
+  for (const std::string& a : args) cmd.append(" ").append(quote(a));
+  cmd.append(" >").append(quote(out)).append(" 2>").append(quote(err)).append(" </dev/null");
+  const int rc = std::system(cmd.c_str());
+  Result r;
+  r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  r.out = read(out);
+  r.err = read(err);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+// Ground, two named spheres and an unnamed box that falls and tumbles: body 2 is "b".
+const char* kScene = R"({
+  "timestep": 0.01,
+  "bodies": [
+    {"name": "ground", "motion": "static", "shape": {"type": "box", "half_extents": [10, 1, 10]},
+     "position": [0, -1, 0]},
+    {"name": "a", "shape": {"type": "sphere", "radius": 0.5}, "position": [0, 0.6, 0]},
+    {"name": "b", "shape": {"type": "sphere", "radius": 0.5}, "position": [1.5, 2, 0],
+     "linear_velocity": [0, 0, 1]},
+    {"shape": {"type": "box", "half_extents": [0.4, 0.3, 0.2]}, "position": [-1.5, 1, 0.2],
+     "angular_velocity": [0, 2, 0]}
+  ]
+})";
+
+uint64_t fnv1a(const std::string& s, std::size_t n) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= uint8_t(s[i]);
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+void put_u64(std::string& out, uint64_t v) {
+  for (int i = 0; i < 8; ++i) out.push_back(char(uint8_t(v >> (8 * i))));
+}
+void put_u32(std::string& out, uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(char(uint8_t(v >> (8 * i))));
+}
+uint64_t get_u64(const std::string& s, std::size_t at) {
+  uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) v |= uint64_t(uint8_t(s[at + i])) << (8 * i);
+  return v;
+}
+
+void reseal(std::string& bytes) {
+  const uint64_t sum = fnv1a(bytes, bytes.size() - 8);
+  for (int i = 0; i < 8; ++i) bytes[bytes.size() - 8 + i] = char(uint8_t(sum >> (8 * i)));
+}
+
+class Replay : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scene_ = temp_path("scene.json");
+    write(scene_, kScene);
+    path_ = temp_path("r.rec");
+    const Result r = run_elan({"run", scene_, "--steps", "12", "--threads", "2", "--record", path_,
+                               "--keyframe-every", "5"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    summary_ = Json::parse(r.out);
+    bytes_ = read(path_);
+  }
+  void TearDown() override {
+    std::remove(path_.c_str());
+    std::remove(scene_.c_str());
+  }
+  Json replay(const std::vector<std::string>& extra, int expected_status) {
+    std::vector<std::string> args = {"replay", path_};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Result r = run_elan(args);
+    EXPECT_EQ(r.status, expected_status) << r.err;
+    return r.status == 0 || r.status == 1 ? Json::parse(r.out) : Json();
+  }
+  std::string scene_, path_, bytes_;
+  Json summary_;
+};
+
+TEST_F(Replay, MatchesWithAnyThreadsAndBroadphase) {
+  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+           {"--threads", "1"}, {"--threads", "2", "--broadphase", "all-pairs"}}) {
+    const Json j = replay(extra, 0);
+    EXPECT_EQ(j["match"], true);
+    EXPECT_EQ(j["keyframes"], 3);  // steps 0, 5, 10
+    EXPECT_EQ(j["state_hash"], summary_["state_hash"]);
+  }
+}
+
+TEST_F(Replay, PerturbationBetweenKeyframesIsFoundByResimulating) {
+  const Json j = replay({"--threads", "1", "--perturb", "2:7"}, 1);
+  EXPECT_EQ(j["first_mismatch_step"], 7);
+  const Json& d = j["divergence"];
+  EXPECT_EQ(d["keyframe"], 5);
+  EXPECT_EQ(d["method"], "re-simulated from keyframe");
+  EXPECT_EQ(d["body"], 2);
+  EXPECT_EQ(d["name"], "b");
+  EXPECT_EQ(d["field"], "px");
+  EXPECT_GT(d["replayed"].get<double>(), d["recorded"].get<double>());
+}
+
+TEST_F(Replay, PerturbationAtAKeyframeIsFoundAgainstIt) {
+  for (const char* at : {"3:10", "3:0"}) {
+    const Json j = replay({"--perturb", at}, 1);
+    const Json& d = j["divergence"];
+    EXPECT_EQ(d["method"], "keyframe") << at;
+    EXPECT_EQ(d["body"], 3) << at;
+    EXPECT_TRUE(d["name"].is_null()) << at;
+    EXPECT_EQ(d["field"], "px") << at;
+  }
+}
+
+TEST_F(Replay, ForgedHashIsReportedWithoutABody) {
+  // The recording's last hash changed and resealed: the keyframe before it re-simulates to the
+  // true hash, so the recording itself is not reproducible and no body can be blamed.
+  std::string forged = bytes_;
+  forged[forged.size() - 16] ^= 1;
+  reseal(forged);
+  write(path_, forged);
+  const Json j = replay({}, 1);
+  EXPECT_EQ(j["first_mismatch_step"], 12);
+  EXPECT_TRUE(j["divergence"]["body"].is_null());
+  EXPECT_NE(j["divergence"]["reason"].get<std::string>().find("does not reproduce"),
+            std::string::npos);
+}
+
+TEST_F(Replay, WithoutKeyframesTheStepIsStillReported) {
+  ASSERT_EQ(
+      run_elan({"run", scene_, "--steps", "6", "--record", path_, "--keyframe-every", "0"}).status,
+      0);
+  const Json j = replay({"--perturb", "1:4"}, 1);
+  EXPECT_EQ(j["first_mismatch_step"], 4);
+  EXPECT_TRUE(j["divergence"]["body"].is_null());
+  EXPECT_NE(j["divergence"]["reason"].get<std::string>().find("no keyframes"), std::string::npos);
+}
+
+TEST_F(Replay, VersionOneRecordingsAreStillRead) {
+  // Version 1 is version 2 without the keyframe interval and the keyframes.
+  std::size_t at = 8;
+  std::string v1 = bytes_.substr(0, at);
+  put_u32(v1, 1);
+  at += 4;
+  const std::size_t fixed = 4 + 8 + 8 + 4 + 4 + 4 + 4;  // real size .. broadphase
+  v1 += bytes_.substr(at, fixed);
+  at += fixed + 8;               // skip keyframe_every
+  for (int s = 0; s < 2; ++s) {  // scene name, scene text
+    const uint64_t n = get_u64(bytes_, at);
+    v1 += bytes_.substr(at, 8 + n);
+    at += 8 + n;
+  }
+  const uint64_t keyframes = get_u64(bytes_, at);
+  at += 8;
+  for (uint64_t k = 0; k < keyframes; ++k) at += 16 + get_u64(bytes_, at + 8);
+  v1 += bytes_.substr(at, bytes_.size() - 8 - at);
+  put_u64(v1, 0);
+  reseal(v1);
+  write(path_, v1);
+  const Json j = replay({}, 0);
+  EXPECT_EQ(j["match"], true);
+  EXPECT_EQ(j["keyframes"], 0);
+  const Json p = replay({"--perturb", "2:3"}, 1);
+  EXPECT_NE(p["divergence"]["reason"].get<std::string>().find("format version 1"),
+            std::string::npos);
+}
+
+TEST_F(Replay, FutureVersionIsRefusedByName) {
+  std::string future = bytes_;
+  future[8] = 3;
+  reseal(future);
+  write(path_, future);
+  const Result r = run_elan({"replay", path_});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("unsupported recording version 3 (this elan reads versions 1 to 2)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+TEST_F(Replay, CorruptKeyframeUnderAValidChecksumIsRefused) {
+  // Break the first keyframe's snapshot magic, then reseal the recording: the recording's
+  // checksum passes, the keyframe's own check must not.
+  const std::size_t magic = bytes_.find(
+      "\x89"
+      "ELANSNP");
+  ASSERT_NE(magic, std::string::npos);
+  std::string bad = bytes_;
+  bad[magic + 5] = 'X';
+  reseal(bad);
+  write(path_, bad);
+  const Result r = run_elan({"replay", path_, "--perturb", "2:1"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("keyframe at step 0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(path_), std::string::npos) << r.err;
+}
+
+TEST_F(Replay, FlippedBytesAndTruncationsAreRefused) {
+  // Every 37th byte (about 60 positions over every section) and every 61st length.
+  for (std::size_t at = 0; at < bytes_.size(); at += 37) {
+    std::string bad = bytes_;
+    bad[at] ^= 0x04;
+    write(path_, bad);
+    const Result r = run_elan({"replay", path_});
+    EXPECT_EQ(r.status, 2) << "byte " << at << ": " << r.err;
+    EXPECT_NE(r.err.find(path_), std::string::npos) << "byte " << at << ": " << r.err;
+  }
+  for (std::size_t n = 0; n < bytes_.size(); n += 61) {
+    write(path_, bytes_.substr(0, n));
+    const Result r = run_elan({"replay", path_});
+    EXPECT_EQ(r.status, 2) << "length " << n << ": " << r.err;
+    EXPECT_TRUE(r.out.empty());
+  }
+}
+
+TEST_F(Replay, BadPerturbationIsAUsageError) {
+  for (const char* bad : {"2", "x:1", "9:1", "2:-1"}) {
+    const Result r = run_elan({"replay", path_, "--perturb", bad});
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("--perturb"), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(Replay, DivergeReportsNothingForThreadsAndBroadphase) {
+  const Result r = run_elan({"diverge", scene_, "--steps", "20", "--a", "--threads 1", "--b",
+                             "--threads 2 --broadphase all-pairs"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_EQ(j["diverged"], false);
+  EXPECT_EQ(j["b"]["broadphase"], "all-pairs");
+}
+
+TEST_F(Replay, DivergeFindsTheStepBodyAndField) {
+  const Result r =
+      run_elan({"diverge", scene_, "--steps", "20", "--a", "--threads 2", "--b", "--perturb 1:6"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_EQ(j["diverged"], true);
+  EXPECT_EQ(j["step"], 6);
+  EXPECT_EQ(j["body"], 1);
+  EXPECT_EQ(j["name"], "a");
+  EXPECT_EQ(j["field"], "px");
+  const Result sub = run_elan({"diverge", scene_, "--steps", "20", "--b", "--substeps 2"});
+  EXPECT_EQ(sub.status, 1);
+  EXPECT_EQ(Json::parse(sub.out)["step"], 1);
+}
+
+TEST_F(Replay, DivergeRefusesBadSides) {
+  const Result r = run_elan({"diverge", scene_, "--a", "--threads x"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--a"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+}
+
+}  // namespace
