@@ -178,11 +178,40 @@ std::vector<std::size_t> top_bodies(const elan::Scene& s) {
   return out;
 }
 
+// How far the top moved, cm: horizontally (a toppled or sliding stack) and down. A stack built
+// with vertical gaps (jolt_pyramid: 0.5 m between levels) settles by expected_drop_cm.
+struct TopMotion {
+  double drift_cm = 0, drop_cm = 0;
+};
 template <class PositionOf>
-double max_moved_cm(const elan::Scene& s, const std::vector<std::size_t>& tops, PositionOf pos) {
-  double m = 0;
-  for (std::size_t i : tops) m = std::max(m, double((pos(i) - s.bodies[i].body.position).norm()));
-  return 100 * m;
+TopMotion top_motion(const elan::Scene& s, const std::vector<std::size_t>& tops, PositionOf pos) {
+  TopMotion m;
+  for (std::size_t i : tops) {
+    const Vec3 d = pos(i) - s.bodies[i].body.position;
+    m.drift_cm = std::max(m.drift_cm, 100 * std::hypot(double(d.x()), double(d.z())));
+    m.drop_cm = std::max(m.drop_cm, -100 * double(d.y()));
+  }
+  return m;
+}
+
+// Expected settling of the top of a stack of box levels: its height minus the solid height of
+// the distinct box levels below it (each level counted once, as pyramids and towers are built).
+double expected_drop_cm(const elan::Scene& s, const std::vector<std::size_t>& tops) {
+  if (tops.empty()) return 0;
+  std::map<double, double> levels;  // centre y -> half height of the boxes there
+  double floor = std::numeric_limits<double>::infinity();
+  for (const auto& b : s.bodies) {
+    if (b.body.motion != elan::MotionType::Dynamic) continue;
+    if (b.shape.type != elan::ShapeType::Box) return 0;
+    const double y = b.body.position.y(), h = b.shape.half_extents.y();
+    levels[y] = h;
+    floor = std::min(floor, y - h);
+  }
+  double solid = 0;
+  for (const auto& [y, h] : levels) solid += 2 * h;
+  const auto& top = s.bodies[tops.front()];
+  const double top_y = top.body.position.y(), top_h = top.shape.half_extents.y();
+  return std::max(0.0, 100 * (top_y + top_h - floor - solid));
 }
 
 // The state hash after warm-up + steps must be one value whatever the thread count, broadphase
@@ -217,7 +246,7 @@ void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType 
   elan::StepProfile sum;
   elan::StepStats last;
   uint64_t hash = 0;
-  double moved = 0;
+  TopMotion moved;
   for (auto _ : state) {
     double seconds = 0;
     arena.execute([&] {
@@ -239,8 +268,8 @@ void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType 
       seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       last = world.last_step();
       hash = world.state_hash();
-      moved = max_moved_cm(*c.scene, tops,
-                           [&](std::size_t i) { return world.position(world.body_at(i)); });
+      moved = top_motion(*c.scene, tops,
+                         [&](std::size_t i) { return world.position(world.body_at(i)); });
     });
     state.SetIterationTime(seconds);
     state.counters["ms_per_step"] = 1000 * seconds / c.steps;
@@ -260,7 +289,9 @@ void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType 
   state.counters["colors"] = double(last.colors);
   state.counters["awake"] = double(last.awake);
   state.counters["bodies"] = double(c.scene->bodies.size());
-  state.counters["top_moved_cm"] = moved;
+  state.counters["top_drift_cm"] = moved.drift_cm;
+  state.counters["top_drop_cm"] = moved.drop_cm;
+  state.counters["expected_drop_cm"] = expected_drop_cm(*c.scene, tops);
   state.SetItemsProcessed(int64_t(c.scene->bodies.size()) * c.steps * state.iterations());
   set_hash_counters(state, hash);
   const std::string key = c.name + "/" + std::to_string(c.warmup) + "+" + std::to_string(c.steps);
@@ -271,7 +302,7 @@ void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType 
 void bm_bullet(benchmark::State& state, Case c) {
   const auto tops = top_bodies(*c.scene);
   elan::peer::BulletCounts counts;
-  double moved = 0;
+  TopMotion moved;
   for (auto _ : state) {
     elan::peer::BulletWorld world(*c.scene);
     for (int i = 0; i < c.warmup; ++i) world.step();
@@ -281,13 +312,15 @@ void bm_bullet(benchmark::State& state, Case c) {
     state.SetIterationTime(seconds);
     state.counters["ms_per_step"] = 1000 * seconds / c.steps;
     counts = world.counts();
-    moved = max_moved_cm(*c.scene, tops, [&](std::size_t i) { return world.position(i); });
+    moved = top_motion(*c.scene, tops, [&](std::size_t i) { return world.position(i); });
   }
   state.counters["contacts"] = double(counts.contacts);
   state.counters["manifolds"] = double(counts.manifolds);
   state.counters["awake"] = double(counts.awake);
   state.counters["bodies"] = double(c.scene->bodies.size());
-  state.counters["top_moved_cm"] = moved;
+  state.counters["top_drift_cm"] = moved.drift_cm;
+  state.counters["top_drop_cm"] = moved.drop_cm;
+  state.counters["expected_drop_cm"] = expected_drop_cm(*c.scene, tops);
   state.SetItemsProcessed(int64_t(c.scene->bodies.size()) * c.steps * state.iterations());
 }
 #endif
