@@ -26,6 +26,9 @@ constexpr Real kMatchNormalCos = Real(0.95);
 
 void warm_start(const Manifold& old, Manifold& m) {
   if (old.body_a != m.body_a || old.normal.dot(m.normal) < kMatchNormalCos) return;
+  m.tangent_impulse[0] = old.tangent_impulse[0];
+  m.tangent_impulse[1] = old.tangent_impulse[1];
+  m.twist_impulse = old.twist_impulse;
   for (int i = 0; i < m.point_count; ++i) {
     ContactPoint& p = m.points[i];
     int match = -1;
@@ -43,8 +46,6 @@ void warm_start(const Manifold& old, Manifold& m) {
     }
     if (match < 0) continue;
     p.normal_impulse = old.points[match].normal_impulse;
-    p.tangent_impulse[0] = old.points[match].tangent_impulse[0];
-    p.tangent_impulse[1] = old.points[match].tangent_impulse[1];
   }
 }
 
@@ -80,9 +81,10 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       for (int k = 0; k < m.point_count; ++k) {
         ContactPoint& p = m.points[k];
         p.normal_impulse = 0;
-        p.tangent_impulse[0] = p.tangent_impulse[1] = 0;
         p.max_normal_impulse = 0;
       }
+      m.tangent_impulse[0] = m.tangent_impulse[1] = 0;
+      m.twist_impulse = 0;
       while (prev_it != previous.end() && prev_it->key < key) ++prev_it;
       if (m.point_count > 0 && prev_it != previous.end() && prev_it->key == key) {
         warm_start(*prev_it, m);

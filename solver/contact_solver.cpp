@@ -72,6 +72,12 @@ inline void apply_impulse(ContactConstraint& c, SolverBody& a, SolverBody& b, co
   }
 }
 
+// Applies an angular impulse `twist` about the normal: -twist n to A, +twist n to B.
+inline void apply_twist(ContactConstraint& c, SolverBody& a, SolverBody& b, Real twist) {
+  if (c.write_a) a.w -= c.inv_i_a * (twist * c.normal);
+  if (c.write_b) b.w += c.inv_i_b * (twist * c.normal);
+}
+
 }  // namespace
 
 void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
@@ -97,6 +103,8 @@ void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore
   tangent_basis(c.normal, c.tangent[0], c.tangent[1]);
   const SolverBody& sa = ctx.bodies[c.packet_a];
   const SolverBody& sb = ctx.bodies[c.packet_b];
+  c.center_ra.setZero();
+  c.center_rb.setZero();
   for (int i = 0; i < c.count; ++i) {
     const ContactPoint& mp = m.points[i];
     ConstraintPoint& cp = c.points[i];
@@ -105,15 +113,36 @@ void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore
     cp.adjusted_separation = mp.separation - (cp.rb - cp.ra).dot(c.normal);
     cp.normal_mass =
         effective_mass(c.inv_mass_a, c.inv_mass_b, c.inv_i_a, c.inv_i_b, cp.ra, cp.rb, c.normal);
-    for (int t = 0; t < 2; ++t) {
-      cp.tangent_mass[t] = effective_mass(c.inv_mass_a, c.inv_mass_b, c.inv_i_a, c.inv_i_b, cp.ra,
-                                          cp.rb, c.tangent[t]);
-      cp.tangent_impulse[t] = mp.tangent_impulse[t];
-    }
     cp.normal_impulse = mp.normal_impulse;
     cp.max_normal_impulse = 0;
     cp.relative_velocity = relative_velocity(sa, sb, cp.ra, cp.rb).dot(c.normal);
+    c.center_ra += cp.ra;
+    c.center_rb += cp.rb;
   }
+  const Real inv_count = c.count > 0 ? Real(1) / Real(c.count) : Real(0);
+  c.center_ra *= inv_count;
+  c.center_rb *= inv_count;
+  for (int i = 0; i < c.count; ++i) {
+    const Vec3 offset = c.points[i].ra - c.center_ra;
+    c.points[i].twist_lever = (offset - offset.dot(c.normal) * c.normal).norm();
+  }
+  // K = J M^-1 J^T for the two tangent rows at the centre, inverted in closed form.
+  const Vec3 ra0 = c.center_ra.cross(c.tangent[0]), ra1 = c.center_ra.cross(c.tangent[1]);
+  const Vec3 rb0 = c.center_rb.cross(c.tangent[0]), rb1 = c.center_rb.cross(c.tangent[1]);
+  const Real m_sum = c.inv_mass_a + c.inv_mass_b;
+  const Real k00 = m_sum + ra0.dot(c.inv_i_a * ra0) + rb0.dot(c.inv_i_b * rb0);
+  const Real k01 = ra0.dot(c.inv_i_a * ra1) + rb0.dot(c.inv_i_b * rb1);
+  const Real k11 = m_sum + ra1.dot(c.inv_i_a * ra1) + rb1.dot(c.inv_i_b * rb1);
+  const Real det = k00 * k11 - k01 * k01;
+  const Real inv_det = det > 0 ? 1 / det : 0;
+  c.tangent_inv_k[0] = k11 * inv_det;
+  c.tangent_inv_k[1] = -k01 * inv_det;
+  c.tangent_inv_k[2] = k00 * inv_det;
+  const Real k_twist = c.normal.dot(c.inv_i_a * c.normal) + c.normal.dot(c.inv_i_b * c.normal);
+  c.twist_mass = k_twist > 0 ? 1 / k_twist : 0;
+  c.tangent_impulse[0] = m.tangent_impulse[0];
+  c.tangent_impulse[1] = m.tangent_impulse[1];
+  c.twist_impulse = m.twist_impulse;
 }
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
@@ -123,10 +152,11 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
     SolverBody& b = ctx.bodies[c.packet_b];
     for (int k = 0; k < c.count; ++k) {
       const ConstraintPoint& cp = c.points[k];
-      const Vec3 p = cp.normal_impulse * c.normal + cp.tangent_impulse[0] * c.tangent[0] +
-                     cp.tangent_impulse[1] * c.tangent[1];
-      apply_impulse(c, a, b, cp.ra, cp.rb, p);
+      apply_impulse(c, a, b, cp.ra, cp.rb, cp.normal_impulse * c.normal);
     }
+    apply_impulse(c, a, b, c.center_ra, c.center_rb,
+                  c.tangent_impulse[0] * c.tangent[0] + c.tangent_impulse[1] * c.tangent[1]);
+    apply_twist(c, a, b, c.twist_impulse);
   }
 }
 
@@ -137,6 +167,38 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     SolverBody& b = ctx.bodies[c.packet_b];
     const Vec3 n = c.normal;
     const Vec3 dp = b.dp - a.dp;
+    {
+      // Friction first, so the non-penetration rows, which carry the load, have the last word.
+      // Coulomb limits from this substep's accumulated normal impulses: the tangent impulse
+      // within mu * sum(lambda_n), the twist within mu * sum(lever_k * lambda_n_k).
+      Real total_normal = 0, twist_limit = 0;
+      for (int k = 0; k < c.count; ++k) {
+        total_normal += c.points[k].normal_impulse;
+        twist_limit += c.points[k].twist_lever * c.points[k].normal_impulse;
+      }
+      const Vec3 dv = relative_velocity(a, b, c.center_ra, c.center_rb);
+      const Real v0 = dv.dot(c.tangent[0]), v1 = dv.dot(c.tangent[1]);
+      Real t0 = c.tangent_impulse[0] - (c.tangent_inv_k[0] * v0 + c.tangent_inv_k[1] * v1);
+      Real t1 = c.tangent_impulse[1] - (c.tangent_inv_k[1] * v0 + c.tangent_inv_k[2] * v1);
+      const Real max_friction = c.friction * total_normal;
+      const Real len2 = t0 * t0 + t1 * t1;
+      if (len2 > max_friction * max_friction) {
+        const Real scale = len2 > 0 ? max_friction / std::sqrt(len2) : 0;
+        t0 *= scale;
+        t1 *= scale;
+      }
+      const Vec3 p =
+          (t0 - c.tangent_impulse[0]) * c.tangent[0] + (t1 - c.tangent_impulse[1]) * c.tangent[1];
+      c.tangent_impulse[0] = t0;
+      c.tangent_impulse[1] = t1;
+      apply_impulse(c, a, b, c.center_ra, c.center_rb, p);
+
+      const Real spin = c.normal.dot(b.w - a.w);
+      const Real max_twist = c.friction * twist_limit;
+      const Real twist = std::clamp(c.twist_impulse - c.twist_mass * spin, -max_twist, max_twist);
+      apply_twist(c, a, b, twist - c.twist_impulse);
+      c.twist_impulse = twist;
+    }
     for (int k = 0; k < c.count; ++k) {
       ConstraintPoint& cp = c.points[k];
       // Current separation from the pose change of both bodies since the step began, with the
@@ -158,26 +220,6 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       cp.normal_impulse = updated;
       cp.max_normal_impulse = std::max(cp.max_normal_impulse, impulse);
       apply_impulse(c, a, b, cp.ra, cp.rb, impulse * n);
-    }
-    for (int k = 0; k < c.count; ++k) {
-      ConstraintPoint& cp = c.points[k];
-      const Vec3 dv = relative_velocity(a, b, cp.ra, cp.rb);
-      // Coulomb friction with a circular cone: solve both tangents, then clamp the vector
-      // impulse to friction * normal impulse.
-      Real t0 = cp.tangent_impulse[0] - cp.tangent_mass[0] * dv.dot(c.tangent[0]);
-      Real t1 = cp.tangent_impulse[1] - cp.tangent_mass[1] * dv.dot(c.tangent[1]);
-      const Real max_friction = c.friction * cp.normal_impulse;
-      const Real len2 = t0 * t0 + t1 * t1;
-      if (len2 > max_friction * max_friction) {
-        const Real scale = len2 > 0 ? max_friction / std::sqrt(len2) : 0;
-        t0 *= scale;
-        t1 *= scale;
-      }
-      const Vec3 p =
-          (t0 - cp.tangent_impulse[0]) * c.tangent[0] + (t1 - cp.tangent_impulse[1]) * c.tangent[1];
-      cp.tangent_impulse[0] = t0;
-      cp.tangent_impulse[1] = t1;
-      apply_impulse(c, a, b, cp.ra, cp.rb, p);
     }
   }
 }
@@ -212,10 +254,11 @@ void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t en
     Manifold& m = manifolds[c.manifold];
     for (int k = 0; k < c.count; ++k) {
       m.points[k].normal_impulse = c.points[k].normal_impulse;
-      m.points[k].tangent_impulse[0] = c.points[k].tangent_impulse[0];
-      m.points[k].tangent_impulse[1] = c.points[k].tangent_impulse[1];
       m.points[k].max_normal_impulse = c.points[k].max_normal_impulse;
     }
+    m.tangent_impulse[0] = c.tangent_impulse[0];
+    m.tangent_impulse[1] = c.tangent_impulse[1];
+    m.twist_impulse = c.twist_impulse;
   }
 }
 

@@ -24,10 +24,10 @@ namespace elan::detail {
 struct SolveSettings {
   Real dt = Real(1.0 / 60.0);  // s
   int substeps = 4;
-  int iterations = 1;  // solve passes per substep (relax is one pass)
+  int iterations = 3;  // solve passes per substep (relax is one pass)
   Vec3 gravity = Vec3(0, Real(-9.81), 0);
   bool allow_sleep = true;
-  Real contact_hertz = 30;  // Hz, capped at a quarter of the substep rate
+  Real contact_hertz = 40;  // Hz, capped at a quarter of the substep rate
   Real contact_damping_ratio = 10;
   Real max_push_velocity = 3;         // m/s
   Real restitution_threshold = 1;     // m/s

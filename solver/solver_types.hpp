@@ -57,9 +57,8 @@ struct ConstraintPoint {
   Vec3 rb = Vec3::Zero();
   Real adjusted_separation = 0;  // m: separation - dot(rb - ra, n), so s = dot(d, n) + this
   Real normal_mass = 0;          // kg: 1 / (J M^-1 J^T) along the normal
-  Real tangent_mass[2] = {0, 0};
-  Real normal_impulse = 0;  // N s, accumulated over the step (warm started)
-  Real tangent_impulse[2] = {0, 0};
+  Real twist_lever = 0;          // m: distance from the manifold centre (twist friction limit)
+  Real normal_impulse = 0;       // N s, accumulated over the step (warm started)
   Real max_normal_impulse = 0;
   Real relative_velocity = 0;  // m/s along n before the solve (negative: approaching)
 };
@@ -75,6 +74,12 @@ struct ContactConstraint {
   Vec3 tangent[2] = {Vec3::UnitX(), Vec3::UnitZ()};
   Real friction = 0, restitution = 0;
   Softness softness;
+  // Central friction: at the mean of the points, a coupled 2x2 tangent block and a twist row.
+  Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();  // m, world
+  Real tangent_inv_k[3] = {0, 0, 0};  // inverse of the 2x2 tangent mass matrix: 00, 01, 11
+  Real twist_mass = 0;                // kg m^2
+  Real tangent_impulse[2] = {0, 0};   // N s
+  Real twist_impulse = 0;             // N m s
   ConstraintPoint points[kMaxManifoldPoints];
 };
 

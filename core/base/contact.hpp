@@ -11,13 +11,12 @@ namespace elan::detail {
 inline constexpr int kMaxManifoldPoints = 4;
 
 struct ContactPoint {
-  Vec3 anchor_a = Vec3::Zero();      // m, world: contact point minus A's centre of mass
-  Vec3 anchor_b = Vec3::Zero();      // m, world: contact point minus B's centre of mass
-  Real separation = 0;               // m: negative = penetration, positive = speculative gap
-  uint32_t feature_id = 0;           // same while the same pair of features touches
-  Real normal_impulse = 0;           // N s, accumulated; carried to the next step (warm start)
-  Real tangent_impulse[2] = {0, 0};  // N s, along the manifold's tangent basis
-  Real max_normal_impulse = 0;       // N s, largest applied during the step (events, sleep)
+  Vec3 anchor_a = Vec3::Zero();  // m, world: contact point minus A's centre of mass
+  Vec3 anchor_b = Vec3::Zero();  // m, world: contact point minus B's centre of mass
+  Real separation = 0;           // m: negative = penetration, positive = speculative gap
+  uint32_t feature_id = 0;       // same while the same pair of features touches
+  Real normal_impulse = 0;       // N s, accumulated; carried to the next step (warm start)
+  Real max_normal_impulse = 0;   // N s, largest applied during the step (events, sleep)
 };
 
 struct Manifold {
@@ -27,6 +26,11 @@ struct Manifold {
   Vec3 normal = Vec3::UnitY();  // unit, world, from A towards B
   int point_count = 0;
   ContactPoint points[kMaxManifoldPoints];
+  // Friction acts once per manifold, at the centre of its points (Gregorius, "Robust Contact
+  // Creation for Physics Simulations", GDC 2015): a 2D tangent impulse and a twist about the
+  // normal, carried to the next step like the normal impulses.
+  Real tangent_impulse[2] = {0, 0};  // N s, along the solver's tangent basis of `normal`
+  Real twist_impulse = 0;            // N m s, about `normal`
 };
 
 }  // namespace elan::detail

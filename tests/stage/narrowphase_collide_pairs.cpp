@@ -119,10 +119,11 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
     for (int k = 0; k < m.point_count; ++k) {
       EXPECT_EQ(m.points[k].normal_impulse, 0);
       m.points[k].normal_impulse = Real(1 + m.points[k].feature_id % 1000);
-      m.points[k].tangent_impulse[0] = Real(m.key % 13);
-      m.points[k].tangent_impulse[1] = -Real(k);
       ++points;
     }
+    m.tangent_impulse[0] = Real(m.key % 13);
+    m.tangent_impulse[1] = -Real(m.key % 7);
+    m.twist_impulse = Real(m.key % 5);
   }
   ASSERT_GT(points, 100);
   // Nudge every dynamic body by 1e-4 m: the same features touch, so every impulse arrives.
@@ -134,6 +135,13 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
   int matched = 0, total = 0;
   for (const Manifold& m : second) {
     while (j < first.size() && first[j].key < m.key) ++j;
+    if (j < first.size() && first[j].key == m.key && first[j].normal.dot(m.normal) > Real(0.95)) {
+      // Friction is per manifold: it follows the pair whatever its points are called, as long
+      // as the normal has not turned (then its tangent basis means something else).
+      EXPECT_EQ(m.tangent_impulse[0], first[j].tangent_impulse[0]);
+      EXPECT_EQ(m.tangent_impulse[1], first[j].tangent_impulse[1]);
+      EXPECT_EQ(m.twist_impulse, first[j].twist_impulse);
+    }
     for (int k = 0; k < m.point_count; ++k) {
       ++total;
       const ContactPoint& c = m.points[k];
@@ -146,10 +154,14 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
       if (old) {
         ++matched;
         EXPECT_EQ(c.normal_impulse, old->normal_impulse);
-        EXPECT_EQ(c.tangent_impulse[0], old->tangent_impulse[0]);
-        EXPECT_EQ(c.tangent_impulse[1], old->tangent_impulse[1]);
-      } else {
-        EXPECT_EQ(c.normal_impulse, 0);
+      } else if (c.normal_impulse != 0) {
+        // No id match: the impulse may only come from a previous point within 2 cm.
+        bool near = false;
+        for (int i = 0; j < first.size() && i < first[j].point_count; ++i) {
+          near = near || (first[j].points[i].normal_impulse == c.normal_impulse &&
+                          (first[j].points[i].anchor_a - c.anchor_a).norm() < Real(0.02));
+        }
+        EXPECT_TRUE(near);
       }
     }
   }
