@@ -18,10 +18,8 @@ done
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${ELAN_BENCH_BUILD:-$root/build/bench}
-# GCC 12 reports a false maybe-uninitialized inside Eigen's stable_norm_kernel under AVX-512
-# (-march=native); it is kept a warning here so a native build is possible on such machines.
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DELAN_NATIVE=ON -DELAN_BUILD_TESTS=OFF \
-  -DCMAKE_CXX_FLAGS=-Wno-error=maybe-uninitialized >/dev/null
+  >/dev/null
 targets="bench_scenes elan_cli"
 if grep -q '^ELAN_BULLET_DYNAMICS:FILEPATH=/' "$build/CMakeCache.txt"; then
   targets="$targets bullet_runner"
