@@ -34,8 +34,9 @@ Softness make_softness(Real hertz, Real damping_ratio, Real h) {
 
 namespace {
 
-// Deterministic tangent basis from the normal (Erin Catto's b2ComputeBasis idea: pick the axis
-// least aligned with n).
+// Deterministic tangent basis from the normal (pick the axis least aligned with n, as Box2D's
+// b2ComputeBasis does): the same normal always gives the same basis, so friction impulses carried
+// to the next step keep their meaning.
 void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
   if (std::abs(n.x()) >= Real(0.57735027)) {
     t1 = Vec3(n.y(), -n.x(), 0);
@@ -46,36 +47,43 @@ void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
   t2 = n.cross(t1);
 }
 
-inline Real effective_mass(Real ma, Real mb, const SymMat3& ia, const SymMat3& ib, const Vec3& ra,
-                           const Vec3& rb, const Vec3& dir) {
-  const Vec3 rna = ra.cross(dir);
-  const Vec3 rnb = rb.cross(dir);
-  const Real k = ma + mb + rna.dot(ia * rna) + rnb.dot(ib * rnb);
-  return k > 0 ? 1 / k : 0;
+// Relative velocity of B against A along a row with Jacobian [-d, -ra_d, d, rb_d].
+inline Real row_velocity(const SolverBody& a, const SolverBody& b, const Vec3& d, const Vec3& ra_d,
+                         const Vec3& rb_d) {
+  return d.dot(b.v - a.v) + rb_d.dot(b.w) - ra_d.dot(a.w);
 }
 
-inline Vec3 relative_velocity(const SolverBody& a, const SolverBody& b, const Vec3& ra,
-                              const Vec3& rb) {
-  return b.v + b.w.cross(rb) - a.v - a.w.cross(ra);
+// Applies impulse `lambda` along a row: linear part along d, angular parts precomputed as
+// I^-1 (r x d). Static and kinematic sides are read-only.
+inline void apply_row(const ContactConstraint& c, SolverBody& a, SolverBody& b, const Vec3& d,
+                      const Vec3& ia_ra_d, const Vec3& ib_rb_d, Real lambda) {
+  if (c.write_a) {
+    a.v -= (c.inv_mass_a * lambda) * d;
+    a.w -= lambda * ia_ra_d;
+  }
+  if (c.write_b) {
+    b.v += (c.inv_mass_b * lambda) * d;
+    b.w += lambda * ib_rb_d;
+  }
 }
 
-// Applies impulse p at the anchors: -p to A, +p to B. Static and kinematic sides are read-only.
-inline void apply_impulse(ContactConstraint& c, SolverBody& a, SolverBody& b, const Vec3& ra,
-                          const Vec3& rb, const Vec3& p) {
+// The tangent impulse (t0, t1) at the centre, applied as one combined update.
+inline void apply_friction(const ContactConstraint& c, SolverBody& a, SolverBody& b, Real t0,
+                           Real t1) {
+  const Vec3 p = t0 * c.tangent[0] + t1 * c.tangent[1];
   if (c.write_a) {
     a.v -= c.inv_mass_a * p;
-    a.w -= c.inv_i_a * ra.cross(p);
+    a.w -= t0 * c.ia_ra_t[0] + t1 * c.ia_ra_t[1];
   }
   if (c.write_b) {
     b.v += c.inv_mass_b * p;
-    b.w += c.inv_i_b * rb.cross(p);
+    b.w += t0 * c.ib_rb_t[0] + t1 * c.ib_rb_t[1];
   }
 }
 
-// Applies an angular impulse `twist` about the normal: -twist n to A, +twist n to B.
-inline void apply_twist(ContactConstraint& c, SolverBody& a, SolverBody& b, Real twist) {
-  if (c.write_a) a.w -= c.inv_i_a * (twist * c.normal);
-  if (c.write_b) b.w += c.inv_i_b * (twist * c.normal);
+inline void apply_twist(const ContactConstraint& c, SolverBody& a, SolverBody& b, Real twist) {
+  if (c.write_a) a.w -= twist * c.ia_n;
+  if (c.write_b) b.w += twist * c.ib_n;
 }
 
 }  // namespace
@@ -92,53 +100,64 @@ void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore
   c.write_b = bodies.is_dynamic(b);
   const SolverBodyParams& pa = ctx.params[c.packet_a];
   const SolverBodyParams& pb = ctx.params[c.packet_b];
-  c.inv_mass_a = c.write_a ? pa.inv_mass : 0;
-  c.inv_mass_b = c.write_b ? pb.inv_mass : 0;
-  c.inv_i_a = c.write_a ? pa.inv_inertia : SymMat3{};
-  c.inv_i_b = c.write_b ? pb.inv_inertia : SymMat3{};
+  const Real ma = c.write_a ? pa.inv_mass : 0;
+  const Real mb = c.write_b ? pb.inv_mass : 0;
+  const SymMat3 ia = c.write_a ? pa.inv_inertia : SymMat3{};
+  const SymMat3 ib = c.write_b ? pb.inv_inertia : SymMat3{};
+  c.inv_mass_a = ma;
+  c.inv_mass_b = mb;
   c.friction = std::sqrt(bodies.friction[a] * bodies.friction[b]);
   c.restitution = std::max(bodies.restitution[a], bodies.restitution[b]);
   c.softness = (c.write_a && c.write_b) ? ctx.contact_softness : ctx.static_softness;
-  c.normal = m.normal;
-  tangent_basis(c.normal, c.tangent[0], c.tangent[1]);
+  const Vec3 n = m.normal;
+  c.normal = n;
+  tangent_basis(n, c.tangent[0], c.tangent[1]);
   const SolverBody& sa = ctx.bodies[c.packet_a];
   const SolverBody& sb = ctx.bodies[c.packet_b];
-  c.center_ra.setZero();
-  c.center_rb.setZero();
+
+  Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
   for (int i = 0; i < c.count; ++i) {
     const ContactPoint& mp = m.points[i];
     ConstraintPoint& cp = c.points[i];
-    cp.ra = mp.anchor_a;
-    cp.rb = mp.anchor_b;
-    cp.adjusted_separation = mp.separation - (cp.rb - cp.ra).dot(c.normal);
-    cp.normal_mass =
-        effective_mass(c.inv_mass_a, c.inv_mass_b, c.inv_i_a, c.inv_i_b, cp.ra, cp.rb, c.normal);
+    cp.ra_n = mp.anchor_a.cross(n);
+    cp.rb_n = mp.anchor_b.cross(n);
+    cp.ia_ra_n = ia * cp.ra_n;
+    cp.ib_rb_n = ib * cp.rb_n;
+    cp.separation = mp.separation;
+    const Real k = ma + mb + cp.ra_n.dot(cp.ia_ra_n) + cp.rb_n.dot(cp.ib_rb_n);
+    cp.normal_mass = k > 0 ? 1 / k : 0;
     cp.normal_impulse = mp.normal_impulse;
     cp.max_normal_impulse = 0;
-    cp.relative_velocity = relative_velocity(sa, sb, cp.ra, cp.rb).dot(c.normal);
-    c.center_ra += cp.ra;
-    c.center_rb += cp.rb;
+    cp.relative_velocity = row_velocity(sa, sb, n, cp.ra_n, cp.rb_n);
+    center_ra += mp.anchor_a;
+    center_rb += mp.anchor_b;
   }
   const Real inv_count = c.count > 0 ? Real(1) / Real(c.count) : Real(0);
-  c.center_ra *= inv_count;
-  c.center_rb *= inv_count;
+  center_ra *= inv_count;
+  center_rb *= inv_count;
   for (int i = 0; i < c.count; ++i) {
-    const Vec3 offset = c.points[i].ra - c.center_ra;
-    c.points[i].twist_lever = (offset - offset.dot(c.normal) * c.normal).norm();
+    const Vec3 offset = m.points[i].anchor_a - center_ra;
+    c.points[i].twist_lever = (offset - offset.dot(n) * n).norm();
   }
-  // K = J M^-1 J^T for the two tangent rows at the centre, inverted in closed form.
-  const Vec3 ra0 = c.center_ra.cross(c.tangent[0]), ra1 = c.center_ra.cross(c.tangent[1]);
-  const Vec3 rb0 = c.center_rb.cross(c.tangent[0]), rb1 = c.center_rb.cross(c.tangent[1]);
-  const Real m_sum = c.inv_mass_a + c.inv_mass_b;
-  const Real k00 = m_sum + ra0.dot(c.inv_i_a * ra0) + rb0.dot(c.inv_i_b * rb0);
-  const Real k01 = ra0.dot(c.inv_i_a * ra1) + rb0.dot(c.inv_i_b * rb1);
-  const Real k11 = m_sum + ra1.dot(c.inv_i_a * ra1) + rb1.dot(c.inv_i_b * rb1);
+  for (int t = 0; t < 2; ++t) {
+    c.ra_t[t] = center_ra.cross(c.tangent[t]);
+    c.rb_t[t] = center_rb.cross(c.tangent[t]);
+    c.ia_ra_t[t] = ia * c.ra_t[t];
+    c.ib_rb_t[t] = ib * c.rb_t[t];
+  }
+  // K = J M^-1 J^T of the two tangent rows at the centre, inverted in closed form.
+  const Real m_sum = ma + mb;
+  const Real k00 = m_sum + c.ra_t[0].dot(c.ia_ra_t[0]) + c.rb_t[0].dot(c.ib_rb_t[0]);
+  const Real k01 = c.ra_t[0].dot(c.ia_ra_t[1]) + c.rb_t[0].dot(c.ib_rb_t[1]);
+  const Real k11 = m_sum + c.ra_t[1].dot(c.ia_ra_t[1]) + c.rb_t[1].dot(c.ib_rb_t[1]);
   const Real det = k00 * k11 - k01 * k01;
   const Real inv_det = det > 0 ? 1 / det : 0;
   c.tangent_inv_k[0] = k11 * inv_det;
   c.tangent_inv_k[1] = -k01 * inv_det;
   c.tangent_inv_k[2] = k00 * inv_det;
-  const Real k_twist = c.normal.dot(c.inv_i_a * c.normal) + c.normal.dot(c.inv_i_b * c.normal);
+  c.ia_n = ia * n;
+  c.ib_n = ib * n;
+  const Real k_twist = n.dot(c.ia_n) + n.dot(c.ib_n);
   c.twist_mass = k_twist > 0 ? 1 / k_twist : 0;
   c.tangent_impulse[0] = m.tangent_impulse[0];
   c.tangent_impulse[1] = m.tangent_impulse[1];
@@ -147,15 +166,14 @@ void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
   for (uint32_t i = begin; i < end; ++i) {
-    ContactConstraint& c = ctx.constraints[i];
+    const ContactConstraint& c = ctx.constraints[i];
     SolverBody& a = ctx.bodies[c.packet_a];
     SolverBody& b = ctx.bodies[c.packet_b];
     for (int k = 0; k < c.count; ++k) {
       const ConstraintPoint& cp = c.points[k];
-      apply_impulse(c, a, b, cp.ra, cp.rb, cp.normal_impulse * c.normal);
+      apply_row(c, a, b, c.normal, cp.ia_ra_n, cp.ib_rb_n, cp.normal_impulse);
     }
-    apply_impulse(c, a, b, c.center_ra, c.center_rb,
-                  c.tangent_impulse[0] * c.tangent[0] + c.tangent_impulse[1] * c.tangent[1]);
+    apply_friction(c, a, b, c.tangent_impulse[0], c.tangent_impulse[1]);
     apply_twist(c, a, b, c.twist_impulse);
   }
 }
@@ -166,18 +184,17 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     SolverBody& a = ctx.bodies[c.packet_a];
     SolverBody& b = ctx.bodies[c.packet_b];
     const Vec3 n = c.normal;
-    const Vec3 dp = b.dp - a.dp;
     {
       // Friction first, so the non-penetration rows, which carry the load, have the last word.
-      // Coulomb limits from this substep's accumulated normal impulses: the tangent impulse
-      // within mu * sum(lambda_n), the twist within mu * sum(lever_k * lambda_n_k).
+      // Coulomb limits from the accumulated normal impulses: the tangent impulse within
+      // mu * sum(lambda_n), the twist within mu * sum(lever_k * lambda_n_k).
       Real total_normal = 0, twist_limit = 0;
       for (int k = 0; k < c.count; ++k) {
         total_normal += c.points[k].normal_impulse;
         twist_limit += c.points[k].twist_lever * c.points[k].normal_impulse;
       }
-      const Vec3 dv = relative_velocity(a, b, c.center_ra, c.center_rb);
-      const Real v0 = dv.dot(c.tangent[0]), v1 = dv.dot(c.tangent[1]);
+      const Real v0 = row_velocity(a, b, c.tangent[0], c.ra_t[0], c.rb_t[0]);
+      const Real v1 = row_velocity(a, b, c.tangent[1], c.ra_t[1], c.rb_t[1]);
       Real t0 = c.tangent_impulse[0] - (c.tangent_inv_k[0] * v0 + c.tangent_inv_k[1] * v1);
       Real t1 = c.tangent_impulse[1] - (c.tangent_inv_k[1] * v0 + c.tangent_inv_k[2] * v1);
       const Real max_friction = c.friction * total_normal;
@@ -187,24 +204,22 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
         t0 *= scale;
         t1 *= scale;
       }
-      const Vec3 p =
-          (t0 - c.tangent_impulse[0]) * c.tangent[0] + (t1 - c.tangent_impulse[1]) * c.tangent[1];
+      apply_friction(c, a, b, t0 - c.tangent_impulse[0], t1 - c.tangent_impulse[1]);
       c.tangent_impulse[0] = t0;
       c.tangent_impulse[1] = t1;
-      apply_impulse(c, a, b, c.center_ra, c.center_rb, p);
 
-      const Real spin = c.normal.dot(b.w - a.w);
+      const Real spin = n.dot(b.w - a.w);
       const Real max_twist = c.friction * twist_limit;
       const Real twist = std::clamp(c.twist_impulse - c.twist_mass * spin, -max_twist, max_twist);
       apply_twist(c, a, b, twist - c.twist_impulse);
       c.twist_impulse = twist;
     }
+    const Real dp_n = n.dot(b.dp - a.dp);
     for (int k = 0; k < c.count; ++k) {
       ConstraintPoint& cp = c.points[k];
-      // Current separation from the pose change of both bodies since the step began, with the
-      // anchors carried by the rotation (Box2D v3): s = dot(d, n) + adjusted_separation.
-      const Vec3 d = dp + (b.dq * cp.rb) - (a.dq * cp.ra);
-      const Real s = d.dot(n) + cp.adjusted_separation;
+      // Current separation from the pose change since the step began, linearised in the
+      // rotation: s = s0 + n.(dp_b - dp_a) + (rb x n).dtheta_b - (ra x n).dtheta_a.
+      const Real s = cp.separation + dp_n + cp.rb_n.dot(b.dtheta) - cp.ra_n.dot(a.dtheta);
       Real bias = 0, mass_scale = 1, impulse_scale = 0;
       if (s > 0) {
         bias = s * ctx.inv_h;  // speculative: allow closing the gap within this substep only
@@ -213,13 +228,13 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
         mass_scale = c.softness.mass_scale;
         impulse_scale = c.softness.impulse_scale;
       }
-      const Real vn = relative_velocity(a, b, cp.ra, cp.rb).dot(n);
+      const Real vn = row_velocity(a, b, n, cp.ra_n, cp.rb_n);
       Real impulse = -cp.normal_mass * mass_scale * (vn + bias) - impulse_scale * cp.normal_impulse;
       const Real updated = std::max(cp.normal_impulse + impulse, Real(0));
       impulse = updated - cp.normal_impulse;
       cp.normal_impulse = updated;
       cp.max_normal_impulse = std::max(cp.max_normal_impulse, impulse);
-      apply_impulse(c, a, b, cp.ra, cp.rb, impulse * n);
+      apply_row(c, a, b, n, cp.ia_ra_n, cp.ib_rb_n, impulse);
     }
   }
 }
@@ -236,13 +251,13 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
       if (cp.relative_velocity > -ctx.restitution_threshold || cp.max_normal_impulse == 0) {
         continue;
       }
-      const Real vn = relative_velocity(a, b, cp.ra, cp.rb).dot(c.normal);
+      const Real vn = row_velocity(a, b, c.normal, cp.ra_n, cp.rb_n);
       Real impulse = -cp.normal_mass * (vn + c.restitution * cp.relative_velocity);
       const Real updated = std::max(cp.normal_impulse + impulse, Real(0));
       impulse = updated - cp.normal_impulse;
       cp.normal_impulse = updated;
       cp.max_normal_impulse = std::max(cp.max_normal_impulse, impulse);
-      apply_impulse(c, a, b, cp.ra, cp.rb, impulse * c.normal);
+      apply_row(c, a, b, c.normal, cp.ia_ra_n, cp.ib_rb_n, impulse);
     }
   }
 }

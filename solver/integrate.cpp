@@ -35,6 +35,7 @@ void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBo
     SolverBody& b = packets[i];
     const SolverBodyParams& p = params[i];
     b.dp += h * b.v;
+    b.dtheta += h * b.w;
     if (!p.gyroscopic) {
       b.dq = (rotation_from_angular_velocity(b.w, h) * b.dq).normalized();
       continue;

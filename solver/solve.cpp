@@ -89,6 +89,7 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
       b.v = bodies.linear_velocity(i);
       b.w = bodies.angular_velocity(i);
       b.dp.setZero();
+      b.dtheta.setZero();
       b.dq = Quat::Identity();
       const bool dynamic = bodies.is_dynamic(i);
       prm.inv_mass = dynamic ? bodies.inv_mass[i] : 0;

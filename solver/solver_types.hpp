@@ -27,6 +27,7 @@ struct alignas(16) SolverBody {
   Vec3 v = Vec3::Zero();       // m/s, world
   Vec3 w = Vec3::Zero();       // rad/s, world
   Vec3 dp = Vec3::Zero();      // m: position change since the step began
+  Vec3 dtheta = Vec3::Zero();  // rad: sum of h w over the substeps, the linearised rotation
   Quat dq = Quat::Identity();  // rotation since the step began (world: q = dq * q0)
 };
 
@@ -52,13 +53,17 @@ struct Softness {
 };
 Softness make_softness(Real hertz, Real damping_ratio, Real h);
 
+// One non-penetration row in Jacobian form, J = [-n, -(ra x n), n, (rb x n)], with the
+// products that the solve needs precomputed once per step.
 struct ConstraintPoint {
-  Vec3 ra = Vec3::Zero();  // m, world at step start: point minus A's centre of mass
-  Vec3 rb = Vec3::Zero();
-  Real adjusted_separation = 0;  // m: separation - dot(rb - ra, n), so s = dot(d, n) + this
-  Real normal_mass = 0;          // kg: 1 / (J M^-1 J^T) along the normal
-  Real twist_lever = 0;          // m: distance from the manifold centre (twist friction limit)
-  Real normal_impulse = 0;       // N s, accumulated over the step (warm started)
+  Vec3 ra_n = Vec3::Zero();     // m: ra x n (ra = point minus A's centre of mass, world)
+  Vec3 rb_n = Vec3::Zero();     // m: rb x n
+  Vec3 ia_ra_n = Vec3::Zero();  // 1/(kg m): I_a^-1 (ra x n)
+  Vec3 ib_rb_n = Vec3::Zero();  // 1/(kg m): I_b^-1 (rb x n)
+  Real separation = 0;          // m at the step's start; s = this + J . (dp, dtheta)
+  Real normal_mass = 0;         // kg: 1 / (J M^-1 J^T)
+  Real twist_lever = 0;         // m: distance from the manifold centre (twist friction limit)
+  Real normal_impulse = 0;      // N s, accumulated over the substep (warm started)
   Real max_normal_impulse = 0;
   Real relative_velocity = 0;  // m/s along n before the solve (negative: approaching)
 };
@@ -69,13 +74,15 @@ struct ContactConstraint {
   int count = 0;
   bool write_a = false, write_b = false;  // dynamic bodies only are written
   Real inv_mass_a = 0, inv_mass_b = 0;
-  SymMat3 inv_i_a, inv_i_b;
   Vec3 normal = Vec3::UnitY();
-  Vec3 tangent[2] = {Vec3::UnitX(), Vec3::UnitZ()};
   Real friction = 0, restitution = 0;
   Softness softness;
-  // Central friction: at the mean of the points, a coupled 2x2 tangent block and a twist row.
-  Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();  // m, world
+  // Central friction (Gregorius, GDC 2015): at the mean of the points, a coupled 2x2 tangent
+  // block and a twist row about the normal, Jacobians precomputed like the points'.
+  Vec3 tangent[2] = {Vec3::UnitX(), Vec3::UnitZ()};
+  Vec3 ra_t[2], rb_t[2];                          // center_ra x t_k, center_rb x t_k
+  Vec3 ia_ra_t[2], ib_rb_t[2];                    // I^-1 of those
+  Vec3 ia_n = Vec3::Zero(), ib_n = Vec3::Zero();  // I^-1 n, for the twist
   Real tangent_inv_k[3] = {0, 0, 0};  // inverse of the 2x2 tangent mass matrix: 00, 01, 11
   Real twist_mass = 0;                // kg m^2
   Real tangent_impulse[2] = {0, 0};   // N s
