@@ -49,6 +49,42 @@ void warm_start(const Manifold& old, Manifold& m) {
   }
 }
 
+// Body pair cache (Jolt's): while B's pose relative to A stays within 1 mm and 2 degrees of the
+// pose the points were computed at, the previous manifold is carried along with the bodies
+// instead of running the exact test again. The tolerance is measured against the pose of the
+// exact test, not the last reuse, so the error cannot accumulate.
+constexpr Real kCacheDistance = Real(2e-4);            // m
+constexpr Real kCacheCosHalfAngle = Real(0.99999048);  // cos(0.25 degree): 0.5 degree
+
+bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& xb, Manifold& m) {
+  const Vec3 relative = xa.rotation.conjugate() * (xb.position - xa.position);
+  if ((relative - old.relative_position).squaredNorm() > kCacheDistance * kCacheDistance) {
+    return false;
+  }
+  const Quat rel_now = xa.rotation.conjugate() * xb.rotation;
+  const Quat rel_then = old.orientation_a.conjugate() * old.orientation_b;
+  if (std::abs(rel_now.dot(rel_then)) < kCacheCosHalfAngle) return false;
+  const Quat turn_a = xa.rotation * old.orientation_a.conjugate();  // since the exact test
+  const Quat turn_b = xb.rotation * old.orientation_b.conjugate();
+  const Vec3 normal_in_a = old.orientation_a.conjugate() * old.normal;
+  m = old;  // key, bodies, impulses for the warm start, and the poses of the exact test
+  m.normal = (xa.rotation * normal_in_a).normalized();
+  for (int k = 0; k < m.point_count; ++k) {
+    ContactPoint& p = m.points[k];
+    const ContactPoint& q = old.points[k];
+    p.anchor_a = turn_a * q.anchor_a;
+    p.anchor_b = turn_b * q.anchor_b;
+    // The two material points, seen from A: their gap along A's normal changed by as much as
+    // their separation vector did.
+    const Vec3 gap_then =
+        old.relative_position + old.orientation_a.conjugate() * (q.anchor_b - q.anchor_a);
+    const Vec3 gap_now = relative + xa.rotation.conjugate() * (p.anchor_b - p.anchor_a);
+    p.separation = q.separation + normal_in_a.dot(gap_now - gap_then);
+    p.max_normal_impulse = 0;
+  }
+  return true;
+}
+
 }  // namespace
 
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
@@ -74,6 +110,11 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       m.point_count = 0;
       const Transform xa{bodies.position(a), bodies.orientation(a)};
       const Transform xb{bodies.position(b), bodies.orientation(b)};
+      while (prev_it != previous.end() && prev_it->key < key) ++prev_it;
+      const Manifold* old =
+          (prev_it != previous.end() && prev_it->key == key && prev_it->body_a == a) ? &*prev_it
+                                                                                     : nullptr;
+      if (old != nullptr && old->point_count > 0 && reuse_manifold(*old, xa, xb, m)) continue;
       const Real approach =
           (bodies.linear_velocity(a) - bodies.linear_velocity(b)).norm() * settings.dt;
       collide(shapes[bodies.shape[a]], xa, shapes[bodies.shape[b]], xb,
@@ -85,10 +126,10 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       }
       m.tangent_impulse[0] = m.tangent_impulse[1] = 0;
       m.twist_impulse = 0;
-      while (prev_it != previous.end() && prev_it->key < key) ++prev_it;
-      if (m.point_count > 0 && prev_it != previous.end() && prev_it->key == key) {
-        warm_start(*prev_it, m);
-      }
+      m.orientation_a = xa.rotation;
+      m.orientation_b = xb.rotation;
+      m.relative_position = xa.rotation.conjugate() * (xb.position - xa.position);
+      if (m.point_count > 0 && old != nullptr) warm_start(*old, m);
     }
   });
   // perf: compaction is one serial pass of copies; the slots are already in key order.

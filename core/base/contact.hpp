@@ -31,6 +31,11 @@ struct Manifold {
   // normal, carried to the next step like the normal impulses.
   Real tangent_impulse[2] = {0, 0};  // N s, along the solver's tangent basis of `normal`
   Real twist_impulse = 0;            // N m s, about `normal`
+  // Poses when the points were last computed by the exact test, for reusing them while the
+  // pair's relative pose stays within a small tolerance (Jolt's body pair cache).
+  Quat orientation_a = Quat::Identity();  // A's principal frame to world at that time
+  Quat orientation_b = Quat::Identity();
+  Vec3 relative_position = Vec3::Zero();  // m: B's centre of mass minus A's, in A's frame
 };
 
 }  // namespace elan::detail

@@ -218,17 +218,36 @@ ContactPoint read_point(ByteReader& r) {
   return p;
 }
 
-// The manifold's friction impulses, carried to the next step like the normal impulses.
+// The manifold's friction impulses, carried to the next step like the normal impulses, and the
+// poses its points were computed at (they decide whether the next step reuses them).
+void write_quat(ByteWriter& w, const Quat& q) {
+  w.real(q.w());
+  w.real(q.x());
+  w.real(q.y());
+  w.real(q.z());
+}
+
+Quat read_quat(ByteReader& r) {
+  const Real qw = r.real(), qx = r.real(), qy = r.real(), qz = r.real();
+  return Quat(qw, qx, qy, qz);
+}
+
 void write_friction(ByteWriter& w, const Manifold& m) {
   w.real(m.tangent_impulse[0]);
   w.real(m.tangent_impulse[1]);
   w.real(m.twist_impulse);
+  write_quat(w, m.orientation_a);
+  write_quat(w, m.orientation_b);
+  w.vec3(m.relative_position);
 }
 
 void read_friction(ByteReader& r, Manifold& m) {
   m.tangent_impulse[0] = r.real();
   m.tangent_impulse[1] = r.real();
   m.twist_impulse = r.real();
+  m.orientation_a = read_quat(r);
+  m.orientation_b = read_quat(r);
+  m.relative_position = r.vec3();
 }
 
 // Everything a snapshot holds, decoded and checked before any of it reaches a world.
