@@ -34,6 +34,13 @@ Softness make_softness(Real hertz, Real damping_ratio, Real h) {
 
 namespace {
 
+// Radius of the contact patch that a point contact stands for, m: the twist friction of a
+// manifold is at least mu * kTorsionPatch * sum(lambda_n). An ideal point contact has no
+// torsional friction, so a sphere pinched between two bodies would spin about the normal for
+// ever and keep its island awake; real contacts have a patch (MuJoCo's default torsional
+// friction length is the same 5 mm).
+constexpr Real kTorsionPatch = Real(0.005);
+
 // Deterministic tangent basis from the normal (pick the axis least aligned with n, as Box2D's
 // b2ComputeBasis does): the same normal always gives the same basis, so friction impulses carried
 // to the next step keep their meaning.
@@ -209,7 +216,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       c.tangent_impulse[1] = t1;
 
       const Real spin = n.dot(b.w - a.w);
-      const Real max_twist = c.friction * twist_limit;
+      const Real max_twist = c.friction * std::max(twist_limit, kTorsionPatch * total_normal);
       const Real twist = std::clamp(c.twist_impulse - c.twist_mass * spin, -max_twist, max_twist);
       apply_twist(c, a, b, twist - c.twist_impulse);
       c.twist_impulse = twist;

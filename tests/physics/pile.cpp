@@ -109,12 +109,11 @@ void expect_settles(World& world, const Container& c, Real dt, Real seconds) {
       << "pile still moving after " << seconds << " s, awake " << world.last_step().awake;
 }
 
-// Known failure, issue 5 open: after 15 s KE is 5.26 J (limit 1 J) with 994 of 1000 awake; no
-// NaN, nothing escapes. Cause: a one-point contact has no twist lever, so the solver has no
-// torsional friction for it; spheres (and capsule tips) pinched between two bodies along one
-// normal spin about it for ever (sphere 15: 0.99 rad/s about y between ground and box 79, |w|r
-// 0.28 m/s > 0.05 sleep threshold), hold 4.3 of the 5.3 J and keep the pile's one island awake.
-TEST(Pile, DISABLED_Pile1kSettlesInItsContainer) {
+// Regression: a one-point contact had no twist lever, hence no torsional friction, so spheres
+// pinched between two bodies spun about the normal for ever (|w| r above the sleep threshold)
+// and kept the pile's single island awake: 5.26 J and 994 of 1000 awake after 15 s. The solver
+// now gives every manifold a 5 mm torsional patch.
+TEST(Pile, Pile1kSettlesInItsContainer) {
   Real dt = 0;
   World world = test::load_world("pile1k.json", 2, dt);
   // scenes/pile1k.json: walls' inner faces at |x|, |z| = 4.75.
@@ -123,9 +122,7 @@ TEST(Pile, DISABLED_Pile1kSettlesInItsContainer) {
 
 // About 2k bodies in Release; under the sanitizers (10x slower) a 500-body pile of the same
 // mix, so the run stays minutes, not tens of minutes.
-// Known failure, issue 5 open: KE 12.6 J (0.0062 J per body) after 15 s, 2021 of 2028 awake;
-// same cause as above.
-TEST(Pile, DISABLED_MixedPileSettlesInItsContainer) {
+TEST(Pile, MixedPileSettlesInItsContainer) {
   WorldDef def;
   def.threads = 2;
   World world(def);
