@@ -46,9 +46,7 @@ void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& o
   out.centre = centre;
 }
 
-// Face of the directed edge u -> v: each undirected hull edge appears once in each direction in
-// the face loops, so the faces on both sides are the owners of (u -> v) and (v -> u). A CSR list
-// of outgoing loop edges per vertex finds them in O(loop length) overall.
+// The hull placed in the world; its edge-to-face adjacency was built once with the hull.
 void make_hull(const ConvexHull& hull, const Mat3& r, const Vec3& centre, Polyhedron& out) {
   const int nv = int(hull.vertices.size());
   const int nf = int(hull.faces.size());
@@ -58,39 +56,16 @@ void make_hull(const ConvexHull& hull, const Mat3& r, const Vec3& centre, Polyhe
   for (int i = 0; i < nv; ++i) out.vertices[i] = r * hull.vertices[i] + centre;
   out.face_vertices = hull.face_vertices.data();
 
-  std::array<uint16_t, kMaxPolyVertices + 1> start{};
-  std::array<uint16_t, kMaxPolyLoop> next_vertex;
-  std::array<uint16_t, kMaxPolyLoop> face_of;
-  std::array<uint16_t, kMaxPolyVertices> fill{};
   for (int f = 0; f < nf; ++f) {
     const HullFace& face = hull.faces[f];
     out.normals[f] = r * face.normal;
     out.offsets[f] = out.normals[f].dot(out.vertices[hull.face_vertices[face.first]]);
     out.face_first[f] = face.first;
     out.face_count_of[f] = face.count;
-    for (uint32_t k = 0; k < face.count; ++k) ++start[hull.face_vertices[face.first + k] + 1];
   }
-  for (int i = 0; i < nv; ++i) start[i + 1] = uint16_t(start[i + 1] + start[i]);
-  for (int f = 0; f < nf; ++f) {
-    const HullFace& face = hull.faces[f];
-    for (uint32_t k = 0; k < face.count; ++k) {
-      const uint32_t u = hull.face_vertices[face.first + k];
-      const uint32_t v = hull.face_vertices[face.first + (k + 1) % face.count];
-      const int slot = start[u] + fill[u]++;
-      next_vertex[slot] = uint16_t(v);
-      face_of[slot] = uint16_t(f);
-    }
-  }
-  const auto find_face = [&](uint32_t u, uint32_t v) -> uint32_t {
-    for (int s = start[u]; s < start[u + 1]; ++s) {
-      if (next_vertex[s] == v) return face_of[s];
-    }
-    return 0;
-  };
   for (int e = 0; e < out.edge_count; ++e) {
-    const auto [u, v] = hull.edges[e];
-    out.edges[e] = {u, v};
-    out.edge_faces[e] = {find_face(u, v), find_face(v, u)};
+    out.edges[e] = hull.edges[e];
+    out.edge_faces[e] = hull.edge_faces[e];
   }
   out.centre = centre;
 }

@@ -379,7 +379,31 @@ ConvexHull build_convex_hull(std::span<const Vec3> points) {
     hull.faces.push_back(face);
   }
   for (const auto& e : edges) hull.edges.push_back({e.first.first, e.first.second});
+  compute_edge_faces(hull);
   return hull;
+}
+
+void compute_edge_faces(ConvexHull& hull) {
+  // Directed edge u -> v of every face loop, sorted, then one lookup per undirected edge.
+  std::vector<std::array<uint32_t, 3>> directed;  // u, v, face
+  for (uint32_t f = 0; f < hull.faces.size(); ++f) {
+    const HullFace& face = hull.faces[f];
+    for (uint32_t k = 0; k < face.count; ++k) {
+      directed.push_back({hull.face_vertices[face.first + k],
+                          hull.face_vertices[face.first + (k + 1) % face.count], f});
+    }
+  }
+  std::sort(directed.begin(), directed.end());
+  const auto face_of = [&](uint32_t u, uint32_t v) -> uint32_t {
+    const auto it =
+        std::lower_bound(directed.begin(), directed.end(), std::array<uint32_t, 3>{u, v, 0});
+    return (it != directed.end() && (*it)[0] == u && (*it)[1] == v) ? (*it)[2] : 0;
+  };
+  hull.edge_faces.resize(hull.edges.size());
+  for (std::size_t e = 0; e < hull.edges.size(); ++e) {
+    const auto [u, v] = hull.edges[e];
+    hull.edge_faces[e] = {face_of(u, v), face_of(v, u)};
+  }
 }
 
 ConvexHull transform_hull(const ConvexHull& hull, const Vec3& origin, const Mat3& rotation) {

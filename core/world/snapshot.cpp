@@ -124,6 +124,7 @@ detail::ConvexHull read_hull(ByteReader& r) {
     if (e[0] >= h.vertices.size() || e[1] >= h.vertices.size()) r.fail("hull edge out of range");
   }
   if (h.vertices.size() < 4 || h.faces.size() < 4) r.fail("hull has too few vertices or faces");
+  detail::compute_edge_faces(h);
   return h;
 }
 
