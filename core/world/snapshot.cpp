@@ -6,9 +6,9 @@
 #include <bit>
 #include <cmath>
 
+#include "core/base/body_store.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/world/byte_io.hpp"
-#include "core/world/snapshot_columns.hpp"
 #include "core/world/world_state.hpp"
 
 namespace elan {
@@ -330,10 +330,10 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
     if (d.shape_destroyed[k] > 1) r.fail("bad shape destroyed flag");
   }
 
-  const uint32_t n = r.count(detail::snapshot_bytes_per_body(), "body");
+  const uint32_t n = r.count(detail::BodyStore{}.bytes_per_body(), "body");
   d.bodies.reserve(n);
   for (uint32_t i = 0; i < n; ++i) d.bodies.push_back();
-  detail::visit_snapshot_columns(d.bodies, [&r](auto& column) {
+  detail::for_each_column(d.bodies, [&r](auto& column) {
     using T = typename std::remove_reference_t<decltype(column)>::value_type;
     for (T& v : column) v = read_value<T>(r);
   });
@@ -482,7 +482,7 @@ uint64_t bits_of(T v) {
 std::vector<uint8_t> save_snapshot(const World& world) {
   const WorldState& s = world.state();
   std::vector<uint8_t> out;
-  out.reserve(4096 + s.bodies.size() * detail::snapshot_bytes_per_body() +
+  out.reserve(4096 + s.bodies.size() * detail::BodyStore{}.bytes_per_body() +
               s.contacts.size() * (32 + detail::kMaxManifoldPoints * 52));
   ByteWriter w(out);
   begin(w, kSnapshotMagic);
@@ -502,7 +502,7 @@ std::vector<uint8_t> save_snapshot(const World& world) {
   }
 
   w.u32(uint32_t(s.bodies.size()));
-  detail::visit_snapshot_columns(s.bodies, [&w](const auto& column) {
+  detail::for_each_column(s.bodies, [&w](const auto& column) {
     for (auto v : column) write_value(w, v);
   });
 
