@@ -3,8 +3,11 @@
 
 #include "elan/defs.hpp"
 #include "elan/error.hpp"
+#include "elan/events.hpp"
 #include "elan/ids.hpp"
 #include "elan/math.hpp"
 #include "elan/profile.hpp"
+#include "elan/queries.hpp"
 #include "elan/scene.hpp"
+#include "elan/snapshot.hpp"
 #include "elan/world.hpp"
