@@ -171,6 +171,65 @@ void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore
   c.twist_impulse = m.twist_impulse;
 }
 
+void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
+                      std::span<const Manifold> manifolds, uint32_t begin, uint32_t end) {
+  for (uint32_t i = begin; i < end; ++i) {
+    ContactConstraint& c = ctx.constraints[i];
+    // Against a static or kinematic body the impulse is external anyway: keep the arms.
+    if (!(c.write_a && c.write_b)) continue;
+    const Manifold& m = manifolds[c.manifold];
+    const SolverBody& a = ctx.bodies[c.packet_a];
+    const SolverBody& b = ctx.bodies[c.packet_b];
+    const SymMat3 ia = c.write_a ? ctx.params[c.packet_a].inv_inertia : SymMat3{};
+    const SymMat3 ib = c.write_b ? ctx.params[c.packet_b].inv_inertia : SymMat3{};
+    const Vec3& n = c.normal;
+    // Centres now, relative to A's centre at the step's start (keeps the numbers small).
+    const Vec3 xa = a.dp;
+    const Vec3 xb = bodies.position(m.body_b) - bodies.position(m.body_a) + b.dp;
+    const Real dp_n = n.dot(b.dp - a.dp);
+    Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
+    for (int k = 0; k < c.count; ++k) {
+      ConstraintPoint& cp = c.points[k];
+      const Real s = cp.separation + dp_n + cp.rb_n.dot(b.dtheta) - cp.ra_n.dot(a.dtheta);
+      // The contact point of the step's start, carried by the mean translation of the two
+      // bodies (not their rotation: a rolling sphere's contact stays under its centre).
+      const Vec3 start_b = xb - b.dp;
+      const Vec3 shared = Real(0.5) * (m.points[k].anchor_a + start_b + m.points[k].anchor_b) +
+                          Real(0.5) * (a.dp + b.dp);
+      const Vec3 ra = shared - xa, rb = shared - xb;
+      cp.ra_n = ra.cross(n);
+      cp.rb_n = rb.cross(n);
+      cp.ia_ra_n = ia * cp.ra_n;
+      cp.ib_rb_n = ib * cp.rb_n;
+      const Real k_n =
+          c.inv_mass_a + c.inv_mass_b + cp.ra_n.dot(cp.ia_ra_n) + cp.rb_n.dot(cp.ib_rb_n);
+      cp.normal_mass = k_n > 0 ? 1 / k_n : 0;
+      // Same separation as before, expressed with the new arms.
+      cp.separation = s - (dp_n + cp.rb_n.dot(b.dtheta) - cp.ra_n.dot(a.dtheta));
+      center_ra += ra;
+      center_rb += rb;
+    }
+    const Real inv_count = c.count > 0 ? Real(1) / Real(c.count) : Real(0);
+    center_ra *= inv_count;
+    center_rb *= inv_count;
+    for (int t = 0; t < 2; ++t) {
+      c.ra_t[t] = center_ra.cross(c.tangent[t]);
+      c.rb_t[t] = center_rb.cross(c.tangent[t]);
+      c.ia_ra_t[t] = ia * c.ra_t[t];
+      c.ib_rb_t[t] = ib * c.rb_t[t];
+    }
+    const Real m_sum = c.inv_mass_a + c.inv_mass_b;
+    const Real k00 = m_sum + c.ra_t[0].dot(c.ia_ra_t[0]) + c.rb_t[0].dot(c.ib_rb_t[0]);
+    const Real k01 = c.ra_t[0].dot(c.ia_ra_t[1]) + c.rb_t[0].dot(c.ib_rb_t[1]);
+    const Real k11 = m_sum + c.ra_t[1].dot(c.ia_ra_t[1]) + c.rb_t[1].dot(c.ib_rb_t[1]);
+    const Real det = k00 * k11 - k01 * k01;
+    const Real inv_det = det > 0 ? 1 / det : 0;
+    c.tangent_inv_k[0] = k11 * inv_det;
+    c.tangent_inv_k[1] = -k01 * inv_det;
+    c.tangent_inv_k[2] = k00 * inv_det;
+  }
+}
+
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
   for (uint32_t i = begin; i < end; ++i) {
     const ContactConstraint& c = ctx.constraints[i];

@@ -35,6 +35,14 @@ void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore
                      ContactConstraint& out);
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
+// Re-places the lever arms of every point between two dynamic bodies at one shared point: the
+// step's contact point moved by the two bodies' mean translation, keeping the current
+// separation. With arms fixed at the step's start, once the bodies have slid apart the two
+// halves of an impulse act at different points and angular momentum about any origin changes by
+// (dp_b - dp_a) x P; with one shared point it cannot. Called before the first warm start and
+// after every position update of the substeps. Writes the constraints only.
+void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
+                      std::span<const Manifold> manifolds, uint32_t begin, uint32_t end);
 void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, bool use_bias);
 void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // Copies accumulated impulses back into the manifolds (for next step's warm start and events).

@@ -29,11 +29,11 @@ void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverB
   }
 }
 
-void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
+void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyParams> params,
                          const BodyStore& bodies, Real h, uint32_t begin, uint32_t end) {
   for (uint32_t i = begin; i < end; ++i) {
     SolverBody& b = packets[i];
-    const SolverBodyParams& p = params[i];
+    SolverBodyParams& p = params[i];
     b.dp += h * b.v;
     b.dtheta += h * b.w;
     if (!p.gyroscopic) {
@@ -53,6 +53,9 @@ void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBo
     b.dq = (rotation_from_angular_velocity(w_mid, h) * b.dq).normalized();
     const Quat after = b.dq * q0;
     b.w = after * (after.conjugate() * l_world).cwiseQuotient(d);
+    // Impulses from here on change w through the inertia of the current orientation, so that
+    // the L read back above next substep grows by exactly r x P.
+    p.inv_inertia = rotate_diagonal(after, d.cwiseInverse());
   }
 }
 

@@ -19,8 +19,9 @@ void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverB
 // dp += h v; dq advanced by the exact rotation of w over h. For anisotropic dynamic bodies the
 // angular velocity is then re-derived from the conserved world angular momentum,
 // w' = I(q')^-1 I(q) w (the body spins "from momentum": L is unchanged by the rotation update,
-// so a torque-free body conserves L and shows the intermediate-axis flip).
-void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
+// so a torque-free body conserves L and shows the intermediate-axis flip). Gyroscopic bodies'
+// params[i].inv_inertia is updated to the new orientation.
+void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyParams> params,
                          const BodyStore& bodies, Real h, uint32_t begin, uint32_t end);
 
 // Rotation by angle |w| h about w, as a unit quaternion (exact exponential map).

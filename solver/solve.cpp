@@ -20,6 +20,7 @@ constexpr uint32_t kBodyBlock = 128;
 
 enum StageKind : uint32_t {
   kIntegrateVelocities,
+  kRefreshContacts,
   kWarmStart,
   kSolve,
   kIntegratePositions,
@@ -158,16 +159,20 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
       stages.push_back({1, kind, kColorCount});
     }
   };
+  const uint32_t constraint_blocks =
+      uint32_t(block_count(st.constraints.size(), kConstraintBlock * 4));
   for (int s = 0; s < settings.substeps; ++s) {
     stages.push_back({body_blocks, kIntegrateVelocities, 0});
+    if (s == 0) stages.push_back({constraint_blocks, kRefreshContacts, 0});
     add_constraint_pass(kWarmStart);
     for (int it = 0; it < settings.iterations; ++it) add_constraint_pass(kSolve);
     stages.push_back({body_blocks, kIntegratePositions, 0});
+    // The bodies just moved: every later impulse of this step uses arms placed after this.
+    stages.push_back({constraint_blocks, kRefreshContacts, 0});
     add_constraint_pass(kRelax);
   }
   add_constraint_pass(kRestitution);
-  stages.push_back(
-      {uint32_t(block_count(st.constraints.size(), kConstraintBlock * 4)), kStoreImpulses, 0});
+  stages.push_back({constraint_blocks, kStoreImpulses, 0});
 
   const Real h = ctx.h;
   auto work = [&](const StageSpec& stage, uint32_t block) {
@@ -182,11 +187,16 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
       }
       return;
     }
-    if (stage.kind == kStoreImpulses) {
+    if (stage.kind == kStoreImpulses || stage.kind == kRefreshContacts) {
+      // Over all constraints in fixed blocks: each writes only its own constraint.
       const uint32_t begin = block * kConstraintBlock * 4;
       const uint32_t end =
           std::min<uint32_t>(uint32_t(st.constraints.size()), begin + kConstraintBlock * 4);
-      store_impulses(ctx, begin, end, contacts);
+      if (stage.kind == kStoreImpulses) {
+        store_impulses(ctx, begin, end, contacts);
+      } else {
+        refresh_contacts(ctx, bodies, contacts, begin, end);
+      }
       return;
     }
     const uint32_t color_begin = st.color_start[stage.arg];
