@@ -98,6 +98,27 @@ inline void apply_twist(const ContactConstraint& c, SolverBody& a, SolverBody& b
   if (c.write_b) b.w += twist * c.ib_n;
 }
 
+// The friction rows' Jacobians at the manifold centre and the inverse of their 2x2 mass matrix
+// K = J M^-1 J^T, inverted in closed form.
+void set_friction_rows(ContactConstraint& c, const Vec3& center_ra, const Vec3& center_rb,
+                       const SymMat3& ia, const SymMat3& ib) {
+  for (int t = 0; t < 2; ++t) {
+    c.ra_t[t] = center_ra.cross(c.tangent[t]);
+    c.rb_t[t] = center_rb.cross(c.tangent[t]);
+    c.ia_ra_t[t] = ia * c.ra_t[t];
+    c.ib_rb_t[t] = ib * c.rb_t[t];
+  }
+  const Real m_sum = c.inv_mass_a + c.inv_mass_b;
+  const Real k00 = m_sum + c.ra_t[0].dot(c.ia_ra_t[0]) + c.rb_t[0].dot(c.ib_rb_t[0]);
+  const Real k01 = c.ra_t[0].dot(c.ia_ra_t[1]) + c.rb_t[0].dot(c.ib_rb_t[1]);
+  const Real k11 = m_sum + c.ra_t[1].dot(c.ia_ra_t[1]) + c.rb_t[1].dot(c.ib_rb_t[1]);
+  const Real det = k00 * k11 - k01 * k01;
+  const Real inv_det = det > 0 ? 1 / det : 0;
+  c.tangent_inv_k[0] = k11 * inv_det;
+  c.tangent_inv_k[1] = -k01 * inv_det;
+  c.tangent_inv_k[2] = k00 * inv_det;
+}
+
 }  // namespace
 
 void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
@@ -151,22 +172,7 @@ void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore
     const Vec3 offset = m.points[i].anchor_a - center_ra;
     c.points[i].twist_lever = (offset - offset.dot(n) * n).norm();
   }
-  for (int t = 0; t < 2; ++t) {
-    c.ra_t[t] = center_ra.cross(c.tangent[t]);
-    c.rb_t[t] = center_rb.cross(c.tangent[t]);
-    c.ia_ra_t[t] = ia * c.ra_t[t];
-    c.ib_rb_t[t] = ib * c.rb_t[t];
-  }
-  // K = J M^-1 J^T of the two tangent rows at the centre, inverted in closed form.
-  const Real m_sum = ma + mb;
-  const Real k00 = m_sum + c.ra_t[0].dot(c.ia_ra_t[0]) + c.rb_t[0].dot(c.ib_rb_t[0]);
-  const Real k01 = c.ra_t[0].dot(c.ia_ra_t[1]) + c.rb_t[0].dot(c.ib_rb_t[1]);
-  const Real k11 = m_sum + c.ra_t[1].dot(c.ia_ra_t[1]) + c.rb_t[1].dot(c.ib_rb_t[1]);
-  const Real det = k00 * k11 - k01 * k01;
-  const Real inv_det = det > 0 ? 1 / det : 0;
-  c.tangent_inv_k[0] = k11 * inv_det;
-  c.tangent_inv_k[1] = -k01 * inv_det;
-  c.tangent_inv_k[2] = k00 * inv_det;
+  set_friction_rows(c, center_ra, center_rb, ia, ib);
   c.ia_n = ia * n;
   c.ib_n = ib * n;
   const Real k_twist = n.dot(c.ia_n) + n.dot(c.ib_n);
@@ -223,21 +229,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     const Real inv_count = c.count > 0 ? Real(1) / Real(c.count) : Real(0);
     center_ra *= inv_count;
     center_rb *= inv_count;
-    for (int t = 0; t < 2; ++t) {
-      c.ra_t[t] = center_ra.cross(c.tangent[t]);
-      c.rb_t[t] = center_rb.cross(c.tangent[t]);
-      c.ia_ra_t[t] = ia * c.ra_t[t];
-      c.ib_rb_t[t] = ib * c.rb_t[t];
-    }
-    const Real m_sum = c.inv_mass_a + c.inv_mass_b;
-    const Real k00 = m_sum + c.ra_t[0].dot(c.ia_ra_t[0]) + c.rb_t[0].dot(c.ib_rb_t[0]);
-    const Real k01 = c.ra_t[0].dot(c.ia_ra_t[1]) + c.rb_t[0].dot(c.ib_rb_t[1]);
-    const Real k11 = m_sum + c.ra_t[1].dot(c.ia_ra_t[1]) + c.rb_t[1].dot(c.ib_rb_t[1]);
-    const Real det = k00 * k11 - k01 * k01;
-    const Real inv_det = det > 0 ? 1 / det : 0;
-    c.tangent_inv_k[0] = k11 * inv_det;
-    c.tangent_inv_k[1] = -k01 * inv_det;
-    c.tangent_inv_k[2] = k00 * inv_det;
+    set_friction_rows(c, center_ra, center_rb, ia, ib);
   }
 }
 

@@ -27,7 +27,11 @@ struct SolveSettings {
   int iterations = 3;  // solve passes per substep (relax is one pass)
   Vec3 gravity = Vec3(0, Real(-9.81), 0);
   bool allow_sleep = true;
-  Real contact_hertz = 40;  // Hz, capped at a quarter of the substep rate
+  // Hz, capped at a quarter of the substep rate. A soft contact under a steady load W settles
+  // at a penetration 2 W / (m omega^2) (m the body's mass, omega = 2 pi hertz), so a tower of N
+  // equal cubes compresses g N (N - 1) / omega^2 in all: 4.5 cm for 20 cubes at 46 Hz, 5.9 cm at
+  // 40 Hz. Much stiffer (60 Hz) lets a base-20 pyramid creep at 3 solver passes per substep.
+  Real contact_hertz = 46;
   Real contact_damping_ratio = 10;
   Real max_push_velocity = 3;         // m/s
   Real restitution_threshold = 1;     // m/s

@@ -113,11 +113,13 @@ void expect_settles(World& world, const Container& c, Real dt, Real seconds) {
 // pinched between two bodies spun about the normal for ever (|w| r above the sleep threshold)
 // and kept the pile's single island awake: 5.26 J and 994 of 1000 awake after 15 s. The solver
 // now gives every manifold a 5 mm torsional patch.
-// Known failure, issue 5 open: after 15 s KE is 3.8 J (0.0038 J per body, limit 1e-3) with
-// 995 of 1000 awake; no NaN, nothing escapes. Settling of this pile is chaotic (a 1 cm torsion
-// patch passes this test and fails the 2k pile); what keeps the island awake is a hull-hull
-// contact whose manifold cycles between 2 and 1 points every few steps (hull 206 on box 142).
-TEST(Pile, DISABLED_Pile1kSettlesInItsContainer) {
+// Regression: a one-point contact had no twist lever, hence no torsional friction, so spheres
+// pinched between two bodies spun about the normal for ever (|w| r above the sleep threshold)
+// and kept the pile's single island awake: 5.26 J and 994 of 1000 awake after 15 s. The solver
+// now gives every manifold a 5 mm torsional patch. Settling of this pile is sensitive to solver
+// changes (a hull contact alternating between 2 and 1 points keeps re-waking its island): when
+// this fails, look there first.
+TEST(Pile, Pile1kSettlesInItsContainer) {
   Real dt = 0;
   World world = test::load_world("pile1k.json", 2, dt);
   // scenes/pile1k.json: walls' inner faces at |x|, |z| = 4.75.
