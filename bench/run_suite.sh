@@ -62,4 +62,8 @@ uptime >"$raw/uptime_end.txt"
 
 python3 "$root/bench/report.py" --raw "$raw" --out "$out" --build "$build" --mode "$mode" \
   --rss-steps "$rss_steps"
+# gnuplot ends lines with spaces and the file with a blank line; keep the committed SVGs clean.
+for svg in "$out"/*.svg; do
+  [ -f "$svg" ] && sed -i -e 's/[[:space:]]*$//' -e '${/^$/d}' "$svg"
+done
 echo "results: $out/summary.md"

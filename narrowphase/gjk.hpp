@@ -7,10 +7,10 @@
 namespace elan::detail {
 
 struct GjkResult {
-  Real distance = 0;          // m, between the core shapes (0 when they overlap)
+  Real distance = 0;            // m, between the core shapes (0 when they overlap)
   Vec3 point_a = Vec3::Zero();  // world: closest point on A's core
   Vec3 point_b = Vec3::Zero();  // world: closest point on B's core
-  bool overlap = false;       // cores intersect: use EPA for depth
+  bool overlap = false;         // cores intersect: use EPA for depth
   int iterations = 0;
 };
 
@@ -20,7 +20,7 @@ GjkResult gjk_distance(const Shape& a, const Transform& xa, const Shape& b, cons
                        bool include_radius = true, const Vec3* initial_direction = nullptr);
 
 struct EpaResult {
-  Real depth = 0;             // m, positive
+  Real depth = 0;               // m, positive
   Vec3 normal = Vec3::UnitY();  // world, from A towards B
   Vec3 point_a = Vec3::Zero();  // world: deepest point of A inside B
   Vec3 point_b = Vec3::Zero();

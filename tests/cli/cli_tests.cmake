@@ -7,5 +7,6 @@ target_compile_definitions(test_cli_elan PRIVATE
   ELAN_CLI="$<TARGET_FILE:elan_cli>"
   ELAN_BAD_SCENES="${CMAKE_CURRENT_LIST_DIR}/bad_scenes"
   ELAN_SCENE_DIR="${ELAN_SCENE_DIR}")
+target_include_directories(test_cli_elan PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
 add_dependencies(test_cli_elan elan_cli)
 gtest_discover_tests(test_cli_elan DISCOVERY_TIMEOUT 60 PROPERTIES LABELS cli TIMEOUT 300)

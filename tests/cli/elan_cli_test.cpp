@@ -1,8 +1,8 @@
 // Runs the built `elan` binary: bad scenes and bad arguments exit 2 with a one-line message naming
 // the field, the summary has the contract's keys, trajectories and recordings round-trip.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
+
+#include "cli/cli_runner.hpp"
 
 #include <cctype>
 #include <cstdint>
@@ -17,58 +17,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-struct Result {
-  int status = -1;  // exit status; a death by signal shows as 128 + signal through the shell
-  std::string out;
-  std::string err;
-};
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) {
-    if (c == '\'') {
-      q.append("'\\''");
-    } else {
-      q.push_back(c);
-    }
-  }
-  q.push_back('\'');
-  return q;
-}
-
-std::string read(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write(const std::string& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
-}
-
-// A path unique to the running test, so ctest may run tests in parallel.
-std::string temp_path(const std::string& name) {
-  std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  for (char& c : test) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return ::testing::TempDir() + "elan_cli_" + std::to_string(getpid()) + "_" + test + "_" + name;
-}
-
-Result run_elan(const std::vector<std::string>& args) {
-  const std::string out = temp_path("stdout"), err = temp_path("stderr");
-  std::string cmd = quote(ELAN_CLI);
-  // Appends only: GCC 12 warns falsely (-Wrestrict) on `" " + std::string`.
-  for (const std::string& a : args) cmd.append(" ").append(quote(a));
-  cmd.append(" >").append(quote(out)).append(" 2>").append(quote(err)).append(" </dev/null");
-  const int rc = std::system(cmd.c_str());
-  Result r;
-  r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  r.out = read(out);
-  r.err = read(err);
-  std::remove(out.c_str());
-  std::remove(err.c_str());
-  return r;
-}
+using namespace elan::test;
 
 std::size_t count_lines(const std::string& s) {
   std::size_t n = 0;

@@ -1,8 +1,8 @@
 // `elan run --record` with keyframes, `elan replay` naming the first differing body and field,
 // `elan diverge`, and refusal (exit 2, one clear line) of old, future, corrupt and truncated files.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
+
+#include "cli/cli_runner.hpp"
 
 #include <cctype>
 #include <cstdint>
@@ -17,56 +17,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-struct Result {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) {
-    if (c == '\'') {
-      q.append("'\\''");
-    } else {
-      q.push_back(c);
-    }
-  }
-  q.push_back('\'');
-  return q;
-}
-
-std::string read(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write(const std::string& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
-}
-
-std::string temp_path(const std::string& name) {
-  std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  for (char& c : test) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return ::testing::TempDir() + "elan_replay_" + std::to_string(getpid()) + "_" + test + "_" + name;
-}
-
-Result run_elan(const std::vector<std::string>& args) {
-  const std::string out = temp_path("stdout"), err = temp_path("stderr");
-  std::string cmd = quote(ELAN_CLI);
-  for (const std::string& a : args) cmd.append(" ").append(quote(a));
-  cmd.append(" >").append(quote(out)).append(" 2>").append(quote(err)).append(" </dev/null");
-  const int rc = std::system(cmd.c_str());
-  Result r;
-  r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  r.out = read(out);
-  r.err = read(err);
-  std::remove(out.c_str());
-  std::remove(err.c_str());
-  return r;
-}
+using namespace elan::test;
 
 // Ground, two named spheres and an unnamed box that falls and tumbles: body 2 is "b".
 const char* kScene = R"({

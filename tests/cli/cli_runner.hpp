@@ -1,0 +1,71 @@
+// Runs the built `elan` binary from a test (ELAN_CLI is its path) and captures exit status,
+// standard output and standard error; plus the file helpers the command-line tests share.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace elan::test {
+
+struct Result {
+  int status = -1;  // exit status; a death by signal shows as 128 + signal through the shell
+  std::string out;
+  std::string err;
+};
+
+inline std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) {
+    if (c == '\'') {
+      q.append("'\\''");
+    } else {
+      q.push_back(c);
+    }
+  }
+  q.push_back('\'');
+  return q;
+}
+
+inline std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline void write(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// A path unique to the running test, so ctest may run tests in parallel.
+inline std::string temp_path(const std::string& name) {
+  std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  for (char& c : test) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return ::testing::TempDir() + "elan_cli_" + std::to_string(getpid()) + "_" + test + "_" + name;
+}
+
+inline Result run_elan(const std::vector<std::string>& args) {
+  const std::string out = temp_path("stdout"), err = temp_path("stderr");
+  std::string cmd = quote(ELAN_CLI);
+  // Appends only: GCC 12 warns falsely (-Wrestrict) on `" " + std::string`.
+  for (const std::string& a : args) cmd.append(" ").append(quote(a));
+  cmd.append(" >").append(quote(out)).append(" 2>").append(quote(err)).append(" </dev/null");
+  const int rc = std::system(cmd.c_str());
+  Result r;
+  r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  r.out = read(out);
+  r.err = read(err);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+}  // namespace elan::test
