@@ -15,14 +15,7 @@
 
 namespace elan::detail {
 
-void StageExecutor::run(const std::vector<StageSpec>& stages, int participants,
-                        const std::function<void(const StageSpec&, uint32_t)>& work) {
-  const std::size_t n = stages.size();
-  if (participants <= 1) {
-    for (const StageSpec& s : stages)
-      for (uint32_t b = 0; b < s.block_count; ++b) work(s, b);
-    return;
-  }
+void StageExecutor::reset(std::size_t n) {
   if (capacity_ < n) {
     capacity_ = n + n / 2 + 16;
     claimed_ = std::make_unique<Counter[]>(capacity_);
@@ -33,7 +26,11 @@ void StageExecutor::run(const std::vector<StageSpec>& stages, int participants,
     done_[i].value.store(0, std::memory_order_relaxed);
   }
   std::atomic_thread_fence(std::memory_order_release);
+}
 
+void StageExecutor::run_parallel(const std::vector<StageSpec>& stages, int participants,
+                                 WorkRef work) {
+  const std::size_t n = stages.size();
   auto participate = [&]() {
     for (std::size_t i = 0; i < n; ++i) {
       const uint32_t count = stages[i].block_count;
@@ -41,7 +38,7 @@ void StageExecutor::run(const std::vector<StageSpec>& stages, int participants,
       for (;;) {
         const uint32_t b = claimed_[i].value.fetch_add(1, std::memory_order_relaxed);
         if (b >= count) break;
-        work(stages[i], b);
+        work.call(work.object, stages[i], b);
         done_[i].value.fetch_add(1, std::memory_order_release);
       }
       // threading: every claimed block is finished by the thread that claimed it, so this wait

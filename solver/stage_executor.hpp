@@ -11,7 +11,6 @@
 
 #include <atomic>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -27,11 +26,35 @@ class StageExecutor {
  public:
   // Runs every stage in order; `work(stage, block)` is called once per block of each stage.
   // Must be called from inside the task arena whose workers should help. `participants` is how
-  // many threads may take part (1 = the caller alone, no tasks are spawned).
-  void run(const std::vector<StageSpec>& stages, int participants,
-           const std::function<void(const StageSpec&, uint32_t)>& work);
+  // many threads may take part (1 = the caller alone, no tasks are spawned). A template, so the
+  // callback is not wrapped in a std::function (which would allocate every step).
+  template <class Work>
+  void run(const std::vector<StageSpec>& stages, int participants, const Work& work) {
+    if (participants <= 1) {
+      for (const StageSpec& s : stages)
+        for (uint32_t b = 0; b < s.block_count; ++b) work(s, b);
+      return;
+    }
+    reset(stages.size());
+    run_parallel(stages, participants, work);
+  }
 
  private:
+  // Type-erased by reference only (no allocation): a pointer to the caller's callable.
+  struct WorkRef {
+    const void* object;
+    void (*call)(const void*, const StageSpec&, uint32_t);
+  };
+  template <class F>
+  void run_parallel(const std::vector<StageSpec>& stages, int participants, const F& f) {
+    WorkRef ref{&f, [](const void* o, const StageSpec& s, uint32_t b) {
+                  (*static_cast<const F*>(o))(s, b);
+                }};
+    run_parallel(stages, participants, ref);
+  }
+  void run_parallel(const std::vector<StageSpec>& stages, int participants, WorkRef work);
+  void reset(std::size_t stage_count);
+
   struct alignas(64) Counter {
     std::atomic<uint32_t> value{0};
   };
