@@ -133,7 +133,8 @@ void BM_CollidePairsPile(benchmark::State& state) {
   const Layout l = make_layout(20, 10);  // 4000 bodies, like scenes/pile4k.json
   tbb::task_arena arena(int(state.range(0)));
   CollideSettings settings;
-  std::vector<Manifold> slots, out, previous;
+  CollideScratch slots;
+  std::vector<Manifold> out, previous;
   arena.execute(
       [&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, previous, slots, out); });
   previous = out;

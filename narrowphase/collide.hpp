@@ -31,14 +31,17 @@ struct CollideSettings {
 // pair's approach over the step (|relative velocity of the centres| * dt, so fast bodies get
 // speculative points before they reach each other). Then matches each new point with the
 // previous step's manifold of the same key and feature id and copies its impulses (warm start),
-// and compacts the touching manifolds into `out_contacts` in key order. A pair whose relative
-// pose moved less than 1 mm and 2 degrees since its points were computed reuses them, carried
+// and joins the touching manifolds into `out_contacts` in key order. A pair whose relative pose
+// moved less than 0.2 mm and 0.5 degrees since its points were computed reuses them, carried
 // with the bodies (the body pair cache of Jolt), without running collide().
 // `previous` is last step's out_contacts, sorted by key. Parallel over fixed blocks of pairs;
-// one slot per pair, so the result does not depend on the thread count.
+// each block appends its touching manifolds to its own buffer in `scratch`, and the buffers are
+// joined in block order, so the result does not depend on the thread count and no memory is
+// held for pairs that do not touch.
+using CollideScratch = std::vector<std::vector<Manifold>>;
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
-                   std::span<const Manifold> previous, std::vector<Manifold>& scratch_slots,
+                   std::span<const Manifold> previous, CollideScratch& scratch,
                    std::vector<Manifold>& out_contacts);
 
 // Time of impact by conservative advancement on the GJK distance: the earliest t in [0, 1] at

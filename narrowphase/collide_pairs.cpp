@@ -89,21 +89,24 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
 
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
-                   std::span<const Manifold> previous, std::vector<Manifold>& scratch_slots,
+                   std::span<const Manifold> previous, CollideScratch& scratch,
                    std::vector<Manifold>& out_contacts) {
   const std::size_t n = pairs.size();
-  scratch_slots.resize(n);
-  // determinism: slot i belongs to pair i, and each block's merge with `previous` starts at a
-  // binary search on the block's first key, so nothing depends on which thread ran a block.
-  for_blocks(n, kPairGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+  if (scratch.size() < block_count(n, kPairGrain)) scratch.resize(block_count(n, kPairGrain));
+  // determinism: block b owns scratch[b] and writes its pairs' manifolds there in pair order;
+  // its merge with `previous` starts at a binary search on the block's first key, so nothing
+  // depends on which thread ran a block (rule 1: joined in block order below).
+  for_blocks(n, kPairGrain, [&](std::size_t begin, std::size_t end, std::size_t block) {
+    std::vector<Manifold>& touching = scratch[block];
+    touching.clear();
+    Manifold m;
     auto prev_it = std::lower_bound(previous.begin(), previous.end(), pairs[begin],
-                                    [](const Manifold& m, uint64_t k) { return m.key < k; });
+                                    [](const Manifold& x, uint64_t k) { return x.key < k; });
     for (std::size_t i = begin; i < end; ++i) {
       const uint64_t key = pairs[i];
       uint32_t a = pair_first(key), b = pair_second(key);
       // The static or kinematic body, if any, is B (architecture rule 4).
       if (!bodies.is_dynamic(a) && bodies.is_dynamic(b)) std::swap(a, b);
-      Manifold& m = scratch_slots[i];
       m.key = key;
       m.body_a = a;
       m.body_b = b;
@@ -114,7 +117,10 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       const Manifold* old =
           (prev_it != previous.end() && prev_it->key == key && prev_it->body_a == a) ? &*prev_it
                                                                                      : nullptr;
-      if (old != nullptr && old->point_count > 0 && reuse_manifold(*old, xa, xb, m)) continue;
+      if (old != nullptr && old->point_count > 0 && reuse_manifold(*old, xa, xb, m)) {
+        touching.push_back(m);
+        continue;
+      }
       const Real approach =
           (bodies.linear_velocity(a) - bodies.linear_velocity(b)).norm() * settings.dt;
       collide(shapes[bodies.shape[a]], xa, shapes[bodies.shape[b]], xb,
@@ -130,12 +136,13 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       m.orientation_b = xb.rotation;
       m.relative_position = xa.rotation.conjugate() * (xb.position - xa.position);
       if (m.point_count > 0 && old != nullptr) warm_start(*old, m);
+      if (m.point_count > 0) touching.push_back(m);
     }
   });
-  // perf: compaction is one serial pass of copies; the slots are already in key order.
+  // perf: one serial pass of copies; blocks are already in key order.
   out_contacts.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (scratch_slots[i].point_count > 0) out_contacts.push_back(scratch_slots[i]);
+  for (std::size_t b = 0; b < block_count(n, kPairGrain); ++b) {
+    out_contacts.insert(out_contacts.end(), scratch[b].begin(), scratch[b].end());
   }
 }
 

@@ -85,9 +85,9 @@ uint32_t run_step(WorldState& w, Real dt) {
   CollideSettings collide_settings;
   collide_settings.speculative_distance = kSpeculativeDistance;
   collide_settings.dt = dt;
-  collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.previous_contacts, w.contact_slots,
+  collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.previous_contacts, w.contact_blocks,
                 w.contacts);
-  carry_sleeping_contacts(bodies, w.previous_contacts, w.contacts, w.contact_slots);
+  carry_sleeping_contacts(bodies, w.previous_contacts, w.contacts, w.carry_scratch);
   const auto t3 = clock::now();
 
   SolveSettings solve_settings;

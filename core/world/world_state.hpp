@@ -15,6 +15,7 @@
 #include "core/world/api_state.hpp"
 #include "elan/defs.hpp"
 #include "elan/profile.hpp"
+#include "narrowphase/collide.hpp"
 #include "solver/solve.hpp"
 
 namespace elan::detail {
@@ -48,7 +49,9 @@ struct WorldState {
   // Contacts: this step's, sorted by key; last step's for warm starting; per-pair slots.
   std::vector<Manifold> contacts;
   std::vector<Manifold> previous_contacts;
-  std::vector<Manifold> contact_slots;
+  CollideScratch contact_blocks;
+  // Scratch of carry_sleeping_contacts (swapped with `contacts`, so it is manifold-sized).
+  std::vector<Manifold> carry_scratch;
 
   SolverState solver;
   ApiState api;

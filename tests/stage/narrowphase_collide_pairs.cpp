@@ -80,7 +80,8 @@ TEST(CollidePairs, BitIdenticalUnderOneAndTwoThreads) {
   const Pile p = make_pile(300, 7);
   ASSERT_GT(p.pairs.size(), 256u) << "enough pairs for several blocks";
   CollideSettings settings;
-  std::vector<Manifold> slots1, slots2, out1, out2, previous;
+  CollideScratch slots1, slots2;
+  std::vector<Manifold> out1, out2, previous;
   tbb::task_arena(1).execute(
       [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, previous, slots1, out1); });
   tbb::task_arena(2).execute(
@@ -112,7 +113,8 @@ TEST(CollidePairs, BitIdenticalUnderOneAndTwoThreads) {
 TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
   Pile p = make_pile(200, 11);
   CollideSettings settings;
-  std::vector<Manifold> slots, first, second;
+  CollideScratch slots;
+  std::vector<Manifold> first, second;
   collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, first);
   int points = 0;
   for (Manifold& m : first) {
