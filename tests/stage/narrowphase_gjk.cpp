@@ -7,41 +7,20 @@
 
 #include "narrowphase/gjk.hpp"
 #include "narrowphase_oracle.hpp"
+#include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
 namespace {
 
+using test::at;
+using test::axis_angle;
+using test::box;
+using test::capsule;
+using test::cylinder;
+using test::sphere;
+
 // Float GJK stops at a relative gap of 1e-5; the tolerances leave room for float rounding.
 constexpr double kTol = sizeof(Real) == 4 ? 2e-4 : 1e-8;
-
-Shape make(ShapeType type, Real r, Real hh, Vec3 he = Vec3::Zero()) {
-  ShapeDef d;
-  d.type = type;
-  d.radius = r;
-  d.half_height = hh;
-  d.half_extents = he;
-  return make_shape(d);
-}
-Shape sphere(Real r) {
-  return make(ShapeType::Sphere, r, 0);
-}
-Shape box(Real x, Real y, Real z) {
-  return make(ShapeType::Box, 0, 0, Vec3(x, y, z));
-}
-Shape capsule(Real r, Real hh) {
-  return make(ShapeType::Capsule, r, hh);
-}
-
-Transform at(Real x, Real y, Real z, Quat q = Quat::Identity()) {
-  Transform t;
-  t.position = Vec3(x, y, z);
-  t.rotation = q;
-  return t;
-}
-
-Quat axis_angle(Real angle, const Vec3& axis) {
-  return Quat(Eigen::AngleAxis<Real>(angle, axis.normalized()));
-}
 
 void expect_finite(const GjkResult& g) {
   EXPECT_TRUE(std::isfinite(g.distance));

@@ -7,33 +7,21 @@
 
 #include "narrowphase/manifold_reduce.hpp"
 #include "narrowphase/round_pairs.hpp"
+#include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
 namespace {
 
+using test::at;
+using test::axis_angle;
+using test::box;
+using test::capsule;
+using test::cylinder;
+using test::sphere;
+
 constexpr double kTol = sizeof(Real) == 4 ? 2e-5 : 1e-10;
 constexpr Real kSpec = Real(0.02);
 
-Shape make(ShapeType type, Real r, Real hh, Vec3 he = Vec3::Zero()) {
-  ShapeDef d;
-  d.type = type;
-  d.radius = r;
-  d.half_height = hh;
-  d.half_extents = he;
-  return make_shape(d);
-}
-Shape sphere(Real r) {
-  return make(ShapeType::Sphere, r, 0);
-}
-Shape box(Real x, Real y, Real z) {
-  return make(ShapeType::Box, 0, 0, Vec3(x, y, z));
-}
-Shape capsule(Real r, Real hh) {
-  return make(ShapeType::Capsule, r, hh);
-}
-Shape cylinder(Real r, Real hh) {
-  return make(ShapeType::Cylinder, r, hh);
-}
 Shape ground() {
   ShapeDef d;
   d.type = ShapeType::Plane;
@@ -46,16 +34,6 @@ Shape box_hull(Real h) {
   d.type = ShapeType::ConvexHull;
   for (int i = 0; i < 8; ++i) d.points.emplace_back(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
   return make_shape(d);
-}
-
-Transform at(Real x, Real y, Real z, Quat q = Quat::Identity()) {
-  Transform t;
-  t.position = Vec3(x, y, z);
-  t.rotation = q;
-  return t;
-}
-Quat axis_angle(Real angle, const Vec3& axis) {
-  return Quat(Eigen::AngleAxis<Real>(angle, axis.normalized()));
 }
 
 void expect_sane(const Manifold& m) {

@@ -69,6 +69,10 @@ inline Transform pose(const Vec3& p, const Quat& q = Quat::Identity()) {
   return {p, q};
 }
 
+inline Transform at(Real x, Real y, Real z, const Quat& q = Quat::Identity()) {
+  return pose(Vec3(x, y, z), q);
+}
+
 inline Quat axis_angle(Real angle, const Vec3& axis) {
   return Quat(Eigen::AngleAxis<Real>(angle, axis.normalized()));
 }
