@@ -77,6 +77,19 @@ std::span<const uint8_t> open(std::span<const uint8_t> bytes, const uint8_t (&ma
 
 // --- full snapshot -------------------------------------------------------------------------
 
+// A quaternion as w x y z.
+void write_quat(ByteWriter& w, const Quat& q) {
+  w.real(q.w());
+  w.real(q.x());
+  w.real(q.y());
+  w.real(q.z());
+}
+
+Quat read_quat(ByteReader& r) {
+  const Real qw = r.real(), qx = r.real(), qy = r.real(), qz = r.real();
+  return Quat(qw, qx, qy, qz);
+}
+
 void write_hull(ByteWriter& w, const detail::ConvexHull& h) {
   w.u32(uint32_t(h.vertices.size()));
   for (const Vec3& v : h.vertices) w.vec3(v);
@@ -136,10 +149,7 @@ void write_shape(ByteWriter& w, const Shape& s) {
   w.vec3(s.plane_normal);
   w.real(s.plane_offset);
   w.vec3(s.frame_position);
-  w.real(s.frame_rotation.w());
-  w.real(s.frame_rotation.x());
-  w.real(s.frame_rotation.y());
-  w.real(s.frame_rotation.z());
+  write_quat(w, s.frame_rotation);
   w.real(s.volume);
   w.vec3(s.unit_inertia);
   w.vec3(s.local_min);
@@ -160,8 +170,7 @@ Shape read_shape(ByteReader& r) {
   s.plane_normal = r.vec3();
   s.plane_offset = r.real();
   s.frame_position = r.vec3();
-  const Real qw = r.real(), qx = r.real(), qy = r.real();
-  s.frame_rotation = Quat(qw, qx, qy, r.real());
+  s.frame_rotation = read_quat(r);
   s.volume = r.real();
   s.unit_inertia = r.vec3();
   s.local_min = r.vec3();
@@ -221,18 +230,6 @@ ContactPoint read_point(ByteReader& r) {
 
 // The manifold's friction impulses, carried to the next step like the normal impulses, and the
 // poses its points were computed at (they decide whether the next step reuses them).
-void write_quat(ByteWriter& w, const Quat& q) {
-  w.real(q.w());
-  w.real(q.x());
-  w.real(q.y());
-  w.real(q.z());
-}
-
-Quat read_quat(ByteReader& r) {
-  const Real qw = r.real(), qx = r.real(), qy = r.real(), qz = r.real();
-  return Quat(qw, qx, qy, qz);
-}
-
 void write_friction(ByteWriter& w, const Manifold& m) {
   w.real(m.tangent_impulse[0]);
   w.real(m.tangent_impulse[1]);

@@ -15,6 +15,20 @@
 
 namespace elan::test {
 
+// One static ground, two spheres ("a", "b") and a box falling onto it and tumbling.
+inline const char* const kSmallScene = R"({
+  "timestep": 0.01,
+  "bodies": [
+    {"name": "ground", "motion": "static", "shape": {"type": "box", "half_extents": [10, 1, 10]},
+     "position": [0, -1, 0]},
+    {"name": "a", "shape": {"type": "sphere", "radius": 0.5}, "position": [0, 0.6, 0]},
+    {"name": "b", "shape": {"type": "sphere", "radius": 0.5}, "position": [1.5, 2, 0],
+     "linear_velocity": [0, 0, 1]},
+    {"shape": {"type": "box", "half_extents": [0.4, 0.3, 0.2]}, "position": [-1.5, 1, 0.2],
+     "angular_velocity": [0, 2, 0]}
+  ]
+})";
+
 struct Result {
   int status = -1;  // exit status; a death by signal shows as 128 + signal through the shell
   std::string out;

@@ -25,20 +25,6 @@ std::size_t count_lines(const std::string& s) {
   return n;
 }
 
-// One static ground, two spheres and a box falling onto it.
-const char* kSmallScene = R"({
-  "timestep": 0.01,
-  "bodies": [
-    {"name": "ground", "motion": "static", "shape": {"type": "box", "half_extents": [10, 1, 10]},
-     "position": [0, -1, 0]},
-    {"name": "a", "shape": {"type": "sphere", "radius": 0.5}, "position": [0, 0.6, 0]},
-    {"name": "b", "shape": {"type": "sphere", "radius": 0.5}, "position": [1.5, 2, 0],
-     "linear_velocity": [0, 0, 1]},
-    {"shape": {"type": "box", "half_extents": [0.4, 0.3, 0.2]}, "position": [-1.5, 1, 0.2],
-     "angular_velocity": [0, 2, 0]}
-  ]
-})";
-
 std::string small_scene() {
   const std::string path = temp_path("scene.json");
   write(path, kSmallScene);

@@ -19,19 +19,8 @@ using Json = nlohmann::json;
 
 using namespace elan::test;
 
-// Ground, two named spheres and an unnamed box that falls and tumbles: body 2 is "b".
-const char* kScene = R"({
-  "timestep": 0.01,
-  "bodies": [
-    {"name": "ground", "motion": "static", "shape": {"type": "box", "half_extents": [10, 1, 10]},
-     "position": [0, -1, 0]},
-    {"name": "a", "shape": {"type": "sphere", "radius": 0.5}, "position": [0, 0.6, 0]},
-    {"name": "b", "shape": {"type": "sphere", "radius": 0.5}, "position": [1.5, 2, 0],
-     "linear_velocity": [0, 0, 1]},
-    {"shape": {"type": "box", "half_extents": [0.4, 0.3, 0.2]}, "position": [-1.5, 1, 0.2],
-     "angular_velocity": [0, 2, 0]}
-  ]
-})";
+// kSmallScene (cli_runner.hpp): body 2 is the sphere named "b".
+const char* const kScene = kSmallScene;
 
 uint64_t fnv1a(const std::string& s, std::size_t n) {
   uint64_t h = 0xcbf29ce484222325ull;
