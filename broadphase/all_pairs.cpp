@@ -98,8 +98,8 @@ void AllPairs::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_
     scan_tile(in, bi * edge, std::min(n, (bi + 1) * edge), bj * edge, std::min(n, (bj + 1) * edge),
               out);
   });
-  concat_blocks(block_pairs_, out_pairs);
-  radix_sort(out_pairs, sort_scratch_);
+  const uint64_t max_key = n < 2 ? 0 : make_pair_key(uint32_t(n - 2), uint32_t(n - 1));
+  sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_);
 }
 
 }  // namespace elan::detail

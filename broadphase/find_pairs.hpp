@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "broadphase/bounds.hpp"
+#include "core/base/parallel.hpp"
 
 namespace elan::detail {
 
@@ -46,7 +47,7 @@ class AllPairs {
 
  private:
   std::vector<std::vector<uint64_t>> block_pairs_;  // one per tile
-  std::vector<uint64_t> sort_scratch_;
+  KeySortScratch pair_sort_;
 };
 
 // Sweep-and-prune on the axis of largest spread, keeping last step's order so the re-sort is
@@ -55,6 +56,9 @@ class AllPairs {
 // sweep meets every box of a whole slab, a strip only its neighbours.
 class SweepAndPrune {
  public:
+  // Sentinels after each strip's entries: the sweep tests candidates this many at a time.
+  static constexpr std::size_t kStripPad = 8;
+
   void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
 
  private:
@@ -63,6 +67,8 @@ class SweepAndPrune {
   bool sort_incremental();
   void gather_sorted(const BroadphaseInput& in);
   void deal_strips(const BroadphaseInput& in);
+  void sweep_entry(const BroadphaseInput& in, std::size_t k, std::size_t stop, uint32_t strip,
+                   std::vector<uint64_t>& out) const;
   uint32_t strip_of(Real v) const;
 
   std::vector<uint32_t> order_;   // body indices sorted by min on the sweep axis
@@ -73,16 +79,21 @@ class SweepAndPrune {
   int strip_axis_ = 1;  // 1 or 2: which of the other axes (lo1/lo2) the strips cut
   Real strip_lo_ = 0, strip_width_ = 1;
   uint32_t strip_count_ = 1;
-  // Entries: one per (box, strip it overlaps), strip by strip, each strip in sweep order.
+  // Entries: one per (box, strip it overlaps), strip by strip, each strip in sweep order and
+  // followed by kStripPad sentinels (min +inf, the rest NaN) so the sweep reads whole chunks.
   Column<Real> entry_min_, entry_max_, entry_lo1_, entry_hi1_, entry_lo2_, entry_hi2_;
-  std::vector<uint32_t> entry_body_, entry_strip_, entry_end_;
-  std::vector<uint32_t> entry_first_;  // strip of the box's low end on the strip axis
-  std::vector<uint32_t> strip_cursor_;
-  std::vector<double> axis_partials_;  // per block: statistics of box centres and sizes
+  std::vector<uint32_t> entry_body_;
+  std::vector<uint32_t> entry_first_;    // strip of the box's low end on the strip axis
+  std::vector<uint32_t> strip_begin_;    // per strip: first entry; strip_begin_[s + 1] - pad: end
+  std::vector<uint32_t> sorted_strips_;  // per sorted box: first and last strip (first > last:
+                                         // no entry)
+  std::vector<uint32_t> deal_counts_;    // per deal block and strip: entries, then offsets
+  std::vector<double> axis_partials_;    // per block: statistics of box centres and sizes
   std::vector<uint32_t> planes_;
   std::vector<std::vector<uint64_t>> block_pairs_;  // sweep chunks, then plane blocks
   std::vector<uint64_t> sort_keys_;
   std::vector<uint64_t> sort_scratch_;
+  KeySortScratch pair_sort_;
 };
 
 }  // namespace elan::detail

@@ -19,6 +19,7 @@ namespace {
 
 constexpr std::size_t kStatsGrain = 4096;
 constexpr std::size_t kSweepGrain = 512;
+constexpr std::size_t kDealGrain = 4096;
 constexpr std::size_t kPlaneGrain = 4096;
 // Switch axis only when another one spreads clearly more, so a scene near a tie does not pay a
 // full re-sort every update.
@@ -216,22 +217,44 @@ uint32_t SweepAndPrune::strip_of(Real v) const {
 // anything and get no entry.
 void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
   const std::size_t n = order_.size();
+  const std::size_t strips = strip_count_;
+  // determinism: the block layout is a function of n and the strip count alone (rule 2); blocks
+  // at least 4 boxes per strip long keep the per-block counts below n/4.
+  const std::size_t grain = std::max(kDealGrain, 4 * strips);
+  const std::size_t blocks = block_count(n, grain);
   const Real* mins = axis_min(*in.bounds, axis_);
   const Real* slo = strip_axis_ == 1 ? sorted_lo1_.data() : sorted_lo2_.data();
   const Real* shi = strip_axis_ == 1 ? sorted_hi1_.data() : sorted_hi2_.data();
-  const auto valid = [&](std::size_t k) {
-    return !(std::isnan(mins[order_[k]]) || std::isnan(sorted_max_[k]) ||
-             std::isnan(sorted_lo1_[k]) || std::isnan(sorted_hi1_[k]) ||
-             std::isnan(sorted_lo2_[k]) || std::isnan(sorted_hi2_[k]));
-  };
-  strip_cursor_.assign(strip_count_ + 1, 0);
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!valid(k)) continue;
-    const uint32_t s0 = strip_of(slo[k]), s1 = strip_of(shi[k]);
-    for (uint32_t s = s0; s <= s1; ++s) ++strip_cursor_[s + 1];
+  sorted_strips_.resize(2 * n);
+  deal_counts_.assign(blocks * strips, 0);
+  // determinism: each block counts into its own row (rule 1).
+  for_blocks(n, grain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
+    uint32_t* count = deal_counts_.data() + blk * strips;
+    for (std::size_t k = begin; k < end; ++k) {
+      const bool valid = !(std::isnan(mins[order_[k]]) || std::isnan(sorted_max_[k]) ||
+                           std::isnan(sorted_lo1_[k]) || std::isnan(sorted_hi1_[k]) ||
+                           std::isnan(sorted_lo2_[k]) || std::isnan(sorted_hi2_[k]));
+      const uint32_t s0 = valid ? strip_of(slo[k]) : 1, s1 = valid ? strip_of(shi[k]) : 0;
+      sorted_strips_[2 * k] = s0;
+      sorted_strips_[2 * k + 1] = s1;
+      for (uint32_t s = s0; s <= s1; ++s) ++count[s];
+    }
+  });
+  // Strip-major, block-minor offsets: block b's entries in a strip follow block b-1's, so each
+  // strip keeps sweep order.
+  strip_begin_.resize(strips + 1);
+  uint32_t running = 0;
+  for (std::size_t s = 0; s < strips; ++s) {
+    strip_begin_[s] = running;
+    for (std::size_t blk = 0; blk < blocks; ++blk) {
+      const uint32_t t = deal_counts_[blk * strips + s];
+      deal_counts_[blk * strips + s] = running;
+      running += t;
+    }
+    running += uint32_t(kStripPad);
   }
-  for (uint32_t s = 0; s < strip_count_; ++s) strip_cursor_[s + 1] += strip_cursor_[s];
-  const std::size_t entries = strip_cursor_[strip_count_];
+  strip_begin_[strips] = running;
+  const std::size_t entries = running;
   entry_min_.resize(entries);
   entry_max_.resize(entries);
   entry_lo1_.resize(entries);
@@ -239,29 +262,73 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
   entry_lo2_.resize(entries);
   entry_hi2_.resize(entries);
   entry_body_.resize(entries);
-  entry_strip_.resize(entries);
-  entry_end_.resize(entries);
   entry_first_.resize(entries);
-  for (uint32_t s = 0; s < strip_count_; ++s) {
-    for (uint32_t e = strip_cursor_[s]; e < strip_cursor_[s + 1]; ++e) {
-      entry_strip_[e] = s;
-      entry_end_[e] = strip_cursor_[s + 1];
+  // determinism: every block writes the entries its offsets reserve (rule 1).
+  for_blocks(n, grain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
+    uint32_t* cursor = deal_counts_.data() + blk * strips;
+    for (std::size_t k = begin; k < end; ++k) {
+      const uint32_t s0 = sorted_strips_[2 * k], s1 = sorted_strips_[2 * k + 1];
+      for (uint32_t s = s0; s <= s1; ++s) {
+        const uint32_t e = cursor[s]++;
+        entry_min_[e] = sorted_min_[k];
+        entry_max_[e] = sorted_max_[k];
+        entry_lo1_[e] = sorted_lo1_[k];
+        entry_hi1_[e] = sorted_hi1_[k];
+        entry_lo2_[e] = sorted_lo2_[k];
+        entry_hi2_[e] = sorted_hi2_[k];
+        entry_body_[e] = order_[k];
+        entry_first_[e] = s0;
+      }
+    }
+  });
+  constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
+  for (std::size_t s = 0; s < strips; ++s) {
+    for (std::size_t e = strip_begin_[s + 1] - kStripPad; e < strip_begin_[s + 1]; ++e) {
+      entry_min_[e] = std::numeric_limits<Real>::infinity();
+      entry_max_[e] = kNaN;
+      entry_lo1_[e] = kNaN;
+      entry_hi1_[e] = kNaN;
+      entry_lo2_[e] = kNaN;
+      entry_hi2_[e] = kNaN;
+      entry_body_[e] = 0;
+      entry_first_[e] = 0;
     }
   }
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!valid(k)) continue;
-    const uint32_t s0 = strip_of(slo[k]), s1 = strip_of(shi[k]);
-    for (uint32_t s = s0; s <= s1; ++s) {
-      const uint32_t e = strip_cursor_[s]++;
-      entry_min_[e] = sorted_min_[k];
-      entry_max_[e] = sorted_max_[k];
-      entry_lo1_[e] = sorted_lo1_[k];
-      entry_hi1_[e] = sorted_hi1_[k];
-      entry_lo2_[e] = sorted_lo2_[k];
-      entry_hi2_[e] = sorted_hi2_[k];
-      entry_body_[e] = order_[k];
-      entry_first_[e] = s0;
+}
+
+// Pairs of entry k with the later entries of its strip (k < stop, the strip's last real entry
+// + 1). Within a strip a pair is met once, from whichever box comes first (ties in min included:
+// key_j == key_i <= max_i). A pair overlapping on the strip axis shares every strip holding
+// m = max(lo_a, lo_b), and is kept only in strip_of(m), so it is reported once; strip_of is
+// monotonic, so strip_of(m) = max(strip_of(lo_a), strip_of(lo_b)) = max(first).
+void SweepAndPrune::sweep_entry(const BroadphaseInput& in, std::size_t k, std::size_t stop,
+                                uint32_t strip, std::vector<uint64_t>& out) const {
+  const Real* key = entry_min_.data();
+  const Real *lo1 = entry_lo1_.data(), *hi1 = entry_hi1_.data();
+  const Real *lo2 = entry_lo2_.data(), *hi2 = entry_hi2_.data();
+  const uint32_t* first = entry_first_.data();
+  const Real hi = entry_max_[k];
+  const Real l1 = lo1[k], h1 = hi1[k], l2 = lo2[k], h2 = hi2[k];
+  const uint32_t f = first[k], i0 = entry_body_[k];
+  // perf: candidates in chunks of kStripPad with a branch-free test that vectorises; a chunk
+  // may run into the strip's sentinels, which fail it. Sorted keys: once the chunk's last key
+  // is past hi, so is every later one.
+  for (std::size_t j = k + 1; j < stop; j += kStripPad) {
+    uint32_t hits = 0;
+#pragma omp simd reduction(| : hits)
+    for (std::size_t q = 0; q < kStripPad; ++q) {
+      const std::size_t c = j + q;
+      const bool hit = (key[c] <= hi) & (lo1[c] <= h1) & (l1 <= hi1[c]) & (lo2[c] <= h2) &
+                       (l2 <= hi2[c]) & (std::max(f, first[c]) == strip);
+      hits |= uint32_t(hit) << q;
     }
+    while (hits != 0) {
+      const std::size_t q = std::size_t(std::countr_zero(hits));
+      hits &= hits - 1;
+      const uint32_t i1 = entry_body_[j + q];
+      if (accept_pair(in, i0, i1)) out.push_back(make_pair_key(i0, i1));
+    }
+    if (!(key[j + kStripPad - 1] <= hi)) break;
   }
 }
 
@@ -297,27 +364,18 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
   for (std::size_t t = blocks; t < block_pairs_.size(); ++t) block_pairs_[t].clear();
 
   // Each chunk scans forward from its own entries to the end of their strip, possibly past the
-  // chunk's end: within a strip a pair is met once, from whichever box comes first (ties in min
-  // included: key_j == key_i <= max_i). A pair overlapping on the strip axis shares every strip
-  // holding m = max(lo_a, lo_b), and is kept only in strip_of(m), so it is reported once;
-  // strip_of is monotonic, so strip_of(m) = max(strip_of(lo_a), strip_of(lo_b)) = max(first).
+  // chunk's end.
   // determinism: one buffer per chunk, joined in chunk order, then sorted (rule 1).
   for_blocks(entries, kSweepGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
     std::vector<uint64_t>& out = block_pairs_[blk];
     out.clear();
-    const Real* key = entry_min_.data();
-    const Real *lo1 = entry_lo1_.data(), *hi1 = entry_hi1_.data();
-    const Real *lo2 = entry_lo2_.data(), *hi2 = entry_hi2_.data();
-    for (std::size_t k = begin; k < end; ++k) {
-      const Real hi = entry_max_[k];
-      const Real l1 = lo1[k], h1 = hi1[k], l2 = lo2[k], h2 = hi2[k];
-      const uint32_t strip = entry_strip_[k], stop = entry_end_[k], first = entry_first_[k];
-      for (std::size_t j = k + 1; j < stop && key[j] <= hi; ++j) {
-        if (!((lo1[j] <= h1) & (l1 <= hi1[j]) & (lo2[j] <= h2) & (l2 <= hi2[j]))) continue;
-        if (std::max(first, entry_first_[j]) != strip) continue;
-        const uint32_t i0 = entry_body_[k], i1 = entry_body_[j];
-        if (accept_pair(in, i0, i1)) out.push_back(make_pair_key(i0, i1));
-      }
+    std::size_t strip =
+        std::size_t(std::upper_bound(strip_begin_.begin(), strip_begin_.end(), uint32_t(begin)) -
+                    strip_begin_.begin() - 1);
+    for (std::size_t k = begin; k < end; ++strip) {
+      const std::size_t stop = strip_begin_[strip + 1] - kStripPad;
+      for (; k < std::min(end, stop); ++k) sweep_entry(in, k, stop, uint32_t(strip), out);
+      k = std::max<std::size_t>(k, strip_begin_[strip + 1]);
     }
   });
 
@@ -338,8 +396,8 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
 
   // The sweep yields each pair once and the plane pass covers only pairs with a plane, so the
   // sorted list is already unique.
-  concat_blocks(block_pairs_, out_pairs);
-  radix_sort(out_pairs, sort_scratch_);
+  const uint64_t max_key = n < 2 ? 0 : make_pair_key(uint32_t(n - 2), uint32_t(n - 1));
+  sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_);
 }
 
 }  // namespace elan::detail

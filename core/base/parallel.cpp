@@ -1,7 +1,11 @@
-// Radix sort for the pair and contact keys.
+// Radix sorts for the pair and contact keys: a serial LSD sort, and a parallel MSD sort that
+// scatters into buckets block by block and sorts the buckets as separate tasks.
 #include "core/base/parallel.hpp"
 
 #include <array>
+#include <bit>
+#include <cassert>
+#include <span>
 
 namespace elan::detail {
 
@@ -34,6 +38,149 @@ void radix_sort(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch) {
     std::swap(src, dst);
   }
   if (src != keys.data()) std::copy(src, src + n, keys.data());
+}
+
+namespace {
+
+constexpr int kTopBits = 8;
+constexpr std::size_t kTopBuckets = std::size_t{1} << kTopBits;
+constexpr std::size_t kBucketGrain = 8;
+// Below this many keys one serial bucket sort beats the parallel passes' setup.
+constexpr std::size_t kSerialBelow = 8192;
+// sort_keys cuts its input into sources this long; sort_key_blocks concatenates first when the
+// blocks are so many that their histograms would outweigh the keys.
+constexpr std::size_t kChunk = 16384;
+constexpr std::size_t kMaxSources = 256;
+// Runs this short are insertion sorted; a pair list's run is one body's partners, a handful.
+constexpr std::size_t kSmallRun = 32;
+constexpr int kMaxSubBits = 11;
+
+void insertion_sort(uint64_t* a, std::size_t m) {
+  for (std::size_t i = 1; i < m; ++i) {
+    const uint64_t v = a[i];
+    std::size_t j = i;
+    while (j > 0 && v < a[j - 1]) {
+      a[j] = a[j - 1];
+      --j;
+    }
+    a[j] = v;
+  }
+}
+
+// Sorts src[0, m) into dst[0, m): a counting sort on the top varying bits (about m/4 digits, so
+// runs average a few keys), then each run alone.
+void sort_bucket(const uint64_t* src, uint64_t* dst, std::size_t m) {
+  if (m <= kSmallRun) {
+    std::copy(src, src + m, dst);
+    insertion_sort(dst, m);
+    return;
+  }
+  uint64_t all_or = 0, all_and = ~uint64_t{0};
+  for (std::size_t i = 0; i < m; ++i) {
+    all_or |= src[i];
+    all_and &= src[i];
+  }
+  const uint64_t varying = all_or ^ all_and;
+  if (varying == 0) {
+    std::copy(src, src + m, dst);
+    return;
+  }
+  // Bits above the top varying one are equal in every key, so digit order is key order.
+  const int top = std::bit_width(varying);
+  const int bits = std::clamp(int(std::bit_width(m)) - 2, 4, kMaxSubBits);
+  const int shift = std::max(0, top - bits);
+  const std::size_t digits = std::size_t{1} << bits;
+  const uint64_t mask = digits - 1;
+  std::array<uint32_t, (std::size_t{1} << kMaxSubBits) + 1> count;
+  std::fill(count.begin(), count.begin() + std::ptrdiff_t(digits + 1), 0u);
+  for (std::size_t i = 0; i < m; ++i) ++count[((src[i] >> shift) & mask) + 1];
+  for (std::size_t d = 0; d < digits; ++d) count[d + 1] += count[d];
+  for (std::size_t i = 0; i < m; ++i) dst[count[(src[i] >> shift) & mask]++] = src[i];
+  // count[d] is now the end of run d.
+  std::size_t begin = 0;
+  for (std::size_t d = 0; d < digits; ++d) {
+    const std::size_t end = count[d];
+    if (end - begin <= kSmallRun) {
+      insertion_sort(dst + begin, end - begin);
+    } else {
+      std::sort(dst + begin, dst + end);
+    }
+    begin = end;
+  }
+}
+
+// The parallel MSD pass over `sources` spans (source(b) gives span b) of `total` keys, into
+// out[0, total). out must not alias a source.
+template <class Source>
+void sort_sources(std::size_t sources, const Source& source, std::size_t total, uint64_t max_key,
+                  uint64_t* out, KeySortScratch& scratch) {
+  const int shift = std::max(0, int(std::bit_width(max_key)) - kTopBits);
+  scratch.keys.resize(total);
+  scratch.counts.assign(sources * kTopBuckets + kTopBuckets + 1, 0);
+  uint32_t* counts = scratch.counts.data();
+  uint32_t* bucket_start = counts + sources * kTopBuckets;
+  // determinism: each source counts into its own row (rule 1).
+  for_blocks(sources, 1, [&](std::size_t b, std::size_t, std::size_t) {
+    uint32_t* c = counts + b * kTopBuckets;
+    for (uint64_t k : source(b)) {
+      assert((k >> shift) < kTopBuckets);
+      ++c[k >> shift];
+    }
+  });
+  // Bucket-major, source-minor offsets: within a bucket, source b's keys follow source b-1's.
+  uint32_t running = 0;
+  for (std::size_t d = 0; d < kTopBuckets; ++d) {
+    bucket_start[d] = running;
+    for (std::size_t b = 0; b < sources; ++b) {
+      const uint32_t t = counts[b * kTopBuckets + d];
+      counts[b * kTopBuckets + d] = running;
+      running += t;
+    }
+  }
+  bucket_start[kTopBuckets] = running;
+  uint64_t* mid = scratch.keys.data();
+  // determinism: every source writes the slots its offsets reserve (rule 1).
+  for_blocks(sources, 1, [&](std::size_t b, std::size_t, std::size_t) {
+    uint32_t* c = counts + b * kTopBuckets;
+    for (uint64_t k : source(b)) mid[c[k >> shift]++] = k;
+  });
+  for_blocks(kTopBuckets, kBucketGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t d = begin; d < end; ++d) {
+      const uint32_t lo = bucket_start[d], hi = bucket_start[d + 1];
+      sort_bucket(mid + lo, out + lo, hi - lo);
+    }
+  });
+}
+
+}  // namespace
+
+void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch) {
+  const std::size_t n = keys.size();
+  if (n < kSerialBelow) {
+    scratch.keys.assign(keys.begin(), keys.end());
+    sort_bucket(scratch.keys.data(), keys.data(), n);
+    return;
+  }
+  const uint64_t* data = keys.data();
+  const auto chunk = [&](std::size_t b) {
+    return std::span<const uint64_t>(data + b * kChunk, std::min(n, (b + 1) * kChunk) - b * kChunk);
+  };
+  // Sources read keys, the MSD pass writes scratch, the buckets are sorted back into keys.
+  sort_sources(block_count(n, kChunk), chunk, n, max_key, keys.data(), scratch);
+}
+
+void sort_key_blocks(const std::vector<std::vector<uint64_t>>& blocks, uint64_t max_key,
+                     std::vector<uint64_t>& out, KeySortScratch& scratch) {
+  std::size_t total = 0;
+  for (const auto& b : blocks) total += b.size();
+  if (total < kSerialBelow || blocks.size() > kMaxSources) {
+    concat_blocks(blocks, out);
+    sort_keys(out, max_key, scratch);
+    return;
+  }
+  out.resize(total);
+  const auto block = [&](std::size_t b) { return std::span<const uint64_t>(blocks[b]); };
+  sort_sources(blocks.size(), block, total, max_key, out.data(), scratch);
 }
 
 }  // namespace elan::detail

@@ -53,4 +53,19 @@ void concat_blocks(const std::vector<std::vector<T, A1>>& blocks, std::vector<T,
 // Stable and deterministic; `scratch` is reused between calls.
 void radix_sort(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch);
 
+// Reused buffers of sort_key_blocks / sort_keys, so a warm call allocates nothing.
+struct KeySortScratch {
+  std::vector<uint64_t> keys;
+  std::vector<uint32_t> counts;
+};
+
+// Parallel sort of 64-bit keys, every key <= max_key: an MSD pass on the top 8 bits below
+// max_key's width scatters block by block into 256 buckets, then each bucket is sorted alone.
+// Integer keys that compare equal are equal, so the output is a function of the input multiset
+// alone, whatever the thread count.
+// sort_key_blocks writes the keys of all `blocks`, sorted, to `out`; sort_keys sorts in place.
+void sort_key_blocks(const std::vector<std::vector<uint64_t>>& blocks, uint64_t max_key,
+                     std::vector<uint64_t>& out, KeySortScratch& scratch);
+void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch);
+
 }  // namespace elan::detail
