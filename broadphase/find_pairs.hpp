@@ -92,8 +92,9 @@ class SweepAndPrune {
   std::vector<uint32_t> planes_;
   std::vector<std::vector<uint64_t>> block_pairs_;  // sweep chunks, then plane blocks
   std::vector<uint64_t> sort_keys_;
-  std::vector<uint64_t> sort_scratch_;
-  KeySortScratch pair_sort_;
+  std::vector<double> range_partials_;  // per block: smallest and largest finite sweep key
+  KeySortScratch key_sort_, pair_sort_;
+  uint32_t skip_incremental_ = 0;  // updates left before the insertion sort is tried again
 };
 
 }  // namespace elan::detail

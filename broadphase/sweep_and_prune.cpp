@@ -8,6 +8,10 @@
 #include <limits>
 #include <vector>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 #include "broadphase/find_pairs.hpp"
 #include "broadphase/pair_test.hpp"
 #include "core/base/pair_key.hpp"
@@ -26,6 +30,7 @@ constexpr std::size_t kPlaneGrain = 4096;
 constexpr double kAxisHysteresis = 1.25;
 // Insertion sort costs n + inversions; past this many moves per body a full sort is cheaper.
 constexpr std::size_t kMaxMovesPerBody = 8;
+constexpr uint32_t kSkipAfterFailure = 4;
 // Strips twice the mean box size wide: a box lands in one or two. At least 16 boxes per strip on
 // average, so sparse scenes do not pay for many empty strips.
 constexpr double kStripWidthInBoxes = 2;
@@ -43,6 +48,52 @@ const Real* axis_max(const BoundsColumns& b, int axis) {
 Real sweep_key(const BroadphaseInput& in, const Real* mins, uint32_t i) {
   const Real v = mins[i];
   return (in.is_plane[i] || std::isnan(v)) ? std::numeric_limits<Real>::infinity() : v;
+}
+
+// One entry's side of the sweep test and the strip's candidate columns.
+struct ChunkTest {
+  const Real *key, *lo1, *hi1, *lo2, *hi2;
+  const uint32_t* first;
+  Real hi, l1, h1, l2, h2;
+  uint32_t f, strip;
+};
+
+// Bit q set when candidate j + q overlaps on all three axes (closed intervals) and the pair's
+// strip is this one; `more` is false once the chunk's last key is past hi.
+inline uint32_t chunk_hits(const ChunkTest& t, std::size_t j, bool& more) {
+  static_assert(SweepAndPrune::kStripPad == 8);
+#if defined(__AVX2__)
+  if constexpr (sizeof(Real) == 4) {
+    // perf: eight lanes, one movemask; ordered compares are false on NaN like <= is.
+    const __m256 below =
+        _mm256_cmp_ps(_mm256_loadu_ps(t.key + j), _mm256_set1_ps(t.hi), _CMP_LE_OQ);
+    __m256 m = _mm256_and_ps(
+        below, _mm256_cmp_ps(_mm256_loadu_ps(t.lo1 + j), _mm256_set1_ps(t.h1), _CMP_LE_OQ));
+    m = _mm256_and_ps(m,
+                      _mm256_cmp_ps(_mm256_set1_ps(t.l1), _mm256_loadu_ps(t.hi1 + j), _CMP_LE_OQ));
+    m = _mm256_and_ps(m,
+                      _mm256_cmp_ps(_mm256_loadu_ps(t.lo2 + j), _mm256_set1_ps(t.h2), _CMP_LE_OQ));
+    m = _mm256_and_ps(m,
+                      _mm256_cmp_ps(_mm256_set1_ps(t.l2), _mm256_loadu_ps(t.hi2 + j), _CMP_LE_OQ));
+    const __m256i first = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.first + j));
+    const __m256i same = _mm256_cmpeq_epi32(_mm256_max_epu32(first, _mm256_set1_epi32(int(t.f))),
+                                            _mm256_set1_epi32(int(t.strip)));
+    m = _mm256_and_ps(m, _mm256_castsi256_ps(same));
+    more = _mm256_movemask_ps(below) == 0xFF;
+    return uint32_t(_mm256_movemask_ps(m));
+  }
+#endif
+  uint32_t hits = 0;
+#pragma omp simd reduction(| : hits)
+  for (std::size_t q = 0; q < 8; ++q) {
+    const std::size_t c = j + q;
+    const bool hit = (t.key[c] <= t.hi) & (t.lo1[c] <= t.h1) & (t.l1 <= t.hi1[c]) &
+                     (t.lo2[c] <= t.h2) & (t.l2 <= t.hi2[c]) &
+                     (std::max(t.f, t.first[c]) == t.strip);
+    hits |= uint32_t(hit) << q;
+  }
+  more = t.key[j + 7] <= t.hi;
+  return hits;
 }
 
 }  // namespace
@@ -130,25 +181,63 @@ void SweepAndPrune::sort_full(const BroadphaseInput& in) {
   const Real* mins = axis_min(*in.bounds, axis_);
   order_.resize(n);
   sorted_min_.resize(n);
-  if constexpr (sizeof(Real) == 4) {
-    // perf: (order-preserving key bits, index) in one 64-bit word, radix sorted; the index in the
-    // low half breaks ties, so the order is a function of the boxes alone.
-    sort_keys_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) {
-      uint32_t u = std::bit_cast<uint32_t>(sweep_key(in, mins, i));
-      u = (u & 0x80000000u) ? ~u : (u | 0x80000000u);
-      sort_keys_[i] = (uint64_t{u} << 32) | i;
+  // perf: the sort runs on (rank, index) words, the rank a monotonic 32-bit quantisation of the
+  // key over the scene's finite range, so the parallel sort's top digit spreads the boxes
+  // evenly. Distinct keys that share a rank are rare; the insertion pass below puts them in
+  // order, and the index in the low bits breaks ties, so the order is a function of the boxes.
+  const std::size_t blocks = block_count(n, kStatsGrain);
+  range_partials_.resize(2 * blocks);
+  constexpr double kHuge = std::numeric_limits<double>::infinity();
+  // determinism: per-block min/max, combined in block order (rule 3, exact anyway).
+  for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
+    double lo = kHuge, hi = -kHuge;
+    for (std::size_t i = begin; i < end; ++i) {
+      const double v = sweep_key(in, mins, uint32_t(i));
+      if (std::isfinite(v)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
     }
-    radix_sort(sort_keys_, sort_scratch_);
-    for (std::size_t k = 0; k < n; ++k) order_[k] = uint32_t(sort_keys_[k]);
-  } else {
+    range_partials_[2 * blk] = lo;
+    range_partials_[2 * blk + 1] = hi;
+  });
+  double lo = kHuge, hi = -kHuge;
+  for (std::size_t blk = 0; blk < blocks; ++blk) {
+    lo = std::min(lo, range_partials_[2 * blk]);
+    hi = std::max(hi, range_partials_[2 * blk + 1]);
+  }
+  constexpr uint64_t kTopRank = 0xFFFFFFFFu;  // +inf; -inf ranks 0 with the smallest key
+  const double scale = hi > lo ? double(kTopRank - 1) / (hi - lo) : 0.0;
+  const int index_bits = int(std::bit_width(std::max<std::size_t>(n, 2) - 1));
+  const uint64_t index_mask = (uint64_t{1} << index_bits) - 1;
+  sort_keys_.resize(n);
+  // determinism: indexed writes (rule 1).
+  for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double v = sweep_key(in, mins, uint32_t(i));
+      const uint64_t rank = std::isfinite(v) ? std::min(uint64_t((v - lo) * scale), kTopRank - 1)
+                            : v > 0          ? kTopRank
+                                             : 0;
+      sort_keys_[i] = (rank << index_bits) | i;
+    }
+  });
+  sort_keys(sort_keys_, (kTopRank << index_bits) | index_mask, key_sort_);
+  // determinism: indexed writes (rule 1).
+  for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t k = begin; k < end; ++k) {
+      order_[k] = uint32_t(sort_keys_[k] & index_mask);
+      sorted_min_[k] = sweep_key(in, mins, order_[k]);
+    }
+  });
+  if (!sort_incremental()) {
+    // Reached only when very many distinct keys share ranks: a plain comparison sort.
     for (uint32_t i = 0; i < n; ++i) order_[i] = i;
     std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
       const Real ka = sweep_key(in, mins, a), kb = sweep_key(in, mins, b);
       return ka < kb || (ka == kb && a < b);
     });
+    for (std::size_t k = 0; k < n; ++k) sorted_min_[k] = sweep_key(in, mins, order_[k]);
   }
-  for (std::size_t k = 0; k < n; ++k) sorted_min_[k] = sweep_key(in, mins, order_[k]);
 }
 
 // Insertion sort of the refreshed keys in last update's order. Returns false (order partly
@@ -303,32 +392,42 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
 // monotonic, so strip_of(m) = max(strip_of(lo_a), strip_of(lo_b)) = max(first).
 void SweepAndPrune::sweep_entry(const BroadphaseInput& in, std::size_t k, std::size_t stop,
                                 uint32_t strip, std::vector<uint64_t>& out) const {
-  const Real* key = entry_min_.data();
-  const Real *lo1 = entry_lo1_.data(), *hi1 = entry_hi1_.data();
-  const Real *lo2 = entry_lo2_.data(), *hi2 = entry_hi2_.data();
-  const uint32_t* first = entry_first_.data();
-  const Real hi = entry_max_[k];
-  const Real l1 = lo1[k], h1 = hi1[k], l2 = lo2[k], h2 = hi2[k];
-  const uint32_t f = first[k], i0 = entry_body_[k];
-  // perf: candidates in chunks of kStripPad with a branch-free test that vectorises; a chunk
-  // may run into the strip's sentinels, which fail it. Sorted keys: once the chunk's last key
-  // is past hi, so is every later one.
+  const ChunkTest t{entry_min_.data(),
+                    entry_lo1_.data(),
+                    entry_hi1_.data(),
+                    entry_lo2_.data(),
+                    entry_hi2_.data(),
+                    entry_first_.data(),
+                    entry_max_[k],
+                    entry_lo1_[k],
+                    entry_hi1_[k],
+                    entry_lo2_[k],
+                    entry_hi2_[k],
+                    entry_first_[k],
+                    strip};
+  const uint32_t* body = entry_body_.data();
+  const uint8_t* kind = in.kind.data();
+  const uint32_t *category = in.category.data(), *mask = in.mask.data();
+  const uint32_t i0 = body[k];
+  const BroadKind kind0 = BroadKind(kind[i0]);
+  const uint32_t cat0 = category[i0], mask0 = mask[i0];
+  // perf: candidates in chunks of kStripPad with a branch-free test; a chunk may run into the
+  // strip's sentinels, which fail it. Sorted keys: once the chunk's last key is past hi, so is
+  // every later one.
   for (std::size_t j = k + 1; j < stop; j += kStripPad) {
-    uint32_t hits = 0;
-#pragma omp simd reduction(| : hits)
-    for (std::size_t q = 0; q < kStripPad; ++q) {
-      const std::size_t c = j + q;
-      const bool hit = (key[c] <= hi) & (lo1[c] <= h1) & (l1 <= hi1[c]) & (lo2[c] <= h2) &
-                       (l2 <= hi2[c]) & (std::max(f, first[c]) == strip);
-      hits |= uint32_t(hit) << q;
-    }
+    bool more;
+    uint32_t hits = chunk_hits(t, j, more);
     while (hits != 0) {
       const std::size_t q = std::size_t(std::countr_zero(hits));
       hits &= hits - 1;
-      const uint32_t i1 = entry_body_[j + q];
-      if (accept_pair(in, i0, i1)) out.push_back(make_pair_key(i0, i1));
+      const uint32_t i1 = body[j + q];
+      // The same rule as accept_pair, with body k's side loaded once.
+      if (should_pair(kind0, BroadKind(kind[i1])) && (cat0 & mask[i1]) != 0 &&
+          (category[i1] & mask0) != 0) {
+        out.push_back(make_pair_key(i0, i1));
+      }
     }
-    if (!(key[j + kStripPad - 1] <= hi)) break;
+    if (!more) break;
   }
 }
 
@@ -344,7 +443,14 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
     for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
       for (std::size_t k = begin; k < end; ++k) sorted_min_[k] = sweep_key(in, mins, order_[k]);
     });
-    sorted = sort_incremental();
+    // perf: after the insertion sort gave up, the next few updates go straight to the full
+    // sort rather than paying for the attempt again.
+    if (skip_incremental_ == 0) {
+      sorted = sort_incremental();
+      if (!sorted) skip_incremental_ = kSkipAfterFailure;
+    } else {
+      --skip_incremental_;
+    }
   }
   if (!sorted) sort_full(in);
   gather_sorted(in);

@@ -53,7 +53,7 @@ constexpr std::size_t kChunk = 16384;
 constexpr std::size_t kMaxSources = 256;
 // Runs this short are insertion sorted; a pair list's run is one body's partners, a handful.
 constexpr std::size_t kSmallRun = 32;
-constexpr int kMaxSubBits = 11;
+constexpr int kMaxSubBits = 12;
 
 void insertion_sort(uint64_t* a, std::size_t m) {
   for (std::size_t i = 1; i < m; ++i) {
@@ -67,8 +67,10 @@ void insertion_sort(uint64_t* a, std::size_t m) {
   }
 }
 
-// Sorts src[0, m) into dst[0, m): a counting sort on the top varying bits (about m/4 digits, so
-// runs average a few keys), then each run alone.
+// Sorts src[0, m) into dst[0, m): a counting sort on the top varying bits, about as many digits
+// as keys so runs of one digit hold a key or two, then one insertion pass over the whole range
+// (cost m + the few inversions left inside runs). Long runs (keys sharing their top bits) are
+// sorted alone instead, so the worst case stays m log m.
 void sort_bucket(const uint64_t* src, uint64_t* dst, std::size_t m) {
   if (m <= kSmallRun) {
     std::copy(src, src + m, dst);
@@ -87,15 +89,23 @@ void sort_bucket(const uint64_t* src, uint64_t* dst, std::size_t m) {
   }
   // Bits above the top varying one are equal in every key, so digit order is key order.
   const int top = std::bit_width(varying);
-  const int bits = std::clamp(int(std::bit_width(m)) - 2, 4, kMaxSubBits);
+  const int bits = std::clamp(int(std::bit_width(m)), 4, kMaxSubBits);
   const int shift = std::max(0, top - bits);
   const std::size_t digits = std::size_t{1} << bits;
   const uint64_t mask = digits - 1;
   std::array<uint32_t, (std::size_t{1} << kMaxSubBits) + 1> count;
   std::fill(count.begin(), count.begin() + std::ptrdiff_t(digits + 1), 0u);
   for (std::size_t i = 0; i < m; ++i) ++count[((src[i] >> shift) & mask) + 1];
-  for (std::size_t d = 0; d < digits; ++d) count[d + 1] += count[d];
+  uint32_t longest = 0;
+  for (std::size_t d = 0; d < digits; ++d) {
+    longest = std::max(longest, count[d + 1]);
+    count[d + 1] += count[d];
+  }
   for (std::size_t i = 0; i < m; ++i) dst[count[(src[i] >> shift) & mask]++] = src[i];
+  if (longest <= kSmallRun) {
+    insertion_sort(dst, m);
+    return;
+  }
   // count[d] is now the end of run d.
   std::size_t begin = 0;
   for (std::size_t d = 0; d < digits; ++d) {
