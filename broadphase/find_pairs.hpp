@@ -67,8 +67,7 @@ class SweepAndPrune {
   bool sort_incremental();
   void gather_sorted(const BroadphaseInput& in);
   void deal_strips(const BroadphaseInput& in);
-  void sweep_entry(const BroadphaseInput& in, std::size_t k, std::size_t stop, uint32_t strip,
-                   std::vector<uint64_t>& out) const;
+  void sweep_range(std::size_t begin, std::size_t end, std::vector<uint64_t>& out) const;
   uint32_t strip_of(Real v) const;
 
   std::vector<uint32_t> order_;   // body indices sorted by min on the sweep axis
@@ -83,7 +82,10 @@ class SweepAndPrune {
   // followed by kStripPad sentinels (min +inf, the rest NaN) so the sweep reads whole chunks.
   Column<Real> entry_min_, entry_max_, entry_lo1_, entry_hi1_, entry_lo2_, entry_hi2_;
   std::vector<uint32_t> entry_body_;
-  std::vector<uint32_t> entry_first_;    // strip of the box's low end on the strip axis
+  std::vector<uint32_t> entry_first_;  // strip of the box's low end on the strip axis
+  // The box's kind, filter category and mask, so the accept test runs in the sweep's lanes.
+  std::vector<uint8_t> entry_kind_;
+  std::vector<uint32_t> entry_category_, entry_mask_;
   std::vector<uint32_t> strip_begin_;    // per strip: first entry; strip_begin_[s + 1] - pad: end
   std::vector<uint32_t> sorted_strips_;  // per sorted box: first and last strip (first > last:
                                          // no entry)
