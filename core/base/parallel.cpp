@@ -67,11 +67,28 @@ void insertion_sort(uint64_t* a, std::size_t m) {
   }
 }
 
-// Sorts src[0, m) into dst[0, m): a counting sort on the top varying bits, about as many digits
-// as keys so runs of one digit hold a key or two, then one insertion pass over the whole range
-// (cost m + the few inversions left inside runs). Long runs (keys sharing their top bits) are
-// sorted alone instead, so the worst case stays m log m.
-void sort_bucket(const uint64_t* src, uint64_t* dst, std::size_t m) {
+// Stable counting sort of src[0, m) into dst on digit (key >> shift) & (digits - 1); count
+// needs digits + 1 slots. Returns the longest run of one digit.
+uint32_t counting_pass(const uint64_t* src, uint64_t* dst, std::size_t m, int shift,
+                       std::size_t digits, uint32_t* count) {
+  const uint64_t mask = digits - 1;
+  std::fill(count, count + digits + 1, 0u);
+  for (std::size_t i = 0; i < m; ++i) ++count[((src[i] >> shift) & mask) + 1];
+  uint32_t longest = 0;
+  for (std::size_t d = 0; d < digits; ++d) {
+    longest = std::max(longest, count[d + 1]);
+    count[d + 1] += count[d];
+  }
+  for (std::size_t i = 0; i < m; ++i) dst[count[(src[i] >> shift) & mask]++] = src[i];
+  return longest;
+}
+
+// Sorts src[0, m) into dst[0, m), clobbering src. About as many digits as keys: a stable pass on
+// the lowest varying bits, then one on the top varying bits, leaves only keys equal in both
+// digits out of order (a pair key's partners differ in their low bits), so one insertion pass
+// over the whole range costs about m and rarely mispredicts. Long runs of one top digit (keys
+// sharing their top bits) are sorted alone instead, so the worst case stays m log m.
+void sort_bucket(uint64_t* src, uint64_t* dst, std::size_t m) {
   if (m <= kSmallRun) {
     std::copy(src, src + m, dst);
     insertion_sort(dst, m);
@@ -89,24 +106,24 @@ void sort_bucket(const uint64_t* src, uint64_t* dst, std::size_t m) {
   }
   // Bits above the top varying one are equal in every key, so digit order is key order.
   const int top = std::bit_width(varying);
+  const int low = std::countr_zero(varying);
   const int bits = std::clamp(int(std::bit_width(m)), 4, kMaxSubBits);
-  const int shift = std::max(0, top - bits);
+  const int shift = std::max(low, top - bits);
   const std::size_t digits = std::size_t{1} << bits;
-  const uint64_t mask = digits - 1;
   std::array<uint32_t, (std::size_t{1} << kMaxSubBits) + 1> count;
-  std::fill(count.begin(), count.begin() + std::ptrdiff_t(digits + 1), 0u);
-  for (std::size_t i = 0; i < m; ++i) ++count[((src[i] >> shift) & mask) + 1];
-  uint32_t longest = 0;
-  for (std::size_t d = 0; d < digits; ++d) {
-    longest = std::max(longest, count[d + 1]);
-    count[d + 1] += count[d];
+  uint32_t longest;
+  if (shift > low) {
+    counting_pass(src, dst, m, low, digits, count.data());
+    longest = counting_pass(dst, src, m, shift, digits, count.data());
+    std::copy(src, src + m, dst);
+  } else {
+    longest = counting_pass(src, dst, m, shift, digits, count.data());
   }
-  for (std::size_t i = 0; i < m; ++i) dst[count[(src[i] >> shift) & mask]++] = src[i];
   if (longest <= kSmallRun) {
     insertion_sort(dst, m);
     return;
   }
-  // count[d] is now the end of run d.
+  // count[d] is now the end of run d of the top digit.
   std::size_t begin = 0;
   for (std::size_t d = 0; d < digits; ++d) {
     const std::size_t end = count[d];
