@@ -27,6 +27,7 @@ constexpr std::size_t kStatsGrain = 4096;
 constexpr std::size_t kSweepGrain = 512;
 constexpr std::size_t kDealGrain = 4096;
 constexpr std::size_t kPlaneGrain = 4096;
+constexpr std::size_t kPlaneRun = 256;
 // Switch axis only when another one spreads clearly more, so a scene near a tie does not pay a
 // full re-sort every update.
 constexpr double kAxisHysteresis = 1.25;
@@ -575,11 +576,28 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
     for_blocks(n, kPlaneGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
       std::vector<uint64_t>& out = block_pairs_[sweep_blocks + blk];
       out.clear();
+      const Real *min_x = b.min_x.data(), *min_y = b.min_y.data(), *min_z = b.min_z.data();
+      const Real *max_x = b.max_x.data(), *max_y = b.max_y.data(), *max_z = b.max_z.data();
       for (uint32_t p : planes_) {
-        for (std::size_t j = begin; j < end; ++j) {
-          const uint32_t q = uint32_t(j);
-          if (q == p || (in.is_plane[q] && q < p)) continue;
-          if (boxes_overlap(b, p, q) && accept_pair(in, p, q)) out.push_back(make_pair_key(p, q));
+        const Real ax = min_x[p], ay = min_y[p], az = min_z[p];
+        const Real bx = max_x[p], by = max_y[p], bz = max_z[p];
+        for (std::size_t j0 = begin; j0 < end; j0 += kPlaneRun) {
+          const std::size_t m = std::min(kPlaneRun, end - j0);
+          // perf: branch-free overlap test over a run of bodies, so it vectorises; the rare
+          // hits then take the exact rule of boxes_overlap + accept_pair.
+          alignas(64) uint8_t hit[kPlaneRun];
+#pragma omp simd
+          for (std::size_t k = 0; k < m; ++k) {
+            const std::size_t j = j0 + k;
+            hit[k] = uint8_t((min_x[j] <= bx) & (ax <= max_x[j]) & (min_y[j] <= by) &
+                             (ay <= max_y[j]) & (min_z[j] <= bz) & (az <= max_z[j]));
+          }
+          for (std::size_t k = 0; k < m; ++k) {
+            if (!hit[k]) continue;
+            const uint32_t q = uint32_t(j0 + k);
+            if (q == p || (in.is_plane[q] && q < p)) continue;
+            if (accept_pair(in, p, q)) out.push_back(make_pair_key(p, q));
+          }
         }
       }
     });
