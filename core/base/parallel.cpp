@@ -84,8 +84,8 @@ uint32_t counting_pass(const uint64_t* src, uint64_t* dst, std::size_t m, int sh
 }
 
 // Sorts src[0, m) into dst[0, m), clobbering src. About as many digits as keys: a stable pass on
-// the lowest varying bits, then one on the top varying bits, leaves only keys equal in both
-// digits out of order (a pair key's partners differ in their low bits), so one insertion pass
+// the second digit, then one on the top varying bits, leaves only keys equal in both digits out
+// of order (a pair key's partners of one body differ in b's high bits), so one insertion pass
 // over the whole range costs about m and rarely mispredicts. Long runs of one top digit (keys
 // sharing their top bits) are sorted alone instead, so the worst case stays m log m.
 void sort_bucket(uint64_t* src, uint64_t* dst, std::size_t m) {
@@ -113,7 +113,10 @@ void sort_bucket(uint64_t* src, uint64_t* dst, std::size_t m) {
   std::array<uint32_t, (std::size_t{1} << kMaxSubBits) + 1> count;
   uint32_t longest;
   if (shift > low) {
-    counting_pass(src, dst, m, low, digits, count.data());
+    // The next digit down: the top varying bits below the first digit, skipping bits that are
+    // constant (a pair key's high half is a, its low half b < 2^32, with zeros between).
+    const int below = std::bit_width(varying & ((uint64_t{1} << shift) - 1));
+    counting_pass(src, dst, m, std::max(low, below - bits), digits, count.data());
     longest = counting_pass(dst, src, m, shift, digits, count.data());
     std::copy(src, src + m, dst);
   } else {
