@@ -65,7 +65,6 @@ class SweepAndPrune {
   bool choose_axis(const BroadphaseInput& in);
   void sort_full(const BroadphaseInput& in);
   bool sort_incremental();
-  void gather_sorted(const BroadphaseInput& in);
   void deal_strips(const BroadphaseInput& in);
   void sweep_range(std::size_t begin, std::size_t end, std::vector<uint64_t>& out) const;
   uint32_t strip_of(Real v) const;

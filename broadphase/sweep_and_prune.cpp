@@ -345,44 +345,15 @@ bool SweepAndPrune::sort_incremental() {
   return true;
 }
 
-void SweepAndPrune::gather_sorted(const BroadphaseInput& in) {
-  const BoundsColumns& b = *in.bounds;
-  const std::size_t n = b.size();
-  const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
-  const Real* hi0 = axis_max(b, axis_);
-  const Real *lo1 = axis_min(b, a1), *hi1 = axis_max(b, a1);
-  const Real *lo2 = axis_min(b, a2), *hi2 = axis_max(b, a2);
-  sorted_max_.resize(n);
-  sorted_lo1_.resize(n);
-  sorted_hi1_.resize(n);
-  sorted_lo2_.resize(n);
-  sorted_hi2_.resize(n);
-  constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
-  // determinism: indexed writes, slot k owned by its block.
-  for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const uint32_t i = order_[k];
-      // Planes are paired in their own pass; a NaN box never overlaps, keeping them out of the
-      // sweep both as the scanning item and as a candidate.
-      const bool plane = in.is_plane[i] != 0;
-      sorted_max_[k] = plane ? kNaN : hi0[i];
-      sorted_lo1_[k] = plane ? kNaN : lo1[i];
-      sorted_hi1_[k] = plane ? kNaN : hi1[i];
-      sorted_lo2_[k] = plane ? kNaN : lo2[i];
-      sorted_hi2_[k] = plane ? kNaN : hi2[i];
-    }
-  });
-}
-
 uint32_t SweepAndPrune::strip_of(Real v) const {
   if (!(v > strip_lo_)) return 0;
   const Real t = (v - strip_lo_) / strip_width_;
   return t < Real(strip_count_) ? uint32_t(t) : strip_count_ - 1;
 }
 
-// Deals the sorted boxes into strips in sweep order (a stable counting sort), so every strip
-// comes out sorted without a sort of its own. Planes and boxes with a NaN bound never overlap
-// anything and get no entry.
+// Gathers the sorted boxes and deals them into strips in sweep order (a stable counting sort),
+// so every strip comes out sorted without a sort of its own. Planes and boxes with a NaN bound
+// never overlap anything and get no entry.
 void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
   const std::size_t n = order_.size();
   const std::size_t strips = strip_count_;
@@ -390,19 +361,36 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
   // at least 4 boxes per strip long keep the per-block counts below n/4.
   const std::size_t grain = std::max(kDealGrain, 4 * strips);
   const std::size_t blocks = block_count(n, grain);
-  const Real* mins = axis_min(*in.bounds, axis_);
-  const Real* slo = strip_axis_ == 1 ? sorted_lo1_.data() : sorted_lo2_.data();
-  const Real* shi = strip_axis_ == 1 ? sorted_hi1_.data() : sorted_hi2_.data();
+  const BoundsColumns& b = *in.bounds;
+  const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
+  const Real *lo0 = axis_min(b, axis_), *hi0 = axis_max(b, axis_);
+  const Real *lo1 = axis_min(b, a1), *hi1 = axis_max(b, a1);
+  const Real *lo2 = axis_min(b, a2), *hi2 = axis_max(b, a2);
+  sorted_max_.resize(n);
+  sorted_lo1_.resize(n);
+  sorted_hi1_.resize(n);
+  sorted_lo2_.resize(n);
+  sorted_hi2_.resize(n);
   sorted_strips_.resize(2 * n);
   deal_counts_.assign(blocks * strips, 0);
-  // determinism: each block counts into its own row (rule 1).
+  // The rest of each box in sweep order, its strips, and per block the entries per strip.
+  // determinism: indexed writes, and each block counts into its own row (rule 1).
   for_blocks(n, grain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
     uint32_t* count = deal_counts_.data() + blk * strips;
     for (std::size_t k = begin; k < end; ++k) {
-      const bool valid = !(std::isnan(mins[order_[k]]) || std::isnan(sorted_max_[k]) ||
-                           std::isnan(sorted_lo1_[k]) || std::isnan(sorted_hi1_[k]) ||
-                           std::isnan(sorted_lo2_[k]) || std::isnan(sorted_hi2_[k]));
-      const uint32_t s0 = valid ? strip_of(slo[k]) : 1, s1 = valid ? strip_of(shi[k]) : 0;
+      const uint32_t i = order_[k];
+      const Real v[5] = {hi0[i], lo1[i], hi1[i], lo2[i], hi2[i]};
+      sorted_max_[k] = v[0];
+      sorted_lo1_[k] = v[1];
+      sorted_hi1_[k] = v[2];
+      sorted_lo2_[k] = v[3];
+      sorted_hi2_[k] = v[4];
+      // Planes are paired in their own pass and a NaN box never overlaps: no entry.
+      const bool valid =
+          !(in.is_plane[i] || std::isnan(lo0[i]) || std::isnan(v[0]) || std::isnan(v[1]) ||
+            std::isnan(v[2]) || std::isnan(v[3]) || std::isnan(v[4]));
+      const Real slo = strip_axis_ == 1 ? v[1] : v[3], shi = strip_axis_ == 1 ? v[2] : v[4];
+      const uint32_t s0 = valid ? strip_of(slo) : 1, s1 = valid ? strip_of(shi) : 0;
       sorted_strips_[2 * k] = s0;
       sorted_strips_[2 * k + 1] = s1;
       for (uint32_t s = s0; s <= s1; ++s) ++count[s];
@@ -546,7 +534,6 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
     }
   }
   if (!sorted) sort_full(in);
-  gather_sorted(in);
 
   deal_strips(in);
 
