@@ -67,7 +67,12 @@ class SweepAndPrune {
   bool sort_incremental();
   void deal_strips(const BroadphaseInput& in);
   void sweep_range(std::size_t begin, std::size_t end, std::vector<uint64_t>& out) const;
-  uint32_t strip_of(Real v) const;
+  // Monotonic in v, which the sweep's dedup rule relies on; NaN and v <= strip_lo_ give 0.
+  uint32_t strip_of(Real v) const {
+    if (!(v > strip_lo_)) return 0;
+    const Real t = (v - strip_lo_) / strip_width_;
+    return t < Real(strip_count_) ? uint32_t(t) : strip_count_ - 1;
+  }
 
   std::vector<uint32_t> order_;   // body indices sorted by min on the sweep axis
   std::vector<Real> sorted_min_;  // min on the axis, in order_ (planes, NaN: +inf)

@@ -345,12 +345,6 @@ bool SweepAndPrune::sort_incremental() {
   return true;
 }
 
-uint32_t SweepAndPrune::strip_of(Real v) const {
-  if (!(v > strip_lo_)) return 0;
-  const Real t = (v - strip_lo_) / strip_width_;
-  return t < Real(strip_count_) ? uint32_t(t) : strip_count_ - 1;
-}
-
 // Gathers the sorted boxes and deals them into strips in sweep order (a stable counting sort),
 // so every strip comes out sorted without a sort of its own. Planes and boxes with a NaN bound
 // never overlap anything and get no entry.
