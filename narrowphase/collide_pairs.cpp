@@ -26,8 +26,7 @@ constexpr Real kMatchNormalCos = Real(0.95);
 
 void warm_start(const Manifold& old, Manifold& m) {
   if (old.body_a != m.body_a || old.normal.dot(m.normal) < kMatchNormalCos) return;
-  m.tangent_impulse[0] = old.tangent_impulse[0];
-  m.tangent_impulse[1] = old.tangent_impulse[1];
+  carry_tangent_impulse(old.normal, old.tangent_impulse, m.normal, m.tangent_impulse);
   m.twist_impulse = old.twist_impulse;
   for (int i = 0; i < m.point_count; ++i) {
     ContactPoint& p = m.points[i];
@@ -49,39 +48,58 @@ void warm_start(const Manifold& old, Manifold& m) {
   }
 }
 
-// Body pair cache (Jolt's): while B's pose relative to A stays within 1 mm and 2 degrees of the
-// pose the points were computed at, the previous manifold is carried along with the bodies
-// instead of running the exact test again. The tolerance is measured against the pose of the
-// exact test, not the last reuse, so the error cannot accumulate.
+// Body pair cache (Jolt's): while B's pose relative to A stays within 0.2 mm and 0.5 degrees of
+// the pose of the last exact test, the manifold is carried along with the bodies instead of
+// running the exact test again. Each step carries it from the poses of the step before; the
+// tolerance is measured against the exact test, so a string of reuses cannot drift from it.
 constexpr Real kCacheDistance = Real(2e-4);            // m
 constexpr Real kCacheCosHalfAngle = Real(0.99999048);  // cos(0.25 degree): 0.5 degree
 
+// A round body's contact point does not travel with its material as it turns (a rolling
+// sphere touches the ground under its centre). Carried with the body, a cached point would
+// drift off the line of centres by r * angle, and the normal force there would turn the sphere
+// further the way it already turned (torque lambda r sin(angle)): a pump that kept spheres and
+// capsules in a deep pile rocking. Their exact tests are the cheap closed forms anyway.
+bool rolls(const Shape& s) {
+  return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ||
+         s.type == ShapeType::Cylinder;
+}
+
 bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& xb, Manifold& m) {
   const Vec3 relative = xa.rotation.conjugate() * (xb.position - xa.position);
-  if ((relative - old.relative_position).squaredNorm() > kCacheDistance * kCacheDistance) {
+  if ((relative - old.exact_position).squaredNorm() > kCacheDistance * kCacheDistance) {
     return false;
   }
   const Quat rel_now = xa.rotation.conjugate() * xb.rotation;
-  const Quat rel_then = old.orientation_a.conjugate() * old.orientation_b;
-  if (std::abs(rel_now.dot(rel_then)) < kCacheCosHalfAngle) return false;
-  const Quat turn_a = xa.rotation * old.orientation_a.conjugate();  // since the exact test
+  if (std::abs(rel_now.dot(old.exact_rotation)) < kCacheCosHalfAngle) return false;
+  const Quat turn_a = xa.rotation * old.orientation_a.conjugate();  // since the last update
   const Quat turn_b = xb.rotation * old.orientation_b.conjugate();
   const Vec3 normal_in_a = old.orientation_a.conjugate() * old.normal;
-  m = old;  // key, bodies, impulses for the warm start, and the poses of the exact test
+  const Vec3 centres = xb.position - xa.position;
+  m = old;  // key, bodies, impulses for the warm start, the exact test's pose
   m.normal = (xa.rotation * normal_in_a).normalized();
+  carry_tangent_impulse(old.normal, old.tangent_impulse, m.normal, m.tangent_impulse);
   for (int k = 0; k < m.point_count; ++k) {
     ContactPoint& p = m.points[k];
     const ContactPoint& q = old.points[k];
-    p.anchor_a = turn_a * q.anchor_a;
-    p.anchor_b = turn_b * q.anchor_b;
-    // The two material points, seen from A: their gap along A's normal changed by as much as
-    // their separation vector did.
+    const Vec3 on_a = turn_a * q.anchor_a;  // the material points, from each centre now
+    const Vec3 on_b = turn_b * q.anchor_b;
+    // Seen from A, the two material points' gap along A's normal changed by as much as their
+    // separation vector did.
     const Vec3 gap_then =
         old.relative_position + old.orientation_a.conjugate() * (q.anchor_b - q.anchor_a);
-    const Vec3 gap_now = relative + xa.rotation.conjugate() * (p.anchor_b - p.anchor_a);
+    const Vec3 gap_now = relative + xa.rotation.conjugate() * (on_b - on_a);
     p.separation = q.separation + normal_in_a.dot(gap_now - gap_then);
+    // Both arms reach one world point, midway between the material points: once the bodies
+    // have slid or turned they part (a 1 m cube turned 0.5 degree moves its corner 4 mm), and
+    // the two halves of an impulse acting at different points would form a couple.
+    p.anchor_a = Real(0.5) * (on_a + centres + on_b);
+    p.anchor_b = p.anchor_a - centres;
     p.max_normal_impulse = 0;
   }
+  m.orientation_a = xa.rotation;
+  m.orientation_b = xb.rotation;
+  m.relative_position = relative;
   return true;
 }
 
@@ -117,7 +135,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       const Manifold* old =
           (prev_it != previous.end() && prev_it->key == key && prev_it->body_a == a) ? &*prev_it
                                                                                      : nullptr;
-      if (old != nullptr && old->point_count > 0 && reuse_manifold(*old, xa, xb, m)) {
+      const bool cacheable = !rolls(shapes[bodies.shape[a]]) && !rolls(shapes[bodies.shape[b]]);
+      if (old != nullptr && old->point_count > 0 && cacheable && reuse_manifold(*old, xa, xb, m)) {
         touching.push_back(m);
         continue;
       }
@@ -135,6 +154,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       m.orientation_a = xa.rotation;
       m.orientation_b = xb.rotation;
       m.relative_position = xa.rotation.conjugate() * (xb.position - xa.position);
+      m.exact_rotation = xa.rotation.conjugate() * xb.rotation;
+      m.exact_position = m.relative_position;
       if (m.point_count > 0 && old != nullptr) warm_start(*old, m);
       if (m.point_count > 0) touching.push_back(m);
     }

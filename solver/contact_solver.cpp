@@ -46,19 +46,6 @@ constexpr Real kTorsionPatch = Real(0.005);
 constexpr Real kRefreshDistance = Real(1e-4);
 constexpr Real kRefreshAngle = Real(1e-4);
 
-// Deterministic tangent basis from the normal (pick the axis least aligned with n, as Box2D's
-// b2ComputeBasis does): the same normal always gives the same basis, so friction impulses carried
-// to the next step keep their meaning.
-void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
-  if (std::abs(n.x()) >= Real(0.57735027)) {
-    t1 = Vec3(n.y(), -n.x(), 0);
-  } else {
-    t1 = Vec3(0, n.z(), -n.y());
-  }
-  t1.normalize();
-  t2 = n.cross(t1);
-}
-
 // Relative velocity of B against A along a row with Jacobian [-d, -ra_d, d, rb_d].
 inline Real row_velocity(const SolverBody& a, const SolverBody& b, const Vec3& d, const Vec3& ra_d,
                          const Vec3& rb_d) {

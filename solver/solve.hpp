@@ -24,7 +24,10 @@ namespace elan::detail {
 struct SolveSettings {
   Real dt = Real(1.0 / 60.0);  // s
   int substeps = 4;
-  int iterations = 3;  // solve passes per substep (relax is one pass)
+  // Solve passes per substep (relax is one pass). A base-20 pyramid of cubes (20 layers, four
+  // supports per cube) keeps vibrating at 3 passes (the top at 5 cm/s, 400 J, never asleep) and
+  // is still within 2 s at 4.
+  int iterations = 4;
   Vec3 gravity = Vec3(0, Real(-9.81), 0);
   bool allow_sleep = true;
   // Hz, capped at a quarter of the substep rate. A soft contact under a steady load W settles

@@ -2,6 +2,7 @@
 // pair, kept sorted by pair key.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "elan/math.hpp"
@@ -31,11 +32,40 @@ struct Manifold {
   // normal, carried to the next step like the normal impulses.
   Real tangent_impulse[2] = {0, 0};  // N s, along the solver's tangent basis of `normal`
   Real twist_impulse = 0;            // N m s, about `normal`
-  // Poses when the points were last computed by the exact test, for reusing them while the
-  // pair's relative pose stays within a small tolerance (Jolt's body pair cache).
+  // Jolt's body pair cache: the poses when the points were last updated (by the exact test or
+  // by carrying them along), the reference of the next update; and B's pose relative to A at
+  // the exact test, the reference of the tolerance, so that reuses cannot drift away from it.
   Quat orientation_a = Quat::Identity();  // A's principal frame to world at that time
   Quat orientation_b = Quat::Identity();
-  Vec3 relative_position = Vec3::Zero();  // m: B's centre of mass minus A's, in A's frame
+  Vec3 relative_position = Vec3::Zero();   // m: B's centre of mass minus A's, in A's frame
+  Quat exact_rotation = Quat::Identity();  // A's frame to B's (A^-1 B) at the exact test
+  Vec3 exact_position = Vec3::Zero();      // m: relative_position at the exact test
 };
+
+// Deterministic tangent basis from the normal (pick the axis least aligned with n, as Box2D's
+// b2ComputeBasis does): the same normal always gives the same basis. Manifold::tangent_impulse
+// is expressed in it.
+inline void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
+  if (std::abs(n.x()) >= Real(0.57735027)) {
+    t1 = Vec3(n.y(), -n.x(), 0);
+  } else {
+    t1 = Vec3(0, n.z(), -n.y());
+  }
+  t1.normalize();
+  t2 = n.cross(t1);
+}
+
+// Re-expresses the friction impulse `old_t` of a manifold with normal `old_n` in the basis of
+// `new_n`: the world impulse projected onto the new tangent plane. The basis can switch axis
+// between nearby normals, so carrying the two numbers as they are would turn the impulse.
+inline void carry_tangent_impulse(const Vec3& old_n, const Real old_t[2], const Vec3& new_n,
+                                  Real new_t[2]) {
+  Vec3 a1, a2, b1, b2;
+  tangent_basis(old_n, a1, a2);
+  tangent_basis(new_n, b1, b2);
+  const Vec3 impulse = old_t[0] * a1 + old_t[1] * a2;
+  new_t[0] = impulse.dot(b1);
+  new_t[1] = impulse.dot(b2);
+}
 
 }  // namespace elan::detail

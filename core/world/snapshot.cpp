@@ -237,6 +237,8 @@ void write_friction(ByteWriter& w, const Manifold& m) {
   write_quat(w, m.orientation_a);
   write_quat(w, m.orientation_b);
   w.vec3(m.relative_position);
+  write_quat(w, m.exact_rotation);
+  w.vec3(m.exact_position);
 }
 
 void read_friction(ByteReader& r, Manifold& m) {
@@ -246,6 +248,8 @@ void read_friction(ByteReader& r, Manifold& m) {
   m.orientation_a = read_quat(r);
   m.orientation_b = read_quat(r);
   m.relative_position = r.vec3();
+  m.exact_rotation = read_quat(r);
+  m.exact_position = r.vec3();
 }
 
 // Everything a snapshot holds, decoded and checked before any of it reaches a world.

@@ -58,7 +58,7 @@ TEST(Rollback, SizeIsEightyOneBytesPerMovingBodyPlusContacts) {
   std::size_t contact_bytes = 4;
   for (const detail::Manifold& m : s.contacts) {
     contact_bytes += 8 + 1 + 6 * sizeof(Real) + 1 + m.point_count * (9 * sizeof(Real) + 4) +
-                     11 * sizeof(Real);  // the pair cache's two orientations and offset
+                     18 * sizeof(Real);  // the pair cache's three rotations and two offsets
   }
   const std::size_t per_body = 20 * sizeof(Real) + 1;
   // Header 16, body count 4, fingerprint 8, step count 8, checksum 8.

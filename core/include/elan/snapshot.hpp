@@ -14,7 +14,7 @@
 namespace elan {
 
 /// Format version written by save_snapshot and save_rollback; other versions are refused.
-inline constexpr uint32_t kSnapshotVersion = 2;
+inline constexpr uint32_t kSnapshotVersion = 3;
 
 /// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built
 /// (hull vertices, faces and edges in the principal frame, frames, mass properties), every body
@@ -71,7 +71,7 @@ World load_snapshot(std::span<const uint8_t> bytes);
 /// u8 flags | u32 manifolds, each: u64 key, u8 (1 when body A is the higher index), 3R normal,
 /// u8 point count, per point: 3R anchor a, 3R anchor b, R separation, u32 feature id,
 /// R normal impulse, R max normal impulse; then 2R tangent impulses, R twist impulse,
-/// 4R orientation a, 4R orientation b, 3R relative position
+/// 4R orientation a, 4R orientation b, 3R relative position, 4R exact rotation, 3R exact position
 /// | u64 checksum as above.
 std::vector<uint8_t> save_rollback(const World& world);
 /// As above, into `out` (cleared first), reusing its capacity: no allocation once warm.
