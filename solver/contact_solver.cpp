@@ -46,217 +46,282 @@ constexpr Real kTorsionPatch = Real(0.005);
 constexpr Real kRefreshDistance = Real(1e-4);
 constexpr Real kRefreshAngle = Real(1e-4);
 
+// Velocities of the kLanes bodies on one side of a bundle.
+struct WideBody {
+  WideVec3 v, w;
+};
+
+// Lane-by-lane loads and stores: the packets of a bundle are scattered in memory.
+inline void gather_velocity(const SolverBody* bodies, const uint32_t* packets, WideBody& out) {
+  for (int l = 0; l < kLanes; ++l) {
+    const SolverBody& b = bodies[packets[l]];
+    set_lane(out.v, l, b.v);
+    set_lane(out.w, l, b.w);
+  }
+}
+
+inline void gather_pose(const SolverBody* bodies, const uint32_t* packets, WideVec3& dp,
+                        WideVec3& dtheta) {
+  for (int l = 0; l < kLanes; ++l) {
+    const SolverBody& b = bodies[packets[l]];
+    set_lane(dp, l, b.dp);
+    set_lane(dtheta, l, b.dtheta);
+  }
+}
+
+// Static, kinematic and unused sides are read-only: only lanes flagged `write` are stored.
+inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
+                             const WideBody& in) {
+  for (int l = 0; l < kLanes; ++l) {
+    if (!write[l]) continue;
+    SolverBody& b = bodies[packets[l]];
+    b.v = lane(in.v, l);
+    b.w = lane(in.w, l);
+  }
+}
+
 // Relative velocity of B against A along a row with Jacobian [-d, -ra_d, d, rb_d].
-inline Real row_velocity(const SolverBody& a, const SolverBody& b, const Vec3& d, const Vec3& ra_d,
-                         const Vec3& rb_d) {
-  return d.dot(b.v - a.v) + rb_d.dot(b.w) - ra_d.dot(a.w);
+inline Wide row_velocity(const WideBody& a, const WideBody& b, const WideVec3& d,
+                         const WideVec3& ra_d, const WideVec3& rb_d) {
+  return dot(d, b.v - a.v) + dot(rb_d, b.w) - dot(ra_d, a.w);
 }
 
 // Applies impulse `lambda` along a row: linear part along d, angular parts precomputed as
-// I^-1 (r x d). Static and kinematic sides are read-only.
-inline void apply_row(const ContactConstraint& c, SolverBody& a, SolverBody& b, const Vec3& d,
-                      const Vec3& ia_ra_d, const Vec3& ib_rb_d, Real lambda) {
-  if (c.write_a) {
-    a.v -= (c.inv_mass_a * lambda) * d;
-    a.w -= lambda * ia_ra_d;
-  }
-  if (c.write_b) {
-    b.v += (c.inv_mass_b * lambda) * d;
-    b.w += lambda * ib_rb_d;
-  }
+// I^-1 (r x d). A side that is not written has zero inverse mass and inertia.
+inline void apply_row(const ContactBundle& c, WideBody& a, WideBody& b, const WideVec3& d,
+                      const WideVec3& ia_ra_d, const WideVec3& ib_rb_d, Wide lambda) {
+  a.v = a.v - (c.inv_mass_a * lambda) * d;
+  a.w = a.w - lambda * ia_ra_d;
+  b.v = b.v + (c.inv_mass_b * lambda) * d;
+  b.w = b.w + lambda * ib_rb_d;
 }
 
 // The tangent impulse (t0, t1) at the centre, applied as one combined update.
-inline void apply_friction(const ContactConstraint& c, SolverBody& a, SolverBody& b, Real t0,
-                           Real t1) {
-  const Vec3 p = t0 * c.tangent[0] + t1 * c.tangent[1];
-  if (c.write_a) {
-    a.v -= c.inv_mass_a * p;
-    a.w -= t0 * c.ia_ra_t[0] + t1 * c.ia_ra_t[1];
-  }
-  if (c.write_b) {
-    b.v += c.inv_mass_b * p;
-    b.w += t0 * c.ib_rb_t[0] + t1 * c.ib_rb_t[1];
-  }
+inline void apply_friction(const ContactBundle& c, WideBody& a, WideBody& b, Wide t0, Wide t1) {
+  const WideVec3 p = t0 * c.tangent[0] + t1 * c.tangent[1];
+  a.v = a.v - c.inv_mass_a * p;
+  a.w = a.w - (t0 * c.ia_ra_t[0] + t1 * c.ia_ra_t[1]);
+  b.v = b.v + c.inv_mass_b * p;
+  b.w = b.w + (t0 * c.ib_rb_t[0] + t1 * c.ib_rb_t[1]);
 }
 
-inline void apply_twist(const ContactConstraint& c, SolverBody& a, SolverBody& b, Real twist) {
-  if (c.write_a) a.w -= twist * c.ia_n;
-  if (c.write_b) b.w += twist * c.ib_n;
+inline void apply_twist(const ContactBundle& c, WideBody& a, WideBody& b, Wide twist) {
+  a.w = a.w - twist * c.ia_n;
+  b.w = b.w + twist * c.ib_n;
+}
+
+inline bool any_lane(Wide v) {
+  for (int l = 0; l < kLanes; ++l)
+    if (v[l] != 0) return true;
+  return false;
 }
 
 // The friction rows' Jacobians at the manifold centre and the inverse of their 2x2 mass matrix
-// K = J M^-1 J^T, inverted in closed form.
-void set_friction_rows(ContactConstraint& c, const Vec3& center_ra, const Vec3& center_rb,
+// K = J M^-1 J^T, inverted in closed form, for lane l.
+void set_friction_rows(ContactBundle& c, int l, const Vec3& center_ra, const Vec3& center_rb,
                        const SymMat3& ia, const SymMat3& ib) {
+  Vec3 ra_t[2], rb_t[2], ia_ra_t[2], ib_rb_t[2];
   for (int t = 0; t < 2; ++t) {
-    c.ra_t[t] = center_ra.cross(c.tangent[t]);
-    c.rb_t[t] = center_rb.cross(c.tangent[t]);
-    c.ia_ra_t[t] = ia * c.ra_t[t];
-    c.ib_rb_t[t] = ib * c.rb_t[t];
+    const Vec3 tangent = lane(c.tangent[t], l);
+    ra_t[t] = center_ra.cross(tangent);
+    rb_t[t] = center_rb.cross(tangent);
+    ia_ra_t[t] = ia * ra_t[t];
+    ib_rb_t[t] = ib * rb_t[t];
+    set_lane(c.ra_t[t], l, ra_t[t]);
+    set_lane(c.rb_t[t], l, rb_t[t]);
+    set_lane(c.ia_ra_t[t], l, ia_ra_t[t]);
+    set_lane(c.ib_rb_t[t], l, ib_rb_t[t]);
   }
-  const Real m_sum = c.inv_mass_a + c.inv_mass_b;
-  const Real k00 = m_sum + c.ra_t[0].dot(c.ia_ra_t[0]) + c.rb_t[0].dot(c.ib_rb_t[0]);
-  const Real k01 = c.ra_t[0].dot(c.ia_ra_t[1]) + c.rb_t[0].dot(c.ib_rb_t[1]);
-  const Real k11 = m_sum + c.ra_t[1].dot(c.ia_ra_t[1]) + c.rb_t[1].dot(c.ib_rb_t[1]);
+  const Real m_sum = c.inv_mass_a[l] + c.inv_mass_b[l];
+  const Real k00 = m_sum + ra_t[0].dot(ia_ra_t[0]) + rb_t[0].dot(ib_rb_t[0]);
+  const Real k01 = ra_t[0].dot(ia_ra_t[1]) + rb_t[0].dot(ib_rb_t[1]);
+  const Real k11 = m_sum + ra_t[1].dot(ia_ra_t[1]) + rb_t[1].dot(ib_rb_t[1]);
   const Real det = k00 * k11 - k01 * k01;
   const Real inv_det = det > 0 ? 1 / det : 0;
-  c.tangent_inv_k[0] = k11 * inv_det;
-  c.tangent_inv_k[1] = -k01 * inv_det;
-  c.tangent_inv_k[2] = k00 * inv_det;
+  c.inv_k00[l] = k11 * inv_det;
+  c.inv_k01[l] = -k01 * inv_det;
+  c.inv_k11[l] = k00 * inv_det;
+}
+
+// Lever arms of point k of lane l and the normal mass they give.
+void set_point_arms(ContactBundle& c, int l, int k, const Vec3& ra, const Vec3& rb,
+                    const SymMat3& ia, const SymMat3& ib) {
+  WideContactPoint& p = c.points[k];
+  const Vec3 n = lane(c.normal, l);
+  const Vec3 ra_n = ra.cross(n), rb_n = rb.cross(n);
+  const Vec3 ia_ra_n = ia * ra_n, ib_rb_n = ib * rb_n;
+  set_lane(p.ra_n, l, ra_n);
+  set_lane(p.rb_n, l, rb_n);
+  set_lane(p.ia_ra_n, l, ia_ra_n);
+  set_lane(p.ib_rb_n, l, ib_rb_n);
+  const Real k_n = c.inv_mass_a[l] + c.inv_mass_b[l] + ra_n.dot(ia_ra_n) + rb_n.dot(ib_rb_n);
+  p.normal_mass[l] = k_n > 0 ? 1 / k_n : 0;
 }
 
 }  // namespace
 
 void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
                      std::span<const uint32_t> packet_of, const ContactSolverContext& ctx,
-                     ContactConstraint& c) {
+                     ContactBundle& c, int l) {
   const uint32_t a = m.body_a, b = m.body_b;
-  c.packet_a = packet_of[a];
-  c.packet_b = packet_of[b];
-  c.manifold = manifold_index;
-  c.count = m.point_count;
-  c.write_a = bodies.is_dynamic(a);
-  c.write_b = bodies.is_dynamic(b);
-  const SolverBodyParams& pa = ctx.params[c.packet_a];
-  const SolverBodyParams& pb = ctx.params[c.packet_b];
-  const Real ma = c.write_a ? pa.inv_mass : 0;
-  const Real mb = c.write_b ? pb.inv_mass : 0;
-  const SymMat3 ia = c.write_a ? pa.inv_inertia : SymMat3{};
-  const SymMat3 ib = c.write_b ? pb.inv_inertia : SymMat3{};
-  c.inv_mass_a = ma;
-  c.inv_mass_b = mb;
-  c.friction = std::sqrt(bodies.friction[a] * bodies.friction[b]);
-  c.restitution = std::max(bodies.restitution[a], bodies.restitution[b]);
-  c.softness = (c.write_a && c.write_b) ? ctx.contact_softness : ctx.static_softness;
+  const uint32_t packet_a = packet_of[a], packet_b = packet_of[b];
+  const bool write_a = bodies.is_dynamic(a), write_b = bodies.is_dynamic(b);
+  c.packet_a[l] = packet_a;
+  c.packet_b[l] = packet_b;
+  c.manifold[l] = manifold_index;
+  c.write_a[l] = write_a;
+  c.write_b[l] = write_b;
+  c.lanes = std::max(c.lanes, l + 1);
+  c.max_count = std::max(c.max_count, m.point_count);
+  const SolverBodyParams& pa = ctx.params[packet_a];
+  const SolverBodyParams& pb = ctx.params[packet_b];
+  const SymMat3 ia = write_a ? pa.inv_inertia : SymMat3{};
+  const SymMat3 ib = write_b ? pb.inv_inertia : SymMat3{};
+  c.inv_mass_a[l] = write_a ? pa.inv_mass : 0;
+  c.inv_mass_b[l] = write_b ? pb.inv_mass : 0;
+  c.friction[l] = std::sqrt(bodies.friction[a] * bodies.friction[b]);
+  c.restitution[l] = std::max(bodies.restitution[a], bodies.restitution[b]);
+  const Softness soft = (write_a && write_b) ? ctx.contact_softness : ctx.static_softness;
+  c.bias_rate[l] = soft.bias_rate;
+  c.mass_scale[l] = soft.mass_scale;
+  c.impulse_scale[l] = soft.impulse_scale;
   const Vec3 n = m.normal;
-  c.normal = n;
-  tangent_basis(n, c.tangent[0], c.tangent[1]);
-  const SolverBody& sa = ctx.bodies[c.packet_a];
-  const SolverBody& sb = ctx.bodies[c.packet_b];
+  set_lane(c.normal, l, n);
+  Vec3 t0, t1;
+  tangent_basis(n, t0, t1);
+  set_lane(c.tangent[0], l, t0);
+  set_lane(c.tangent[1], l, t1);
+  const SolverBody& sa = ctx.bodies[packet_a];
+  const SolverBody& sb = ctx.bodies[packet_b];
 
   Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
-  for (int i = 0; i < c.count; ++i) {
+  for (int i = 0; i < m.point_count; ++i) {
     const ContactPoint& mp = m.points[i];
-    ConstraintPoint& cp = c.points[i];
-    cp.ra_n = mp.anchor_a.cross(n);
-    cp.rb_n = mp.anchor_b.cross(n);
-    cp.ia_ra_n = ia * cp.ra_n;
-    cp.ib_rb_n = ib * cp.rb_n;
-    cp.separation = mp.separation;
-    const Real k = ma + mb + cp.ra_n.dot(cp.ia_ra_n) + cp.rb_n.dot(cp.ib_rb_n);
-    cp.normal_mass = k > 0 ? 1 / k : 0;
-    cp.normal_impulse = mp.normal_impulse;
-    cp.max_normal_impulse = 0;
-    cp.relative_velocity = row_velocity(sa, sb, n, cp.ra_n, cp.rb_n);
+    WideContactPoint& p = c.points[i];
+    set_point_arms(c, l, i, mp.anchor_a, mp.anchor_b, ia, ib);
+    p.separation[l] = mp.separation;
+    p.normal_impulse[l] = mp.normal_impulse;
+    const Vec3 ra_n = lane(p.ra_n, l), rb_n = lane(p.rb_n, l);
+    p.relative_velocity[l] = n.dot(sb.v - sa.v) + rb_n.dot(sb.w) - ra_n.dot(sa.w);
     center_ra += mp.anchor_a;
     center_rb += mp.anchor_b;
   }
-  const Real inv_count = c.count > 0 ? Real(1) / Real(c.count) : Real(0);
+  const Real inv_count = m.point_count > 0 ? Real(1) / Real(m.point_count) : Real(0);
   center_ra *= inv_count;
   center_rb *= inv_count;
-  for (int i = 0; i < c.count; ++i) {
+  for (int i = 0; i < m.point_count; ++i) {
     const Vec3 offset = m.points[i].anchor_a - center_ra;
-    c.points[i].twist_lever = (offset - offset.dot(n) * n).norm();
+    c.points[i].twist_lever[l] = (offset - offset.dot(n) * n).norm();
   }
-  set_friction_rows(c, center_ra, center_rb, ia, ib);
-  c.ia_n = ia * n;
-  c.ib_n = ib * n;
-  const Real k_twist = n.dot(c.ia_n) + n.dot(c.ib_n);
-  c.twist_mass = k_twist > 0 ? 1 / k_twist : 0;
-  c.tangent_impulse[0] = m.tangent_impulse[0];
-  c.tangent_impulse[1] = m.tangent_impulse[1];
-  c.twist_impulse = m.twist_impulse;
+  set_friction_rows(c, l, center_ra, center_rb, ia, ib);
+  const Vec3 ia_n = ia * n, ib_n = ib * n;
+  set_lane(c.ia_n, l, ia_n);
+  set_lane(c.ib_n, l, ib_n);
+  const Real k_twist = n.dot(ia_n) + n.dot(ib_n);
+  c.twist_mass[l] = k_twist > 0 ? 1 / k_twist : 0;
+  c.tangent_impulse[0][l] = m.tangent_impulse[0];
+  c.tangent_impulse[1][l] = m.tangent_impulse[1];
+  c.twist_impulse[l] = m.twist_impulse;
 }
 
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                       std::span<const Manifold> manifolds, uint32_t begin, uint32_t end) {
   for (uint32_t i = begin; i < end; ++i) {
-    ContactConstraint& c = ctx.constraints[i];
-    // Against a static or kinematic body the impulse is external anyway: keep the arms.
-    if (!(c.write_a && c.write_b)) continue;
-    const Manifold& m = manifolds[c.manifold];
-    const SolverBody& a = ctx.bodies[c.packet_a];
-    const SolverBody& b = ctx.bodies[c.packet_b];
-    // perf: resting contacts (most of a pile or stack) have barely moved since the step began;
-    // their arms are then the step's own, within 0.1 mm, and re-deriving them buys nothing.
-    if ((b.dp - a.dp).squaredNorm() < kRefreshDistance * kRefreshDistance &&
-        a.dtheta.squaredNorm() + b.dtheta.squaredNorm() < kRefreshAngle * kRefreshAngle) {
-      continue;
+    ContactBundle& c = ctx.bundles[i];
+    for (int l = 0; l < c.lanes; ++l) {
+      // Against a static or kinematic body the impulse is external anyway: keep the arms.
+      if (!(c.write_a[l] && c.write_b[l])) continue;
+      const SolverBody& a = ctx.bodies[c.packet_a[l]];
+      const SolverBody& b = ctx.bodies[c.packet_b[l]];
+      // perf: resting contacts (most of a pile or stack) have barely moved since the step began;
+      // their arms are then the step's own, within 0.1 mm, and re-deriving them buys nothing.
+      if ((b.dp - a.dp).squaredNorm() < kRefreshDistance * kRefreshDistance &&
+          a.dtheta.squaredNorm() + b.dtheta.squaredNorm() < kRefreshAngle * kRefreshAngle) {
+        continue;
+      }
+      const Manifold& m = manifolds[c.manifold[l]];
+      const SymMat3& ia = ctx.params[c.packet_a[l]].inv_inertia;
+      const SymMat3& ib = ctx.params[c.packet_b[l]].inv_inertia;
+      const Vec3 n = lane(c.normal, l);
+      // Centres now, relative to A's centre at the step's start (keeps the numbers small).
+      const Vec3 xa = a.dp;
+      const Vec3 xb = bodies.position(m.body_b) - bodies.position(m.body_a) + b.dp;
+      const Real dp_n = n.dot(b.dp - a.dp);
+      Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
+      for (int k = 0; k < m.point_count; ++k) {
+        WideContactPoint& p = c.points[k];
+        const Real s =
+            p.separation[l] + dp_n + lane(p.rb_n, l).dot(b.dtheta) - lane(p.ra_n, l).dot(a.dtheta);
+        // The contact point of the step's start, carried by the mean translation of the two
+        // bodies (not their rotation: a rolling sphere's contact stays under its centre).
+        const Vec3 start_b = xb - b.dp;
+        const Vec3 shared = Real(0.5) * (m.points[k].anchor_a + start_b + m.points[k].anchor_b) +
+                            Real(0.5) * (a.dp + b.dp);
+        const Vec3 ra = shared - xa, rb = shared - xb;
+        set_point_arms(c, l, k, ra, rb, ia, ib);
+        // Same separation as before, expressed with the new arms.
+        p.separation[l] =
+            s - (dp_n + lane(p.rb_n, l).dot(b.dtheta) - lane(p.ra_n, l).dot(a.dtheta));
+        center_ra += ra;
+        center_rb += rb;
+      }
+      const Real inv_count = m.point_count > 0 ? Real(1) / Real(m.point_count) : Real(0);
+      center_ra *= inv_count;
+      center_rb *= inv_count;
+      set_friction_rows(c, l, center_ra, center_rb, ia, ib);
     }
-    const SymMat3 ia = c.write_a ? ctx.params[c.packet_a].inv_inertia : SymMat3{};
-    const SymMat3 ib = c.write_b ? ctx.params[c.packet_b].inv_inertia : SymMat3{};
-    const Vec3& n = c.normal;
-    // Centres now, relative to A's centre at the step's start (keeps the numbers small).
-    const Vec3 xa = a.dp;
-    const Vec3 xb = bodies.position(m.body_b) - bodies.position(m.body_a) + b.dp;
-    const Real dp_n = n.dot(b.dp - a.dp);
-    Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
-    for (int k = 0; k < c.count; ++k) {
-      ConstraintPoint& cp = c.points[k];
-      const Real s = cp.separation + dp_n + cp.rb_n.dot(b.dtheta) - cp.ra_n.dot(a.dtheta);
-      // The contact point of the step's start, carried by the mean translation of the two
-      // bodies (not their rotation: a rolling sphere's contact stays under its centre).
-      const Vec3 start_b = xb - b.dp;
-      const Vec3 shared = Real(0.5) * (m.points[k].anchor_a + start_b + m.points[k].anchor_b) +
-                          Real(0.5) * (a.dp + b.dp);
-      const Vec3 ra = shared - xa, rb = shared - xb;
-      cp.ra_n = ra.cross(n);
-      cp.rb_n = rb.cross(n);
-      cp.ia_ra_n = ia * cp.ra_n;
-      cp.ib_rb_n = ib * cp.rb_n;
-      const Real k_n =
-          c.inv_mass_a + c.inv_mass_b + cp.ra_n.dot(cp.ia_ra_n) + cp.rb_n.dot(cp.ib_rb_n);
-      cp.normal_mass = k_n > 0 ? 1 / k_n : 0;
-      // Same separation as before, expressed with the new arms.
-      cp.separation = s - (dp_n + cp.rb_n.dot(b.dtheta) - cp.ra_n.dot(a.dtheta));
-      center_ra += ra;
-      center_rb += rb;
-    }
-    const Real inv_count = c.count > 0 ? Real(1) / Real(c.count) : Real(0);
-    center_ra *= inv_count;
-    center_rb *= inv_count;
-    set_friction_rows(c, center_ra, center_rb, ia, ib);
   }
 }
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
+  SolverBody* bodies = ctx.bodies.data();
   for (uint32_t i = begin; i < end; ++i) {
-    const ContactConstraint& c = ctx.constraints[i];
-    SolverBody& a = ctx.bodies[c.packet_a];
-    SolverBody& b = ctx.bodies[c.packet_b];
-    for (int k = 0; k < c.count; ++k) {
-      const ConstraintPoint& cp = c.points[k];
-      apply_row(c, a, b, c.normal, cp.ia_ra_n, cp.ib_rb_n, cp.normal_impulse);
+    const ContactBundle& c = ctx.bundles[i];
+    WideBody a, b;
+    gather_velocity(bodies, c.packet_a, a);
+    gather_velocity(bodies, c.packet_b, b);
+    for (int k = 0; k < c.max_count; ++k) {
+      const WideContactPoint& p = c.points[k];
+      apply_row(c, a, b, c.normal, p.ia_ra_n, p.ib_rb_n, p.normal_impulse);
     }
     apply_friction(c, a, b, c.tangent_impulse[0], c.tangent_impulse[1]);
     apply_twist(c, a, b, c.twist_impulse);
+    scatter_velocity(bodies, c.packet_a, c.write_a, a);
+    scatter_velocity(bodies, c.packet_b, c.write_b, b);
   }
 }
 
 void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, bool use_bias) {
+  SolverBody* bodies = ctx.bodies.data();
+  const Wide zero{};
+  const Wide one = splat(1);
   for (uint32_t i = begin; i < end; ++i) {
-    ContactConstraint& c = ctx.constraints[i];
-    SolverBody& a = ctx.bodies[c.packet_a];
-    SolverBody& b = ctx.bodies[c.packet_b];
-    const Vec3 n = c.normal;
+    ContactBundle& c = ctx.bundles[i];
+    WideBody a, b;
+    gather_velocity(bodies, c.packet_a, a);
+    gather_velocity(bodies, c.packet_b, b);
+    const WideVec3& n = c.normal;
     {
       // Friction first, so the non-penetration rows, which carry the load, have the last word.
       // Coulomb limits from the accumulated normal impulses: the tangent impulse within
       // mu * sum(lambda_n), the twist within mu * sum(lever_k * lambda_n_k).
-      Real total_normal = 0, twist_limit = 0;
-      for (int k = 0; k < c.count; ++k) {
+      Wide total_normal{}, twist_limit{};
+      for (int k = 0; k < c.max_count; ++k) {
         total_normal += c.points[k].normal_impulse;
         twist_limit += c.points[k].twist_lever * c.points[k].normal_impulse;
       }
-      const Real v0 = row_velocity(a, b, c.tangent[0], c.ra_t[0], c.rb_t[0]);
-      const Real v1 = row_velocity(a, b, c.tangent[1], c.ra_t[1], c.rb_t[1]);
-      Real t0 = c.tangent_impulse[0] - (c.tangent_inv_k[0] * v0 + c.tangent_inv_k[1] * v1);
-      Real t1 = c.tangent_impulse[1] - (c.tangent_inv_k[1] * v0 + c.tangent_inv_k[2] * v1);
-      const Real max_friction = c.friction * total_normal;
-      const Real len2 = t0 * t0 + t1 * t1;
-      if (len2 > max_friction * max_friction) {
-        const Real scale = len2 > 0 ? max_friction / std::sqrt(len2) : 0;
+      const Wide v0 = row_velocity(a, b, c.tangent[0], c.ra_t[0], c.rb_t[0]);
+      const Wide v1 = row_velocity(a, b, c.tangent[1], c.ra_t[1], c.rb_t[1]);
+      Wide t0 = c.tangent_impulse[0] - (c.inv_k00 * v0 + c.inv_k01 * v1);
+      Wide t1 = c.tangent_impulse[1] - (c.inv_k01 * v0 + c.inv_k11 * v1);
+      const Wide max_friction = c.friction * total_normal;
+      const Wide len2 = t0 * t0 + t1 * t1;
+      const auto outside = len2 > max_friction * max_friction;
+      if (any_lane(outside ? one : zero)) {
+        // Outside the cone len2 > 0, so the division is safe where it is used.
+        Wide len = outside ? len2 : one;
+        for (int l = 0; l < kLanes; ++l) len[l] = std::sqrt(len[l]);
+        const Wide scale = outside ? max_friction / len : one;
         t0 *= scale;
         t1 *= scale;
       }
@@ -264,72 +329,89 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       c.tangent_impulse[0] = t0;
       c.tangent_impulse[1] = t1;
 
-      const Real spin = n.dot(b.w - a.w);
-      const Real max_twist = c.friction * std::max(twist_limit, kTorsionPatch * total_normal);
-      const Real twist = std::clamp(c.twist_impulse - c.twist_mass * spin, -max_twist, max_twist);
+      const Wide spin = dot(n, b.w - a.w);
+      const Wide max_twist = c.friction * wide_max(twist_limit, kTorsionPatch * total_normal);
+      const Wide twist =
+          wide_min(wide_max(c.twist_impulse - c.twist_mass * spin, -max_twist), max_twist);
       apply_twist(c, a, b, twist - c.twist_impulse);
       c.twist_impulse = twist;
     }
-    const Real dp_n = n.dot(b.dp - a.dp);
-    for (int k = 0; k < c.count; ++k) {
-      ConstraintPoint& cp = c.points[k];
+    WideVec3 dp_a, dtheta_a, dp_b, dtheta_b;
+    gather_pose(bodies, c.packet_a, dp_a, dtheta_a);
+    gather_pose(bodies, c.packet_b, dp_b, dtheta_b);
+    const Wide dp_n = dot(n, dp_b - dp_a);
+    const Wide inv_h = splat(ctx.inv_h);
+    const Wide max_push = splat(-ctx.max_push_velocity);
+    for (int k = 0; k < c.max_count; ++k) {
+      WideContactPoint& p = c.points[k];
       // Current separation from the pose change since the step began, linearised in the
       // rotation: s = s0 + n.(dp_b - dp_a) + (rb x n).dtheta_b - (ra x n).dtheta_a.
-      const Real s = cp.separation + dp_n + cp.rb_n.dot(b.dtheta) - cp.ra_n.dot(a.dtheta);
-      Real bias = 0, mass_scale = 1, impulse_scale = 0;
-      if (s > 0) {
-        bias = s * ctx.inv_h;  // speculative: allow closing the gap within this substep only
-      } else if (use_bias) {
-        bias = std::max(c.softness.bias_rate * s, -ctx.max_push_velocity);
-        mass_scale = c.softness.mass_scale;
-        impulse_scale = c.softness.impulse_scale;
+      const Wide s = p.separation + dp_n + dot(p.rb_n, dtheta_b) - dot(p.ra_n, dtheta_a);
+      // Speculative (s > 0): allow closing the gap within this substep only. Penetrating: the
+      // soft spring pushes out, or nothing in the relax pass.
+      const auto gap = s > zero;
+      Wide bias = gap ? s * inv_h : zero, mass_scale = one, impulse_scale = zero;
+      if (use_bias) {
+        bias = gap ? bias : wide_max(c.bias_rate * s, max_push);
+        mass_scale = gap ? one : c.mass_scale;
+        impulse_scale = gap ? zero : c.impulse_scale;
       }
-      const Real vn = row_velocity(a, b, n, cp.ra_n, cp.rb_n);
-      Real impulse = -cp.normal_mass * mass_scale * (vn + bias) - impulse_scale * cp.normal_impulse;
-      const Real updated = std::max(cp.normal_impulse + impulse, Real(0));
-      impulse = updated - cp.normal_impulse;
-      cp.normal_impulse = updated;
-      cp.max_normal_impulse = std::max(cp.max_normal_impulse, impulse);
-      apply_row(c, a, b, n, cp.ia_ra_n, cp.ib_rb_n, impulse);
+      const Wide vn = row_velocity(a, b, n, p.ra_n, p.rb_n);
+      Wide impulse = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+      const Wide updated = wide_max(p.normal_impulse + impulse, zero);
+      impulse = updated - p.normal_impulse;
+      p.normal_impulse = updated;
+      p.max_normal_impulse = wide_max(p.max_normal_impulse, impulse);
+      apply_row(c, a, b, n, p.ia_ra_n, p.ib_rb_n, impulse);
     }
+    scatter_velocity(bodies, c.packet_a, c.write_a, a);
+    scatter_velocity(bodies, c.packet_b, c.write_b, b);
   }
 }
 
 void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
+  SolverBody* bodies = ctx.bodies.data();
+  const Wide zero{};
+  const Wide threshold = splat(-ctx.restitution_threshold);
   for (uint32_t i = begin; i < end; ++i) {
-    ContactConstraint& c = ctx.constraints[i];
-    if (c.restitution == 0) continue;
-    SolverBody& a = ctx.bodies[c.packet_a];
-    SolverBody& b = ctx.bodies[c.packet_b];
-    for (int k = 0; k < c.count; ++k) {
-      ConstraintPoint& cp = c.points[k];
+    ContactBundle& c = ctx.bundles[i];
+    if (!any_lane(c.restitution)) continue;
+    WideBody a, b;
+    gather_velocity(bodies, c.packet_a, a);
+    gather_velocity(bodies, c.packet_b, b);
+    for (int k = 0; k < c.max_count; ++k) {
+      WideContactPoint& p = c.points[k];
       // Only points that approached faster than the threshold and actually pushed bounce.
-      if (cp.relative_velocity > -ctx.restitution_threshold || cp.max_normal_impulse == 0) {
-        continue;
-      }
-      const Real vn = row_velocity(a, b, c.normal, cp.ra_n, cp.rb_n);
-      Real impulse = -cp.normal_mass * (vn + c.restitution * cp.relative_velocity);
-      const Real updated = std::max(cp.normal_impulse + impulse, Real(0));
-      impulse = updated - cp.normal_impulse;
-      cp.normal_impulse = updated;
-      cp.max_normal_impulse = std::max(cp.max_normal_impulse, impulse);
-      apply_row(c, a, b, c.normal, cp.ia_ra_n, cp.ib_rb_n, impulse);
+      const auto bounces = (c.restitution != zero) & (p.relative_velocity <= threshold) &
+                           (p.max_normal_impulse != zero);
+      const Wide vn = row_velocity(a, b, c.normal, p.ra_n, p.rb_n);
+      Wide impulse = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
+      impulse = bounces ? impulse : zero;
+      const Wide updated = wide_max(p.normal_impulse + impulse, zero);
+      impulse = updated - p.normal_impulse;
+      p.normal_impulse = updated;
+      p.max_normal_impulse = wide_max(p.max_normal_impulse, impulse);
+      apply_row(c, a, b, c.normal, p.ia_ra_n, p.ib_rb_n, impulse);
     }
+    scatter_velocity(bodies, c.packet_a, c.write_a, a);
+    scatter_velocity(bodies, c.packet_b, c.write_b, b);
   }
 }
 
 void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t end,
                     std::span<Manifold> manifolds) {
   for (uint32_t i = begin; i < end; ++i) {
-    const ContactConstraint& c = ctx.constraints[i];
-    Manifold& m = manifolds[c.manifold];
-    for (int k = 0; k < c.count; ++k) {
-      m.points[k].normal_impulse = c.points[k].normal_impulse;
-      m.points[k].max_normal_impulse = c.points[k].max_normal_impulse;
+    const ContactBundle& c = ctx.bundles[i];
+    for (int l = 0; l < c.lanes; ++l) {
+      Manifold& m = manifolds[c.manifold[l]];
+      for (int k = 0; k < m.point_count; ++k) {
+        m.points[k].normal_impulse = c.points[k].normal_impulse[l];
+        m.points[k].max_normal_impulse = c.points[k].max_normal_impulse[l];
+      }
+      m.tangent_impulse[0] = c.tangent_impulse[0][l];
+      m.tangent_impulse[1] = c.tangent_impulse[1][l];
+      m.twist_impulse = c.twist_impulse[l];
     }
-    m.tangent_impulse[0] = c.tangent_impulse[0];
-    m.tangent_impulse[1] = c.tangent_impulse[1];
-    m.twist_impulse = c.twist_impulse;
   }
 }
 

@@ -2,9 +2,13 @@
 // per step, then per substep warm start, solve with bias, relax without bias; restitution and
 // impulse storage once per step.
 //
+// Constraints are solved kLanes at a time (ContactBundle): the lanes of a bundle are constraints
+// of one colour, so they touch distinct dynamic bodies and can be gathered, solved and scattered
+// together. The overflow colour has one lane per bundle.
+//
 // Reads: manifolds, body packets and parameters. Writes: constraint impulses and the packets of
-// the dynamic bodies a constraint touches. Threading: the functions take a range of constraints;
-// a caller runs ranges of one colour in parallel (no two constraints of a colour share a dynamic
+// the dynamic bodies a constraint touches. Threading: the functions take a range of bundles; a
+// caller runs ranges of one colour in parallel (no two constraints of a colour share a dynamic
 // body), colours and the overflow one after another.
 #pragma once
 
@@ -20,8 +24,8 @@ namespace elan::detail {
 struct ContactSolverContext {
   std::span<SolverBody> bodies;  // packets (0 = static dummy)
   std::span<const SolverBodyParams> params;
-  std::span<ContactConstraint> constraints;  // grouped by colour
-  Real h = 0;                                // s, substep
+  std::span<ContactBundle> bundles;  // grouped by colour
+  Real h = 0;                        // s, substep
   Real inv_h = 0;
   Softness contact_softness;       // dynamic vs dynamic
   Softness static_softness;        // against a static or kinematic body (stiffer)
@@ -29,10 +33,11 @@ struct ContactSolverContext {
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
 };
 
-// Builds constraint `out` from manifold `m` (index `manifold_index`).
+// Builds lane `lane` of `out` from manifold `m` (index `manifold_index`). `out` must start
+// zeroed (ContactBundle{}): lanes and points left unset then apply no impulse.
 void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
                      std::span<const uint32_t> packet_of, const ContactSolverContext& ctx,
-                     ContactConstraint& out);
+                     ContactBundle& out, int lane);
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // Re-places the lever arms of every point between two dynamic bodies at one shared point: the
@@ -40,7 +45,7 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
 // separation. With arms fixed at the step's start, once the bodies have slid apart the two
 // halves of an impulse act at different points and angular momentum about any origin changes by
 // (dp_b - dp_a) x P; with one shared point it cannot. Called before the first warm start and
-// after every position update of the substeps. Writes the constraints only.
+// after every position update of the substeps. Writes the bundles only.
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                       std::span<const Manifold> manifolds, uint32_t begin, uint32_t end);
 void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, bool use_bias);

@@ -13,9 +13,11 @@ namespace elan::detail {
 
 namespace {
 
-// perf: blocks of constraints small enough to balance two threads within a colour, large enough
-// that claiming a block costs little next to solving it.
-constexpr uint32_t kConstraintBlock = 32;
+// perf: blocks of bundles small enough to balance two threads within a colour, large enough
+// that claiming a block costs little next to solving it (4 bundles = 32 constraints).
+constexpr uint32_t kBundleBlock = 4;
+// Refresh and store visit every bundle once and are light per lane: larger blocks.
+constexpr uint32_t kSweepBlock = 16;
 constexpr uint32_t kBodyBlock = 128;
 
 enum StageKind : uint32_t {
@@ -37,7 +39,7 @@ ContactSolverContext make_context(const SolveSettings& settings, SolverState& st
   ContactSolverContext ctx;
   ctx.bodies = state.packets;
   ctx.params = state.params;
-  ctx.constraints = state.constraints;
+  ctx.bundles = state.bundles;
   ctx.h = settings.dt / Real(settings.substeps);
   ctx.inv_h = 1 / ctx.h;
   // Box2D v3: contact stiffness at most a quarter of the substep rate, twice as stiff against
@@ -129,15 +131,32 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   }
   stats.overflow = st.color_start[kColorCount + 1] - st.color_start[kColorCount];
 
-  st.constraints.resize(st.order.size());
+  // Bundles: each colour's constraints kLanes at a time in colour order; the overflow one per
+  // bundle (its constraints may share bodies, so they cannot be lanes of one bundle).
+  st.bundle_start.assign(kColorCount + 2, 0);
+  for (uint32_t c = 0; c <= kColorCount; ++c) {
+    const uint32_t n = st.color_start[c + 1] - st.color_start[c];
+    const uint32_t bundles = c == kColorCount ? n : uint32_t(block_count(n, kLanes));
+    st.bundle_start[c + 1] = st.bundle_start[c] + bundles;
+  }
+  st.bundles.resize(st.bundle_start[kColorCount + 1]);
   const ContactSolverContext ctx = make_context(settings, st);
-  for_blocks(st.order.size(), kConstraintBlock * 4,
-             [&](std::size_t begin, std::size_t end, std::size_t) {
-               for (std::size_t k = begin; k < end; ++k) {
-                 const uint32_t m = st.candidates[st.order[k]];
-                 prepare_contact(contacts[m], m, bodies, st.packet_of, ctx, st.constraints[k]);
-               }
-             });
+  for_blocks(st.bundles.size(), kSweepBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
+    uint32_t color = 0;
+    for (std::size_t j = begin; j < end; ++j) {
+      while (st.bundle_start[color + 1] <= j) ++color;
+      const uint32_t per_bundle = color == kColorCount ? 1 : kLanes;
+      const uint32_t first =
+          st.color_start[color] + (uint32_t(j) - st.bundle_start[color]) * per_bundle;
+      const uint32_t last = std::min(st.color_start[color + 1], first + per_bundle);
+      ContactBundle& bundle = st.bundles[j];
+      bundle = ContactBundle{};
+      for (uint32_t k = first; k < last; ++k) {
+        const uint32_t m = st.candidates[st.order[k]];
+        prepare_contact(contacts[m], m, bodies, st.packet_of, ctx, bundle, int(k - first));
+      }
+    }
+  });
   stats.color_ms = ms_since(t0);
 }
 
@@ -152,27 +171,26 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
   stages.clear();
   auto add_constraint_pass = [&](StageKind kind) {
     for (uint32_t c = 0; c < kColorCount; ++c) {
-      const uint32_t n = st.color_start[c + 1] - st.color_start[c];
-      if (n) stages.push_back({uint32_t(block_count(n, kConstraintBlock)), kind, c});
+      const uint32_t n = st.bundle_start[c + 1] - st.bundle_start[c];
+      if (n) stages.push_back({uint32_t(block_count(n, kBundleBlock)), kind, c});
     }
-    if (st.color_start[kColorCount + 1] > st.color_start[kColorCount]) {
+    if (st.bundle_start[kColorCount + 1] > st.bundle_start[kColorCount]) {
       stages.push_back({1, kind, kColorCount});
     }
   };
-  const uint32_t constraint_blocks =
-      uint32_t(block_count(st.constraints.size(), kConstraintBlock * 4));
+  const uint32_t sweep_blocks = uint32_t(block_count(st.bundles.size(), kSweepBlock));
   for (int s = 0; s < settings.substeps; ++s) {
     stages.push_back({body_blocks, kIntegrateVelocities, 0});
-    if (s == 0) stages.push_back({constraint_blocks, kRefreshContacts, 0});
+    if (s == 0) stages.push_back({sweep_blocks, kRefreshContacts, 0});
     add_constraint_pass(kWarmStart);
     for (int it = 0; it < settings.iterations; ++it) add_constraint_pass(kSolve);
     stages.push_back({body_blocks, kIntegratePositions, 0});
     // The bodies just moved: every later impulse of this step uses arms placed after this.
-    stages.push_back({constraint_blocks, kRefreshContacts, 0});
+    stages.push_back({sweep_blocks, kRefreshContacts, 0});
     add_constraint_pass(kRelax);
   }
   add_constraint_pass(kRestitution);
-  stages.push_back({constraint_blocks, kStoreImpulses, 0});
+  stages.push_back({sweep_blocks, kStoreImpulses, 0});
 
   const Real h = ctx.h;
   auto work = [&](const StageSpec& stage, uint32_t block) {
@@ -188,10 +206,9 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
       return;
     }
     if (stage.kind == kStoreImpulses || stage.kind == kRefreshContacts) {
-      // Over all constraints in fixed blocks: each writes only its own constraint.
-      const uint32_t begin = block * kConstraintBlock * 4;
-      const uint32_t end =
-          std::min<uint32_t>(uint32_t(st.constraints.size()), begin + kConstraintBlock * 4);
+      // Over all bundles in fixed blocks: each writes only its own bundle (and manifolds).
+      const uint32_t begin = block * kSweepBlock;
+      const uint32_t end = std::min<uint32_t>(uint32_t(st.bundles.size()), begin + kSweepBlock);
       if (stage.kind == kStoreImpulses) {
         store_impulses(ctx, begin, end, contacts);
       } else {
@@ -199,11 +216,11 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
       }
       return;
     }
-    const uint32_t color_begin = st.color_start[stage.arg];
-    const uint32_t color_end = st.color_start[stage.arg + 1];
+    const uint32_t color_begin = st.bundle_start[stage.arg];
+    const uint32_t color_end = st.bundle_start[stage.arg + 1];
     const bool overflow = stage.arg == kColorCount;
-    const uint32_t begin = overflow ? color_begin : color_begin + block * kConstraintBlock;
-    const uint32_t end = overflow ? color_end : std::min(color_end, begin + kConstraintBlock);
+    const uint32_t begin = overflow ? color_begin : color_begin + block * kBundleBlock;
+    const uint32_t end = overflow ? color_end : std::min(color_end, begin + kBundleBlock);
     switch (stage.kind) {
       case kWarmStart:
         warm_start_contacts(ctx, begin, end);

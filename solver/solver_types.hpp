@@ -1,11 +1,12 @@
 // Solver data: the compact per-body packet the substeps work on, per-body constants, and
-// contact constraints in solver form.
+// contact constraints in solver form, bundled across SIMD lanes.
 #pragma once
 
 #include <cstdint>
 
 #include "core/base/contact.hpp"
 #include "elan/math.hpp"
+#include "solver/wide.hpp"
 
 namespace elan::detail {
 
@@ -53,41 +54,46 @@ struct Softness {
 };
 Softness make_softness(Real hertz, Real damping_ratio, Real h);
 
-// One non-penetration row in Jacobian form, J = [-n, -(ra x n), n, (rb x n)], with the
-// products that the solve needs precomputed once per step.
-struct ConstraintPoint {
-  Vec3 ra_n = Vec3::Zero();     // m: ra x n (ra = point minus A's centre of mass, world)
-  Vec3 rb_n = Vec3::Zero();     // m: rb x n
-  Vec3 ia_ra_n = Vec3::Zero();  // 1/(kg m): I_a^-1 (ra x n)
-  Vec3 ib_rb_n = Vec3::Zero();  // 1/(kg m): I_b^-1 (rb x n)
-  Real separation = 0;          // m at the step's start; s = this + J . (dp, dtheta)
-  Real normal_mass = 0;         // kg: 1 / (J M^-1 J^T)
-  Real twist_lever = 0;         // m: distance from the manifold centre (twist friction limit)
-  Real normal_impulse = 0;      // N s, accumulated over the substep (warm started)
-  Real max_normal_impulse = 0;
-  Real relative_velocity = 0;  // m/s along n before the solve (negative: approaching)
+// One non-penetration row per lane in Jacobian form, J = [-n, -(ra x n), n, (rb x n)], with
+// the products that the solve needs precomputed once per step. Points past a lane's count are
+// zero, so they apply no impulse.
+struct WideContactPoint {
+  WideVec3 ra_n;              // m: ra x n (ra = point minus A's centre of mass, world)
+  WideVec3 rb_n;              // m: rb x n
+  WideVec3 ia_ra_n;           // 1/(kg m): I_a^-1 (ra x n)
+  WideVec3 ib_rb_n;           // 1/(kg m): I_b^-1 (rb x n)
+  Wide separation{};          // m at the step's start; s = this + J . (dp, dtheta)
+  Wide normal_mass{};         // kg: 1 / (J M^-1 J^T)
+  Wide twist_lever{};         // m: distance from the manifold centre (twist friction limit)
+  Wide normal_impulse{};      // N s, accumulated over the substep (warm started)
+  Wide max_normal_impulse{};  // N s
+  Wide relative_velocity{};   // m/s along n before the solve (negative: approaching)
 };
 
-struct ContactConstraint {
-  uint32_t packet_a = 0, packet_b = 0;  // 0 = static dummy
-  uint32_t manifold = 0;                // index into the contact list, to store impulses back
-  int count = 0;
-  bool write_a = false, write_b = false;  // dynamic bodies only are written
-  Real inv_mass_a = 0, inv_mass_b = 0;
-  Vec3 normal = Vec3::UnitY();
-  Real friction = 0, restitution = 0;
-  Softness softness;
+// kLanes contact constraints of one colour (no two share a dynamic body), structure of arrays
+// over the lanes, solved together (Box2D v3's b2ContactConstraintSIMD). Unused lanes have
+// packet 0 (the static dummy), zero coefficients and are never written back.
+struct ContactBundle {
+  uint32_t packet_a[kLanes] = {}, packet_b[kLanes] = {};  // 0 = static dummy
+  uint32_t manifold[kLanes] = {};  // index into the contact list, to store impulses back
+  uint8_t write_a[kLanes] = {}, write_b[kLanes] = {};  // dynamic bodies only are written
+  int lanes = 0;                                       // lanes in use
+  int max_count = 0;                                   // most points of any lane
+  Wide inv_mass_a{}, inv_mass_b{};                     // 0 for a side that is not written
+  WideVec3 normal;
+  Wide friction{}, restitution{};
+  Wide bias_rate{}, mass_scale{}, impulse_scale{};  // the lane's Softness
   // Central friction (Gregorius, GDC 2015): at the mean of the points, a coupled 2x2 tangent
   // block and a twist row about the normal, Jacobians precomputed like the points'.
-  Vec3 tangent[2] = {Vec3::UnitX(), Vec3::UnitZ()};
-  Vec3 ra_t[2], rb_t[2];                          // center_ra x t_k, center_rb x t_k
-  Vec3 ia_ra_t[2], ib_rb_t[2];                    // I^-1 of those
-  Vec3 ia_n = Vec3::Zero(), ib_n = Vec3::Zero();  // I^-1 n, for the twist
-  Real tangent_inv_k[3] = {0, 0, 0};  // inverse of the 2x2 tangent mass matrix: 00, 01, 11
-  Real twist_mass = 0;                // kg m^2
-  Real tangent_impulse[2] = {0, 0};   // N s
-  Real twist_impulse = 0;             // N m s
-  ConstraintPoint points[kMaxManifoldPoints];
+  WideVec3 tangent[2];
+  WideVec3 ra_t[2], rb_t[2];             // center_ra x t_k, center_rb x t_k
+  WideVec3 ia_ra_t[2], ib_rb_t[2];       // I^-1 of those
+  WideVec3 ia_n, ib_n;                   // I^-1 n, for the twist
+  Wide inv_k00{}, inv_k01{}, inv_k11{};  // inverse of the 2x2 tangent mass matrix
+  Wide twist_mass{};                     // kg m^2
+  Wide tangent_impulse[2] = {};          // N s
+  Wide twist_impulse{};                  // N m s
+  WideContactPoint points[kMaxManifoldPoints];
 };
 
 }  // namespace elan::detail
