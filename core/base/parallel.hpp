@@ -49,10 +49,6 @@ void concat_blocks(const std::vector<std::vector<T, A1>>& blocks, std::vector<T,
   for (const auto& b : blocks) out.insert(out.end(), b.begin(), b.end());
 }
 
-// LSD radix sort of 64-bit keys, 16 bits per pass, skipping passes whose digit is constant.
-// Stable and deterministic; `scratch` is reused between calls.
-void radix_sort(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch);
-
 // Reused buffers of sort_key_blocks / sort_keys, so a warm call allocates nothing.
 struct KeySortScratch {
   std::vector<uint64_t> keys;
