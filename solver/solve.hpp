@@ -57,6 +57,8 @@ struct SolverState {
   StageExecutor executor;
   std::vector<StageSpec> stages;
   std::vector<uint8_t> block_flags;  // per body block: went non-finite
+  std::vector<uint8_t> fast;         // per packet: moved far for its size (continuous stage)
+  std::vector<Real> pair_toi, earliest_toi;
 };
 
 struct SolveStats {

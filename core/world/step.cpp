@@ -1,11 +1,13 @@
 // One step: bounds, pairs, collide, islands and sleep, colour, prepare, substeps, restitution,
-// finalize. Each stage is a function over the world's arrays; this file only orders them.
+// continuous collision, finalize. Each stage is a function over the world's arrays; this file only
+// orders them.
 #include "core/world/step.hpp"
 
 #include <chrono>
 
 #include "core/world/events.hpp"
 #include "narrowphase/collide.hpp"
+#include "solver/continuous.hpp"
 
 namespace elan::detail {
 
@@ -103,8 +105,10 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve(bodies, w.contacts, solve_settings, w.solver);
   compute_contact_events(w);
   const auto t5 = clock::now();
-  const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
+  solve_continuous(bodies, w.shapes, w.pairs, w.contacts, w.solver);
   const auto t6 = clock::now();
+  const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
+  const auto t7 = clock::now();
 
   stats.pairs = w.pairs.size();
   stats.manifolds = w.contacts.size();
@@ -121,9 +125,9 @@ uint32_t run_step(WorldState& w, Real dt) {
   p.islands = solve_stats.islands_ms;
   p.color = solve_stats.color_ms;
   p.solve = ms_between(t4, t5);
-  p.ccd = 0;
-  p.finalize = ms_between(t5, t6);
-  p.total = ms_between(t0, t6);
+  p.ccd = ms_between(t5, t6);
+  p.finalize = ms_between(t6, t7);
+  p.total = ms_between(t0, t7);
   ++w.step_count;
   return status;
 }

@@ -1,0 +1,128 @@
+// Continuous collision of fast bodies by time of impact.
+#include "solver/continuous.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/base/pair_key.hpp"
+#include "core/base/parallel.hpp"
+#include "narrowphase/collide.hpp"
+
+namespace elan::detail {
+
+namespace {
+
+// A body is fast when its surface may have moved more than this fraction of its thinnest extent
+// during the step (Box2D v3's safety factor).
+constexpr Real kFastFraction = Real(0.5);
+constexpr std::size_t kPairBlock = 256;
+
+// Half the thinnest side of the shape's box in its principal frame, m.
+Real min_extent(const Shape& s) {
+  return Real(0.5) * (s.local_max - s.local_min).minCoeff();
+}
+
+Real rotation_angle(const Quat& dq) {
+  return 2 * std::acos(std::min(std::abs(dq.w()), Real(1)));
+}
+
+// Whether the bounding spheres of two bodies moving linearly over the step come within `gap`:
+// the closest approach of c0 + t d over t in [0, 1], against the sum of the radii.
+bool spheres_meet(const Vec3& c0, const Vec3& d, Real radii, Real gap) {
+  const Real dd = d.squaredNorm();
+  const Real t = dd > 0 ? std::clamp(-c0.dot(d) / dd, Real(0), Real(1)) : Real(0);
+  const Real reach = radii + gap;
+  return (c0 + t * d).squaredNorm() <= reach * reach;
+}
+
+Transform start_pose(const BodyStore& bodies, uint32_t i) {
+  return {bodies.position(i), bodies.orientation(i)};
+}
+
+Transform end_pose(const BodyStore& bodies, uint32_t i, const SolverBody& p) {
+  return {bodies.position(i) + p.dp, (p.dq * bodies.orientation(i)).normalized()};
+}
+
+}  // namespace
+
+std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> shapes,
+                             std::span<const uint64_t> pairs, std::span<const Manifold> contacts,
+                             SolverState& st) {
+  const std::size_t count = st.packets.size();
+  std::vector<uint8_t>& fast = st.fast;
+  fast.assign(count, 0);
+  bool any = false;
+  for (std::size_t k = 1; k < count; ++k) {
+    const uint32_t i = st.params[k].body;
+    if (!bodies.is_dynamic(i)) continue;
+    const Shape& s = shapes[bodies.shape[i]];
+    const SolverBody& p = st.packets[k];
+    const Real moved = p.dp.norm() + rotation_angle(p.dq) * s.bounding_radius;
+    fast[k] = moved > kFastFraction * min_extent(s);
+    any = any || fast[k];
+  }
+  if (!any) return 0;
+
+  std::vector<Real>& toi = st.pair_toi;
+  toi.assign(pairs.size(), 1);
+  for_blocks(pairs.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
+    auto contact = std::lower_bound(contacts.begin(), contacts.end(), pairs[begin],
+                                    [](const Manifold& m, uint64_t key) { return m.key < key; });
+    for (std::size_t n = begin; n < end; ++n) {
+      while (contact != contacts.end() && contact->key < pairs[n]) ++contact;
+      // A pair with a manifold had its (speculative) contact in the solve, placed along the
+      // motion predicted at the step's start: the contact solver has it in hand.
+      if (contact != contacts.end() && contact->key == pairs[n]) continue;
+      const uint32_t a = pair_first(pairs[n]), b = pair_second(pairs[n]);
+      const uint32_t pa = st.packet_of[a], pb = st.packet_of[b];
+      const bool fast_a = fast[pa] != 0, fast_b = fast[pb] != 0;  // packet 0 is never fast
+      // Two fast bodies are left to their contacts: moving both back would need a joint time.
+      if (fast_a == fast_b) continue;
+      const uint32_t mover = fast_a ? a : b, other = fast_a ? b : a;
+      const uint32_t other_packet = fast_a ? pb : pa;
+      const Shape& ms = shapes[bodies.shape[mover]];
+      const Shape& os = shapes[bodies.shape[other]];
+      // A half-space cannot be passed through: its contact exists wherever the body ends.
+      if (os.type == ShapeType::Plane) continue;
+      const Transform o0 = start_pose(bodies, other);
+      const Transform o1 =
+          other_packet != 0 ? end_pose(bodies, other, st.packets[other_packet]) : o0;
+      const Transform m0 = start_pose(bodies, mover);
+      const Transform m1 = end_pose(bodies, mover, st.packets[st.packet_of[mover]]);
+      // perf: most pairs of a fast body are near misses of its grown bounding box.
+      if (!spheres_meet(o0.position - m0.position,
+                        (o1.position - o0.position) - (m1.position - m0.position),
+                        ms.bounding_radius + os.bounding_radius, kContinuousTarget)) {
+        continue;
+      }
+      const Real t = time_of_impact(ms, m0, m1, os, o0, o1, kContinuousTarget);
+      // t = 0: already touching at the start, which the contact solver has in hand.
+      if (t > 0 && t < 1) toi[n] = t;
+    }
+  });
+
+  std::vector<Real>& earliest = st.earliest_toi;
+  earliest.assign(count, 1);
+  for (std::size_t n = 0; n < pairs.size(); ++n) {
+    if (toi[n] >= 1) continue;
+    const uint32_t a = pair_first(pairs[n]), b = pair_second(pairs[n]);
+    const uint32_t pa = st.packet_of[a], pb = st.packet_of[b];
+    const uint32_t k = fast[pa] ? pa : pb;
+    earliest[k] = std::min(earliest[k], toi[n]);
+  }
+  std::size_t moved = 0;
+  for (std::size_t k = 1; k < count; ++k) {
+    const Real t = earliest[k];
+    if (t >= 1) continue;
+    SolverBody& p = st.packets[k];
+    const Quat q0 = bodies.orientation(st.params[k].body);
+    const Quat q1 = (p.dq * q0).normalized();
+    // The pose time_of_impact tested: position along the line, rotation slerped.
+    p.dp *= t;
+    p.dq = (q0.slerp(t, q1) * q0.conjugate()).normalized();
+    ++moved;
+  }
+  return moved;
+}
+
+}  // namespace elan::detail

@@ -1,0 +1,100 @@
+// The continuous stage: a fast body whose step's motion passes through a thin wall is put back
+// where it first comes within kContinuousTarget of it; slow bodies, bodies already touching, planes
+// and pairs the contact solver had are left alone.
+#include <gtest/gtest.h>
+
+#include "core/base/pair_key.hpp"
+#include "narrowphase_test_shapes.hpp"
+#include "solver/continuous.hpp"
+
+namespace elan::detail {
+namespace {
+
+// Body 0: a static wall 4 cm thick, faces at x = 0.98 and 1.02. Bodies 1..: spheres of 5 cm
+// radius at the origin, each in its own packet with the given step motion.
+struct Scene {
+  BodyStore bodies;
+  std::vector<Shape> shapes = {test::box(Real(0.02), 1, 1), test::sphere(Real(0.05))};
+  std::vector<uint64_t> pairs;
+  SolverState state;
+
+  explicit Scene(std::initializer_list<Vec3> motions) {
+    const uint32_t wall = uint32_t(bodies.push_back());
+    bodies.shape[wall] = 0;
+    bodies.motion[wall] = uint8_t(MotionType::Static);
+    bodies.set_position(wall, Vec3(1, 0, 0));
+    state.packets.resize(1);
+    state.params.resize(1);
+    for (const Vec3& dp : motions) {
+      const uint32_t b = uint32_t(bodies.push_back());
+      bodies.shape[b] = 1;
+      bodies.motion[b] = uint8_t(MotionType::Dynamic);
+      bodies.set_position(b, Vec3(0, Real(0.3) * Real(b), 0));
+      SolverBody p;
+      p.dp = dp;
+      state.packets.push_back(p);
+      SolverBodyParams prm;
+      prm.body = b;
+      state.params.push_back(prm);
+      pairs.push_back(make_pair_key(wall, b));
+    }
+    state.packet_of.assign(bodies.size(), 0);
+    for (uint32_t k = 1; k < state.params.size(); ++k) state.packet_of[state.params[k].body] = k;
+  }
+};
+
+TEST(Continuous, FastBodyStopsAtTheWall) {
+  // 2 m in one step: the sphere ends past the wall, its step's line crosses it.
+  Scene s({Vec3(2, 0, 0)});
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.pairs, {}, s.state), 1u);
+  // Surface within the target of the face x = 0.98 (time of impact stops within a quarter of the
+  // target of it, on the near side).
+  const Real front = s.state.packets[1].dp.x() + Real(0.05);
+  EXPECT_LE(front, Real(0.98) - Real(0.75) * kContinuousTarget);
+  EXPECT_GE(front, Real(0.98) - Real(1.25) * kContinuousTarget);
+  EXPECT_NEAR(s.state.packets[1].dp.y(), 0, 1e-6);
+}
+
+TEST(Continuous, SlowBodiesAndMissesAreLeftAlone) {
+  // 2 cm is less than half the radius: not fast. 2 m along y is fast but runs 0.93 m from the
+  // wall's face.
+  Scene s({Vec3(Real(0.02), 0, 0), Vec3(0, 2, 0)});
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.pairs, {}, s.state), 0u);
+  EXPECT_EQ(s.state.packets[1].dp, Vec3(Real(0.02), 0, 0));
+  EXPECT_EQ(s.state.packets[2].dp, Vec3(0, 2, 0));
+}
+
+TEST(Continuous, BodyAlreadyTouchingIsLeftToItsContact) {
+  // Sliding fast along the wall's face, 2 mm from it: the contact solver owns this one.
+  Scene s({Vec3(0, 0, 1)});
+  s.bodies.set_position(1, Vec3(Real(0.98) - Real(0.05) - Real(0.002), 0, 0));
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.pairs, {}, s.state), 0u);
+  EXPECT_EQ(s.state.packets[1].dp, Vec3(0, 0, 1));
+}
+
+TEST(Continuous, PairWithAContactIsLeftToTheSolver) {
+  Scene s({Vec3(2, 0, 0)});
+  Manifold m;
+  m.key = s.pairs[0];
+  m.point_count = 1;
+  const std::vector<Manifold> contacts = {m};
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.pairs, contacts, s.state), 0u);
+  EXPECT_EQ(s.state.packets[1].dp, Vec3(2, 0, 0));
+}
+
+TEST(Continuous, EarliestWallWins) {
+  // A second wall nearer (x = 0.5): the sphere stops at the first one it meets.
+  Scene s({Vec3(2, 0, 0)});
+  const uint32_t near_wall = uint32_t(s.bodies.push_back());
+  s.bodies.shape[near_wall] = 0;
+  s.bodies.motion[near_wall] = uint8_t(MotionType::Static);
+  s.bodies.set_position(near_wall, Vec3(Real(0.5), 0, 0));
+  s.state.packet_of.push_back(0);
+  s.pairs.push_back(make_pair_key(1, near_wall));
+  ASSERT_EQ(solve_continuous(s.bodies, s.shapes, s.pairs, {}, s.state), 1u);
+  EXPECT_NEAR(s.state.packets[1].dp.x() + Real(0.05), Real(0.48) - kContinuousTarget,
+              Real(0.25) * kContinuousTarget);
+}
+
+}  // namespace
+}  // namespace elan::detail
