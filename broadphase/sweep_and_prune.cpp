@@ -393,18 +393,8 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
   // Strip-major, block-minor offsets: block b's entries in a strip follow block b-1's, so each
   // strip keeps sweep order.
   strip_begin_.resize(strips + 1);
-  uint32_t running = 0;
-  for (std::size_t s = 0; s < strips; ++s) {
-    strip_begin_[s] = running;
-    for (std::size_t blk = 0; blk < blocks; ++blk) {
-      const uint32_t t = deal_counts_[blk * strips + s];
-      deal_counts_[blk * strips + s] = running;
-      running += t;
-    }
-    running += uint32_t(kStripPad);
-  }
-  strip_begin_[strips] = running;
-  const std::size_t entries = running;
+  const std::size_t entries = bin_major_offsets(deal_counts_.data(), blocks, strips,
+                                                strip_begin_.data(), uint32_t(kStripPad));
   entry_min_.resize(entries);
   entry_max_.resize(entries);
   entry_lo1_.resize(entries);

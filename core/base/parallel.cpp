@@ -126,17 +126,8 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
       ++c[k >> shift];
     }
   });
-  // Bucket-major, source-minor offsets: within a bucket, source b's keys follow source b-1's.
-  uint32_t running = 0;
-  for (std::size_t d = 0; d < kTopBuckets; ++d) {
-    bucket_start[d] = running;
-    for (std::size_t b = 0; b < sources; ++b) {
-      const uint32_t t = counts[b * kTopBuckets + d];
-      counts[b * kTopBuckets + d] = running;
-      running += t;
-    }
-  }
-  bucket_start[kTopBuckets] = running;
+  // Within a bucket, source b's keys follow source b-1's.
+  bin_major_offsets(counts, sources, kTopBuckets, bucket_start);
   uint64_t* mid = scratch.keys.data();
   // determinism: every source writes the slots its offsets reserve (rule 1).
   for_blocks(sources, 1, [&](std::size_t b, std::size_t, std::size_t) {

@@ -49,6 +49,27 @@ void concat_blocks(const std::vector<std::vector<T, A1>>& blocks, std::vector<T,
   for (const auto& b : blocks) out.insert(out.end(), b.begin(), b.end());
 }
 
+// Per-(block, bin) counts, block-major (counts[block * bins + bin]), become exclusive offsets in
+// bin-major, block-minor order: block b's items of a bin follow block b-1's, so a scatter that
+// walks each block in order keeps block order within every bin (the determinism of a parallel
+// counting sort). bin_start gets each bin's first offset and, at [bins], the total; `pad` free
+// slots are left after every bin. Returns the total.
+inline uint32_t bin_major_offsets(uint32_t* counts, std::size_t blocks, std::size_t bins,
+                                  uint32_t* bin_start, uint32_t pad = 0) {
+  uint32_t running = 0;
+  for (std::size_t d = 0; d < bins; ++d) {
+    bin_start[d] = running;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const uint32_t t = counts[b * bins + d];
+      counts[b * bins + d] = running;
+      running += t;
+    }
+    running += pad;
+  }
+  bin_start[bins] = running;
+  return running;
+}
+
 // Reused buffers of sort_key_blocks / sort_keys, so a warm call allocates nothing.
 struct KeySortScratch {
   std::vector<uint64_t> keys;
