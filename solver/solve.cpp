@@ -131,6 +131,31 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   }
   stats.overflow = st.color_start[kColorCount + 1] - st.color_start[kColorCount];
 
+  // perf: within a colour the order is free (its constraints share no dynamic body, so any order
+  // gives the same bits). Grouped by point count, manifolds of one or two points (spheres,
+  // capsules) share bundles, which then skip the empty point rows that a single four-point lane
+  // would make the whole bundle read: on pile10k, 1.8 points per manifold on average.
+  st.order_scratch.resize(st.order.size());
+  for_blocks(kColorCount, 1, [&](std::size_t c, std::size_t, std::size_t) {
+    const uint32_t first = st.color_start[c], last = st.color_start[c + 1];
+    uint32_t start[kMaxManifoldPoints + 1] = {};
+    for (uint32_t k = first; k < last; ++k) {
+      ++start[kMaxManifoldPoints - contacts[st.candidates[st.order[k]]].point_count];
+    }
+    uint32_t running = first;
+    for (uint32_t& s : start) {
+      const uint32_t n = s;
+      s = running;
+      running += n;
+    }
+    for (uint32_t k = first; k < last; ++k) {
+      const uint32_t i = st.order[k];
+      st.order_scratch[start[kMaxManifoldPoints - contacts[st.candidates[i]].point_count]++] = i;
+    }
+    std::copy(st.order_scratch.begin() + first, st.order_scratch.begin() + last,
+              st.order.begin() + first);
+  });
+
   // Bundles: each colour's constraints kLanes at a time in colour order; the overflow one per
   // bundle (its constraints may share bodies, so they cannot be lanes of one bundle).
   st.bundle_start.assign(kColorCount + 2, 0);

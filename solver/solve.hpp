@@ -50,6 +50,7 @@ struct SolverState {
   std::vector<uint32_t> candidates;  // contact indices that take part in the solve
   std::vector<ColorInput> color_input;
   std::vector<uint32_t> order, color_start;
+  std::vector<uint32_t> order_scratch;
   std::vector<ContactBundle> bundles;  // grouped by colour
   std::vector<uint32_t> bundle_start;  // colour c is bundles[bundle_start[c], bundle_start[c+1])
   ColorScratch color_scratch;
