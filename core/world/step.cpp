@@ -33,29 +33,35 @@ BroadKind broad_kind(const BodyStore& b, std::size_t i) {
 }  // namespace
 
 void carry_sleeping_contacts(const BodyStore& bodies, std::span<const Manifold> previous,
-                             std::vector<Manifold>& contacts, std::vector<Manifold>& scratch) {
-  auto idle = [&](uint32_t i) {
-    return !bodies.is_dynamic(i) ? bodies.is_static(i)
-                                 : (!bodies.is_awake(i) && !(bodies.flags[i] & kFrozen));
+                             std::vector<Manifold>& contacts) {
+  auto carried = [&](const Manifold& m) {
+    auto idle = [&](uint32_t i) {
+      return !bodies.is_dynamic(i) ? bodies.is_static(i)
+                                   : (!bodies.is_awake(i) && !(bodies.flags[i] & kFrozen));
+    };
+    return m.point_count > 0 && idle(m.body_a) && idle(m.body_b);
   };
-  bool any = false;
-  for (const Manifold& m : previous) {
-    if (m.point_count > 0 && idle(m.body_a) && idle(m.body_b)) {
-      any = true;
-      break;
-    }
-  }
-  if (!any) return;
-  scratch.clear();
+  // Both lists are sorted by key. Count the carried manifolds that were not found again, then
+  // merge them in from the back, in place: no third manifold-sized buffer is held.
+  std::size_t extra = 0;
   std::size_t j = 0;
   for (const Manifold& m : previous) {
-    if (!(m.point_count > 0 && idle(m.body_a) && idle(m.body_b))) continue;
-    while (j < contacts.size() && contacts[j].key < m.key) scratch.push_back(contacts[j++]);
+    if (!carried(m)) continue;
+    while (j < contacts.size() && contacts[j].key < m.key) ++j;
     if (j < contacts.size() && contacts[j].key == m.key) continue;  // found again this step
-    scratch.push_back(m);
+    ++extra;
   }
-  while (j < contacts.size()) scratch.push_back(contacts[j++]);
-  contacts.swap(scratch);
+  if (extra == 0) return;
+  std::size_t read = contacts.size();
+  contacts.resize(read + extra);
+  std::size_t write = contacts.size();
+  for (std::size_t i = previous.size(); i-- > 0;) {
+    const Manifold& m = previous[i];
+    if (!carried(m)) continue;
+    while (read > 0 && contacts[read - 1].key > m.key) contacts[--write] = contacts[--read];
+    if (read > 0 && contacts[read - 1].key == m.key) continue;
+    contacts[--write] = m;
+  }
 }
 
 uint32_t run_step(WorldState& w, Real dt) {
@@ -89,7 +95,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   collide_settings.dt = dt;
   collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.previous_contacts, w.contact_blocks,
                 w.contacts);
-  carry_sleeping_contacts(bodies, w.previous_contacts, w.contacts, w.carry_scratch);
+  carry_sleeping_contacts(bodies, w.previous_contacts, w.contacts);
   const auto t3 = clock::now();
 
   SolveSettings solve_settings;

@@ -10,8 +10,8 @@ uint32_t run_step(WorldState& w, Real dt);
 
 // Keeps last step's manifolds of pairs the broadphase no longer reports because neither body is
 // awake (a sleeping island keeps its contacts, so it wakes whole and warm-started), merged into
-// `contacts` by key. Both inputs are sorted by key; so is the result.
+// `contacts` by key, in place. Both inputs are sorted by key; so is the result.
 void carry_sleeping_contacts(const BodyStore& bodies, std::span<const Manifold> previous,
-                             std::vector<Manifold>& contacts, std::vector<Manifold>& scratch);
+                             std::vector<Manifold>& contacts);
 
 }  // namespace elan::detail

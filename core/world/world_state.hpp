@@ -50,8 +50,6 @@ struct WorldState {
   std::vector<Manifold> contacts;
   std::vector<Manifold> previous_contacts;
   CollideScratch contact_blocks;
-  // Scratch of carry_sleeping_contacts (swapped with `contacts`, so it is manifold-sized).
-  std::vector<Manifold> carry_scratch;
 
   SolverState solver;
   ApiState api;
