@@ -96,18 +96,21 @@ inline void apply_row(const ContactBundle& c, WideBody& a, WideBody& b, const Wi
   b.w = b.w + lambda * ib_rb_d;
 }
 
-// The tangent impulse (t0, t1) at the centre, applied as one combined update.
-inline void apply_friction(const ContactBundle& c, WideBody& a, WideBody& b, Wide t0, Wide t1) {
-  const WideVec3 p = t0 * c.tangent[0] + t1 * c.tangent[1];
+// The tangent impulse (t0, t1) at the centre, applied as one impulse p there: the angular
+// parts are I^-1 (r x p), one product per side instead of one per tangent.
+inline void apply_friction(const ContactBundle& c, const WideVec3& t1, WideBody& a, WideBody& b,
+                           Wide lambda0, Wide lambda1) {
+  const WideVec3 p = lambda0 * c.tangent + lambda1 * t1;
   a.v = a.v - c.inv_mass_a * p;
-  a.w = a.w - (t0 * c.ia_ra_t[0] + t1 * c.ia_ra_t[1]);
+  a.w = a.w - c.inv_inertia_a * cross(c.center_ra, p);
   b.v = b.v + c.inv_mass_b * p;
-  b.w = b.w + (t0 * c.ib_rb_t[0] + t1 * c.ib_rb_t[1]);
+  b.w = b.w + c.inv_inertia_b * cross(c.center_rb, p);
 }
 
 inline void apply_twist(const ContactBundle& c, WideBody& a, WideBody& b, Wide twist) {
-  a.w = a.w - twist * c.ia_n;
-  b.w = b.w + twist * c.ib_n;
+  const WideVec3 l = twist * c.normal;
+  a.w = a.w - c.inv_inertia_a * l;
+  b.w = b.w + c.inv_inertia_b * l;
 }
 
 inline bool any_lane(Wide v) {
@@ -116,21 +119,20 @@ inline bool any_lane(Wide v) {
   return false;
 }
 
-// The friction rows' Jacobians at the manifold centre and the inverse of their 2x2 mass matrix
+// The friction rows at the manifold centre and the inverse of their 2x2 mass matrix
 // K = J M^-1 J^T, inverted in closed form, for lane l.
 void set_friction_rows(ContactBundle& c, int l, const Vec3& center_ra, const Vec3& center_rb,
                        const SymMat3& ia, const SymMat3& ib) {
+  set_lane(c.center_ra, l, center_ra);
+  set_lane(c.center_rb, l, center_rb);
+  const Vec3 n = lane(c.normal, l);
+  const Vec3 tangent[2] = {lane(c.tangent, l), n.cross(lane(c.tangent, l))};
   Vec3 ra_t[2], rb_t[2], ia_ra_t[2], ib_rb_t[2];
   for (int t = 0; t < 2; ++t) {
-    const Vec3 tangent = lane(c.tangent[t], l);
-    ra_t[t] = center_ra.cross(tangent);
-    rb_t[t] = center_rb.cross(tangent);
+    ra_t[t] = center_ra.cross(tangent[t]);
+    rb_t[t] = center_rb.cross(tangent[t]);
     ia_ra_t[t] = ia * ra_t[t];
     ib_rb_t[t] = ib * rb_t[t];
-    set_lane(c.ra_t[t], l, ra_t[t]);
-    set_lane(c.rb_t[t], l, rb_t[t]);
-    set_lane(c.ia_ra_t[t], l, ia_ra_t[t]);
-    set_lane(c.ib_rb_t[t], l, ib_rb_t[t]);
   }
   const Real m_sum = c.inv_mass_a[l] + c.inv_mass_b[l];
   const Real k00 = m_sum + ra_t[0].dot(ia_ra_t[0]) + rb_t[0].dot(ib_rb_t[0]);
@@ -143,10 +145,9 @@ void set_friction_rows(ContactBundle& c, int l, const Vec3& center_ra, const Vec
   c.inv_k11[l] = k00 * inv_det;
 }
 
-// Lever arms of point k of lane l and the normal mass they give.
-void set_point_arms(ContactBundle& c, int l, int k, const Vec3& ra, const Vec3& rb,
-                    const SymMat3& ia, const SymMat3& ib) {
-  WideContactPoint& p = c.points[k];
+// Lever arms of one point (row p) of lane l and the normal mass they give.
+void set_point_arms(const ContactBundle& c, WideContactPoint& p, int l, const Vec3& ra,
+                    const Vec3& rb, const SymMat3& ia, const SymMat3& ib) {
   const Vec3 n = lane(c.normal, l);
   const Vec3 ra_n = ra.cross(n), rb_n = rb.cross(n);
   const Vec3 ia_ra_n = ia * ra_n, ib_rb_n = ib * rb_n;
@@ -162,7 +163,10 @@ void set_point_arms(ContactBundle& c, int l, int k, const Vec3& ra, const Vec3& 
 
 void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
                      std::span<const uint32_t> packet_of, const ContactSolverContext& ctx,
-                     ContactBundle& c, int l) {
+                     uint32_t bundle, int l) {
+  ContactBundle& c = ctx.bundles[bundle];
+  WideContactPoint* rows = ctx.rows.data() + c.first_row;
+  BundleRestitution& bounce = ctx.restitution[bundle];
   const uint32_t a = m.body_a, b = m.body_b;
   const uint32_t packet_a = packet_of[a], packet_b = packet_of[b];
   const bool write_a = bodies.is_dynamic(a), write_b = bodies.is_dynamic(b);
@@ -172,37 +176,33 @@ void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore
   c.write_a[l] = write_a;
   c.write_b[l] = write_b;
   c.lanes = std::max(c.lanes, l + 1);
-  c.max_count = std::max(c.max_count, m.point_count);
   const SolverBodyParams& pa = ctx.params[packet_a];
   const SolverBodyParams& pb = ctx.params[packet_b];
   const SymMat3 ia = write_a ? pa.inv_inertia : SymMat3{};
   const SymMat3 ib = write_b ? pb.inv_inertia : SymMat3{};
   c.inv_mass_a[l] = write_a ? pa.inv_mass : 0;
   c.inv_mass_b[l] = write_b ? pb.inv_mass : 0;
+  set_lane(c.inv_inertia_a, l, ia);
+  set_lane(c.inv_inertia_b, l, ib);
   c.friction[l] = std::sqrt(bodies.friction[a] * bodies.friction[b]);
-  c.restitution[l] = std::max(bodies.restitution[a], bodies.restitution[b]);
-  const Softness soft = (write_a && write_b) ? ctx.contact_softness : ctx.static_softness;
-  c.bias_rate[l] = soft.bias_rate;
-  c.mass_scale[l] = soft.mass_scale;
-  c.impulse_scale[l] = soft.impulse_scale;
+  bounce.restitution[l] = std::max(bodies.restitution[a], bodies.restitution[b]);
   const Vec3 n = m.normal;
   set_lane(c.normal, l, n);
   Vec3 t0, t1;
   tangent_basis(n, t0, t1);
-  set_lane(c.tangent[0], l, t0);
-  set_lane(c.tangent[1], l, t1);
+  set_lane(c.tangent, l, t0);
   const SolverBody& sa = ctx.bodies[packet_a];
   const SolverBody& sb = ctx.bodies[packet_b];
 
   Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
   for (int i = 0; i < m.point_count; ++i) {
     const ContactPoint& mp = m.points[i];
-    WideContactPoint& p = c.points[i];
-    set_point_arms(c, l, i, mp.anchor_a, mp.anchor_b, ia, ib);
+    WideContactPoint& p = rows[i];
+    set_point_arms(c, p, l, mp.anchor_a, mp.anchor_b, ia, ib);
     p.separation[l] = mp.separation;
     p.normal_impulse[l] = mp.normal_impulse;
     const Vec3 ra_n = lane(p.ra_n, l), rb_n = lane(p.rb_n, l);
-    p.relative_velocity[l] = n.dot(sb.v - sa.v) + rb_n.dot(sb.w) - ra_n.dot(sa.w);
+    bounce.relative_velocity[i][l] = n.dot(sb.v - sa.v) + rb_n.dot(sb.w) - ra_n.dot(sa.w);
     center_ra += mp.anchor_a;
     center_rb += mp.anchor_b;
   }
@@ -211,13 +211,10 @@ void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore
   center_rb *= inv_count;
   for (int i = 0; i < m.point_count; ++i) {
     const Vec3 offset = m.points[i].anchor_a - center_ra;
-    c.points[i].twist_lever[l] = (offset - offset.dot(n) * n).norm();
+    rows[i].twist_lever[l] = (offset - offset.dot(n) * n).norm();
   }
   set_friction_rows(c, l, center_ra, center_rb, ia, ib);
-  const Vec3 ia_n = ia * n, ib_n = ib * n;
-  set_lane(c.ia_n, l, ia_n);
-  set_lane(c.ib_n, l, ib_n);
-  const Real k_twist = n.dot(ia_n) + n.dot(ib_n);
+  const Real k_twist = n.dot(ia * n) + n.dot(ib * n);
   c.twist_mass[l] = k_twist > 0 ? 1 / k_twist : 0;
   c.tangent_impulse[0][l] = m.tangent_impulse[0];
   c.tangent_impulse[1][l] = m.tangent_impulse[1];
@@ -228,6 +225,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                       std::span<const Manifold> manifolds, uint32_t begin, uint32_t end) {
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
+    WideContactPoint* rows = ctx.rows.data() + c.first_row;
     for (int l = 0; l < c.lanes; ++l) {
       // Against a static or kinematic body the impulse is external anyway: keep the arms.
       if (!(c.write_a[l] && c.write_b[l])) continue;
@@ -249,7 +247,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
       const Real dp_n = n.dot(b.dp - a.dp);
       Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
       for (int k = 0; k < m.point_count; ++k) {
-        WideContactPoint& p = c.points[k];
+        WideContactPoint& p = rows[k];
         const Real s =
             p.separation[l] + dp_n + lane(p.rb_n, l).dot(b.dtheta) - lane(p.ra_n, l).dot(a.dtheta);
         // The contact point of the step's start, carried by the mean translation of the two
@@ -258,7 +256,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
         const Vec3 shared = Real(0.5) * (m.points[k].anchor_a + start_b + m.points[k].anchor_b) +
                             Real(0.5) * (a.dp + b.dp);
         const Vec3 ra = shared - xa, rb = shared - xb;
-        set_point_arms(c, l, k, ra, rb, ia, ib);
+        set_point_arms(c, p, l, ra, rb, ia, ib);
         // Same separation as before, expressed with the new arms.
         p.separation[l] =
             s - (dp_n + lane(p.rb_n, l).dot(b.dtheta) - lane(p.ra_n, l).dot(a.dtheta));
@@ -277,14 +275,15 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
   SolverBody* bodies = ctx.bodies.data();
   for (uint32_t i = begin; i < end; ++i) {
     const ContactBundle& c = ctx.bundles[i];
+    const WideContactPoint* rows = ctx.rows.data() + c.first_row;
     WideBody a, b;
     gather_velocity(bodies, c.packet_a, a);
     gather_velocity(bodies, c.packet_b, b);
     for (int k = 0; k < c.max_count; ++k) {
-      const WideContactPoint& p = c.points[k];
+      const WideContactPoint& p = rows[k];
       apply_row(c, a, b, c.normal, p.ia_ra_n, p.ib_rb_n, p.normal_impulse);
     }
-    apply_friction(c, a, b, c.tangent_impulse[0], c.tangent_impulse[1]);
+    apply_friction(c, cross(c.normal, c.tangent), a, b, c.tangent_impulse[0], c.tangent_impulse[1]);
     apply_twist(c, a, b, c.twist_impulse);
     scatter_velocity(bodies, c.packet_a, c.write_a, a);
     scatter_velocity(bodies, c.packet_b, c.write_b, b);
@@ -295,8 +294,12 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
   SolverBody* bodies = ctx.bodies.data();
   const Wide zero{};
   const Wide one = splat(1);
+  // Against a static or kinematic B (not written, so zero inverse mass) the stiffer softness.
+  const Softness& dyn = ctx.contact_softness;
+  const Softness& fix = ctx.static_softness;
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
+    WideContactPoint* rows = ctx.rows.data() + c.first_row;
     WideBody a, b;
     gather_velocity(bodies, c.packet_a, a);
     gather_velocity(bodies, c.packet_b, b);
@@ -307,27 +310,30 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       // mu * sum(lambda_n), the twist within mu * sum(lever_k * lambda_n_k).
       Wide total_normal{}, twist_limit{};
       for (int k = 0; k < c.max_count; ++k) {
-        total_normal += c.points[k].normal_impulse;
-        twist_limit += c.points[k].twist_lever * c.points[k].normal_impulse;
+        total_normal += rows[k].normal_impulse;
+        twist_limit += rows[k].twist_lever * rows[k].normal_impulse;
       }
-      const Wide v0 = row_velocity(a, b, c.tangent[0], c.ra_t[0], c.rb_t[0]);
-      const Wide v1 = row_velocity(a, b, c.tangent[1], c.ra_t[1], c.rb_t[1]);
-      Wide t0 = c.tangent_impulse[0] - (c.inv_k00 * v0 + c.inv_k01 * v1);
-      Wide t1 = c.tangent_impulse[1] - (c.inv_k01 * v0 + c.inv_k11 * v1);
+      // Velocity of B's centre point against A's: t . (v_b + w_b x rb - v_a - w_a x ra) is the
+      // row velocity t . (v_b - v_a) + (rb x t) . w_b - (ra x t) . w_a of each tangent.
+      const WideVec3 t1 = cross(n, c.tangent);
+      const WideVec3 dv = (b.v + cross(b.w, c.center_rb)) - (a.v + cross(a.w, c.center_ra));
+      const Wide v0 = dot(c.tangent, dv), v1 = dot(t1, dv);
+      Wide f0 = c.tangent_impulse[0] - (c.inv_k00 * v0 + c.inv_k01 * v1);
+      Wide f1 = c.tangent_impulse[1] - (c.inv_k01 * v0 + c.inv_k11 * v1);
       const Wide max_friction = c.friction * total_normal;
-      const Wide len2 = t0 * t0 + t1 * t1;
+      const Wide len2 = f0 * f0 + f1 * f1;
       const auto outside = len2 > max_friction * max_friction;
       if (any_lane(outside ? one : zero)) {
         // Outside the cone len2 > 0, so the division is safe where it is used.
         Wide len = outside ? len2 : one;
         for (int l = 0; l < kLanes; ++l) len[l] = std::sqrt(len[l]);
         const Wide scale = outside ? max_friction / len : one;
-        t0 *= scale;
-        t1 *= scale;
+        f0 *= scale;
+        f1 *= scale;
       }
-      apply_friction(c, a, b, t0 - c.tangent_impulse[0], t1 - c.tangent_impulse[1]);
-      c.tangent_impulse[0] = t0;
-      c.tangent_impulse[1] = t1;
+      apply_friction(c, t1, a, b, f0 - c.tangent_impulse[0], f1 - c.tangent_impulse[1]);
+      c.tangent_impulse[0] = f0;
+      c.tangent_impulse[1] = f1;
 
       const Wide spin = dot(n, b.w - a.w);
       const Wide max_twist = c.friction * wide_max(twist_limit, kTorsionPatch * total_normal);
@@ -342,8 +348,12 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     const Wide dp_n = dot(n, dp_b - dp_a);
     const Wide inv_h = splat(ctx.inv_h);
     const Wide max_push = splat(-ctx.max_push_velocity);
+    const auto fixed_b = c.inv_mass_b == zero;
+    const Wide bias_rate = fixed_b ? splat(fix.bias_rate) : splat(dyn.bias_rate);
+    const Wide soft_mass = fixed_b ? splat(fix.mass_scale) : splat(dyn.mass_scale);
+    const Wide soft_impulse = fixed_b ? splat(fix.impulse_scale) : splat(dyn.impulse_scale);
     for (int k = 0; k < c.max_count; ++k) {
-      WideContactPoint& p = c.points[k];
+      WideContactPoint& p = rows[k];
       // Current separation from the pose change since the step began, linearised in the
       // rotation: s = s0 + n.(dp_b - dp_a) + (rb x n).dtheta_b - (ra x n).dtheta_a.
       const Wide s = p.separation + dp_n + dot(p.rb_n, dtheta_b) - dot(p.ra_n, dtheta_a);
@@ -352,9 +362,9 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       const auto gap = s > zero;
       Wide bias = gap ? s * inv_h : zero, mass_scale = one, impulse_scale = zero;
       if (use_bias) {
-        bias = gap ? bias : wide_max(c.bias_rate * s, max_push);
-        mass_scale = gap ? one : c.mass_scale;
-        impulse_scale = gap ? zero : c.impulse_scale;
+        bias = gap ? bias : wide_max(bias_rate * s, max_push);
+        mass_scale = gap ? one : soft_mass;
+        impulse_scale = gap ? zero : soft_impulse;
       }
       const Wide vn = row_velocity(a, b, n, p.ra_n, p.rb_n);
       Wide impulse = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
@@ -374,18 +384,21 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
   const Wide zero{};
   const Wide threshold = splat(-ctx.restitution_threshold);
   for (uint32_t i = begin; i < end; ++i) {
-    ContactBundle& c = ctx.bundles[i];
-    if (!any_lane(c.restitution)) continue;
+    const BundleRestitution& bounce = ctx.restitution[i];
+    if (!any_lane(bounce.restitution)) continue;
+    const ContactBundle& c = ctx.bundles[i];
+    WideContactPoint* rows = ctx.rows.data() + c.first_row;
     WideBody a, b;
     gather_velocity(bodies, c.packet_a, a);
     gather_velocity(bodies, c.packet_b, b);
     for (int k = 0; k < c.max_count; ++k) {
-      WideContactPoint& p = c.points[k];
+      WideContactPoint& p = rows[k];
+      const Wide approach = bounce.relative_velocity[k];
       // Only points that approached faster than the threshold and actually pushed bounce.
-      const auto bounces = (c.restitution != zero) & (p.relative_velocity <= threshold) &
-                           (p.max_normal_impulse != zero);
+      const auto bounces =
+          (bounce.restitution != zero) & (approach <= threshold) & (p.max_normal_impulse != zero);
       const Wide vn = row_velocity(a, b, c.normal, p.ra_n, p.rb_n);
-      Wide impulse = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
+      Wide impulse = -p.normal_mass * (vn + bounce.restitution * approach);
       impulse = bounces ? impulse : zero;
       const Wide updated = wide_max(p.normal_impulse + impulse, zero);
       impulse = updated - p.normal_impulse;
@@ -402,11 +415,12 @@ void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t en
                     std::span<Manifold> manifolds) {
   for (uint32_t i = begin; i < end; ++i) {
     const ContactBundle& c = ctx.bundles[i];
+    const WideContactPoint* rows = ctx.rows.data() + c.first_row;
     for (int l = 0; l < c.lanes; ++l) {
       Manifold& m = manifolds[c.manifold[l]];
       for (int k = 0; k < m.point_count; ++k) {
-        m.points[k].normal_impulse = c.points[k].normal_impulse[l];
-        m.points[k].max_normal_impulse = c.points[k].max_normal_impulse[l];
+        m.points[k].normal_impulse = rows[k].normal_impulse[l];
+        m.points[k].max_normal_impulse = rows[k].max_normal_impulse[l];
       }
       m.tangent_impulse[0] = c.tangent_impulse[0][l];
       m.tangent_impulse[1] = c.tangent_impulse[1][l];

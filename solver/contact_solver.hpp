@@ -24,8 +24,10 @@ namespace elan::detail {
 struct ContactSolverContext {
   std::span<SolverBody> bodies;  // packets (0 = static dummy)
   std::span<const SolverBodyParams> params;
-  std::span<ContactBundle> bundles;  // grouped by colour
-  Real h = 0;                        // s, substep
+  std::span<ContactBundle> bundles;          // grouped by colour
+  std::span<WideContactPoint> rows;          // the bundles' point rows (ContactBundle::first_row)
+  std::span<BundleRestitution> restitution;  // per bundle
+  Real h = 0;                                // s, substep
   Real inv_h = 0;
   Softness contact_softness;       // dynamic vs dynamic
   Softness static_softness;        // against a static or kinematic body (stiffer)
@@ -33,11 +35,12 @@ struct ContactSolverContext {
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
 };
 
-// Builds lane `lane` of `out` from manifold `m` (index `manifold_index`). `out` must start
-// zeroed (ContactBundle{}): lanes and points left unset then apply no impulse.
+// Builds lane `lane` of bundle `bundle` from manifold `m` (index `manifold_index`). The bundle,
+// its rows and its BundleRestitution must start zeroed, with first_row and max_count set: lanes
+// and points left unset then apply no impulse.
 void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
                      std::span<const uint32_t> packet_of, const ContactSolverContext& ctx,
-                     ContactBundle& out, int lane);
+                     uint32_t bundle, int lane);
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // Re-places the lever arms of every point between two dynamic bodies at one shared point: the

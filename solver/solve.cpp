@@ -40,6 +40,8 @@ ContactSolverContext make_context(const SolveSettings& settings, SolverState& st
   ctx.bodies = state.packets;
   ctx.params = state.params;
   ctx.bundles = state.bundles;
+  ctx.rows = state.rows;
+  ctx.restitution = state.restitution;
   ctx.h = settings.dt / Real(settings.substeps);
   ctx.inv_h = 1 / ctx.h;
   // Box2D v3: contact stiffness at most a quarter of the substep rate, twice as stiff against
@@ -164,21 +166,46 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     const uint32_t bundles = c == kColorCount ? n : uint32_t(block_count(n, kLanes));
     st.bundle_start[c + 1] = st.bundle_start[c] + bundles;
   }
-  st.bundles.resize(st.bundle_start[kColorCount + 1]);
+  // The constraints [first, last) of `order` that are the lanes of bundle j of colour `color`.
+  auto lanes_of = [&](uint32_t color, std::size_t j, uint32_t& first, uint32_t& last) {
+    const uint32_t per_bundle = color == kColorCount ? 1 : kLanes;
+    first = st.color_start[color] + (uint32_t(j) - st.bundle_start[color]) * per_bundle;
+    last = std::min(st.color_start[color + 1], first + per_bundle);
+  };
+  // Each bundle gets as many point rows as its lanes' largest point count.
+  const std::size_t bundle_count = st.bundle_start[kColorCount + 1];
+  st.row_start.resize(bundle_count + 1);
+  st.row_start[0] = 0;
+  for (uint32_t color = 0, j = 0; j < bundle_count; ++j) {
+    while (st.bundle_start[color + 1] <= j) ++color;
+    uint32_t first = 0, last = 0;
+    lanes_of(color, j, first, last);
+    int rows = 0;
+    for (uint32_t k = first; k < last; ++k) {
+      rows = std::max(rows, contacts[st.candidates[st.order[k]]].point_count);
+    }
+    st.row_start[j + 1] = st.row_start[j] + uint32_t(rows);
+  }
+  st.bundles.resize(bundle_count);
+  st.rows.resize(st.row_start[bundle_count]);
+  st.restitution.resize(bundle_count);
   const ContactSolverContext ctx = make_context(settings, st);
-  for_blocks(st.bundles.size(), kSweepBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
+  for_blocks(bundle_count, kSweepBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
     uint32_t color = 0;
     for (std::size_t j = begin; j < end; ++j) {
       while (st.bundle_start[color + 1] <= j) ++color;
-      const uint32_t per_bundle = color == kColorCount ? 1 : kLanes;
-      const uint32_t first =
-          st.color_start[color] + (uint32_t(j) - st.bundle_start[color]) * per_bundle;
-      const uint32_t last = std::min(st.color_start[color + 1], first + per_bundle);
+      uint32_t first = 0, last = 0;
+      lanes_of(color, j, first, last);
       ContactBundle& bundle = st.bundles[j];
       bundle = ContactBundle{};
+      bundle.first_row = st.row_start[j];
+      bundle.max_count = int(st.row_start[j + 1] - st.row_start[j]);
+      std::fill(st.rows.begin() + st.row_start[j], st.rows.begin() + st.row_start[j + 1],
+                WideContactPoint{});
+      st.restitution[j] = BundleRestitution{};
       for (uint32_t k = first; k < last; ++k) {
         const uint32_t m = st.candidates[st.order[k]];
-        prepare_contact(contacts[m], m, bodies, st.packet_of, ctx, bundle, int(k - first));
+        prepare_contact(contacts[m], m, bodies, st.packet_of, ctx, uint32_t(j), int(k - first));
       }
     }
   });

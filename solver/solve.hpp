@@ -52,6 +52,9 @@ struct SolverState {
   std::vector<uint32_t> order, color_start;
   std::vector<uint32_t> order_scratch;
   std::vector<ContactBundle> bundles;  // grouped by colour
+  std::vector<uint32_t> row_start;     // bundle j's point rows are [row_start[j], row_start[j+1])
+  std::vector<WideContactPoint> rows;
+  std::vector<BundleRestitution> restitution;  // per bundle
   std::vector<uint32_t> bundle_start;  // colour c is bundles[bundle_start[c], bundle_start[c+1])
   ColorScratch color_scratch;
   IslandScratch island_scratch;

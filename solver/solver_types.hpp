@@ -54,9 +54,29 @@ struct Softness {
 };
 Softness make_softness(Real hertz, Real damping_ratio, Real h);
 
+// Symmetric 3x3 matrices across the lanes (world inverse inertia).
+struct WideSym3 {
+  Wide xx{}, yy{}, zz{}, xy{}, xz{}, yz{};
+};
+
+inline WideVec3 operator*(const WideSym3& m, const WideVec3& v) {
+  return {m.xx * v.x + m.xy * v.y + m.xz * v.z, m.xy * v.x + m.yy * v.y + m.yz * v.z,
+          m.xz * v.x + m.yz * v.y + m.zz * v.z};
+}
+
+inline void set_lane(WideSym3& w, int l, const SymMat3& m) {
+  w.xx[l] = m.xx;
+  w.yy[l] = m.yy;
+  w.zz[l] = m.zz;
+  w.xy[l] = m.xy;
+  w.xz[l] = m.xz;
+  w.yz[l] = m.yz;
+}
+
 // One non-penetration row per lane in Jacobian form, J = [-n, -(ra x n), n, (rb x n)], with
-// the products that the solve needs precomputed once per step. Points past a lane's count are
-// zero, so they apply no impulse.
+// the products that every pass needs precomputed once per step. A bundle's rows are stored
+// apart from it, only as many as its lanes have points (ContactBundle::first_row); points past
+// a lane's count are zero, so they apply no impulse.
 struct WideContactPoint {
   WideVec3 ra_n;              // m: ra x n (ra = point minus A's centre of mass, world)
   WideVec3 rb_n;              // m: rb x n
@@ -67,33 +87,42 @@ struct WideContactPoint {
   Wide twist_lever{};         // m: distance from the manifold centre (twist friction limit)
   Wide normal_impulse{};      // N s, accumulated over the substep (warm started)
   Wide max_normal_impulse{};  // N s
-  Wide relative_velocity{};   // m/s along n before the solve (negative: approaching)
 };
 
 // kLanes contact constraints of one colour (no two share a dynamic body), structure of arrays
 // over the lanes, solved together (Box2D v3's b2ContactConstraintSIMD). Unused lanes have
 // packet 0 (the static dummy), zero coefficients and are never written back.
+//
+// perf: every solver pass streams all bundles through the cache (4 MB a pass on jolt_pyramid,
+// 10 MB on pile10k), so a bundle keeps only what a pass cannot derive cheaply in registers, as
+// bepuphysics2 does: the friction Jacobians come from the manifold centre and the tangent, the
+// angular responses from the inverse inertias, the softness from whether B is written, and the
+// restitution inputs, read once per step, live apart (ContactSolverContext::restitution).
 struct ContactBundle {
   uint32_t packet_a[kLanes] = {}, packet_b[kLanes] = {};  // 0 = static dummy
   uint32_t manifold[kLanes] = {};  // index into the contact list, to store impulses back
   uint8_t write_a[kLanes] = {}, write_b[kLanes] = {};  // dynamic bodies only are written
   int lanes = 0;                                       // lanes in use
   int max_count = 0;                                   // most points of any lane
-  Wide inv_mass_a{}, inv_mass_b{};                     // 0 for a side that is not written
+  uint32_t first_row = 0;           // its points are rows [first_row, first_row + max_count)
+  Wide inv_mass_a{}, inv_mass_b{};  // 0 for a side that is not written
+  WideSym3 inv_inertia_a, inv_inertia_b;
   WideVec3 normal;
-  Wide friction{}, restitution{};
-  Wide bias_rate{}, mass_scale{}, impulse_scale{};  // the lane's Softness
-  // Central friction (Gregorius, GDC 2015): at the mean of the points, a coupled 2x2 tangent
-  // block and a twist row about the normal, Jacobians precomputed like the points'.
-  WideVec3 tangent[2];
-  WideVec3 ra_t[2], rb_t[2];             // center_ra x t_k, center_rb x t_k
-  WideVec3 ia_ra_t[2], ib_rb_t[2];       // I^-1 of those
-  WideVec3 ia_n, ib_n;                   // I^-1 n, for the twist
+  WideVec3 tangent;  // first axis of tangent_basis(normal); the second is normal x tangent
+  Wide friction{};
+  // Central friction (Gregorius, GDC 2015): a coupled 2x2 tangent block at the mean of the
+  // points and a twist row about the normal.
+  WideVec3 center_ra, center_rb;         // m: the mean point minus each centre of mass
   Wide inv_k00{}, inv_k01{}, inv_k11{};  // inverse of the 2x2 tangent mass matrix
   Wide twist_mass{};                     // kg m^2
   Wide tangent_impulse[2] = {};          // N s
   Wide twist_impulse{};                  // N m s
-  WideContactPoint points[kMaxManifoldPoints];
+};
+
+// Read by the restitution pass only: the lane's restitution, and per row the approach speed.
+struct BundleRestitution {
+  Wide restitution{};
+  Wide relative_velocity[kMaxManifoldPoints] = {};  // m/s along n before the solve
 };
 
 }  // namespace elan::detail

@@ -43,6 +43,10 @@ inline WideVec3 operator*(Wide s, const WideVec3& a) {
   return {s * a.x, s * a.y, s * a.z};
 }
 
+inline WideVec3 cross(const WideVec3& a, const WideVec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
 // One lane of a WideVec3 as a Vec3, and back.
 inline Vec3 lane(const WideVec3& v, int l) {
   return {v.x[l], v.y[l], v.z[l]};
