@@ -4,6 +4,7 @@
 
 #include <tbb/task_group.h>
 
+#include <algorithm>
 #include <thread>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -15,32 +16,49 @@
 
 namespace elan::detail {
 
-void StageExecutor::reset(std::size_t n) {
+void StageExecutor::reset(const std::vector<StageSpec>& stages) {
+  const std::size_t n = stages.size();
   if (capacity_ < n) {
     capacity_ = n + n / 2 + 16;
-    claimed_ = std::make_unique<Counter[]>(capacity_);
     done_ = std::make_unique<Counter[]>(capacity_);
   }
+  for (std::size_t i = 0; i < n; ++i) done_[i].value.store(0, std::memory_order_relaxed);
+  first_block_.resize(n);
+  std::size_t blocks = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    claimed_[i].value.store(0, std::memory_order_relaxed);
-    done_[i].value.store(0, std::memory_order_relaxed);
+    first_block_[i] = blocks;
+    blocks += stages[i].block_count;
   }
+  if (claim_capacity_ < blocks || run_ == UINT32_MAX) {
+    claim_capacity_ = std::max(claim_capacity_, blocks + blocks / 2 + 64);
+    claim_ = std::make_unique<std::atomic<uint32_t>[]>(claim_capacity_);
+    for (std::size_t b = 0; b < claim_capacity_; ++b) claim_[b].store(0, std::memory_order_relaxed);
+    run_ = 0;
+  }
+  ++run_;
   std::atomic_thread_fence(std::memory_order_release);
 }
 
 void StageExecutor::run_parallel(const std::vector<StageSpec>& stages, int participants,
                                  WorkRef work) {
   const std::size_t n = stages.size();
-  auto participate = [&]() {
+  const uint32_t run = run_;
+  auto participate = [&](uint32_t t) {
     for (std::size_t i = 0; i < n; ++i) {
       const uint32_t count = stages[i].block_count;
       if (count == 0) continue;
-      for (;;) {
-        const uint32_t b = claimed_[i].value.fetch_add(1, std::memory_order_relaxed);
-        if (b >= count) break;
+      std::atomic<uint32_t>* claim = claim_.get() + first_block_[i];
+      auto take = [&](uint32_t b) {
+        return claim[b].exchange(run, std::memory_order_relaxed) != run;
+      };
+      // Outward from this participant's start until a block another one has taken: the blocks
+      // each participant takes form one run of blocks around its start, so none is left over.
+      const uint32_t start = uint32_t(uint64_t(count) * t / uint32_t(participants));
+      uint32_t finished = 0;
+      for (uint32_t b = start; b < count && take(b); ++b, ++finished)
         work.call(work.object, stages[i], b);
-        done_[i].value.fetch_add(1, std::memory_order_release);
-      }
+      for (uint32_t b = start; b-- > 0 && take(b); ++finished) work.call(work.object, stages[i], b);
+      if (finished) done_[i].value.fetch_add(finished, std::memory_order_release);
       // threading: every claimed block is finished by the thread that claimed it, so this wait
       // ends even if other participants never arrive; a late one finds stages done and skips.
       int spins = 0;
@@ -55,8 +73,8 @@ void StageExecutor::run_parallel(const std::vector<StageSpec>& stages, int parti
   };
 
   tbb::task_group group;
-  for (int t = 1; t < participants; ++t) group.run(participate);
-  participate();
+  for (int t = 1; t < participants; ++t) group.run([&participate, t] { participate(uint32_t(t)); });
+  participate(0);
   group.wait();
 }
 
