@@ -86,14 +86,16 @@ inline Wide row_velocity(const WideBody& a, const WideBody& b, const WideVec3& d
   return dot(d, b.v - a.v) + dot(rb_d, b.w) - dot(ra_d, a.w);
 }
 
-// Applies impulse `lambda` along a row: linear part along d, angular parts precomputed as
-// I^-1 (r x d). A side that is not written has zero inverse mass and inertia.
-inline void apply_row(const ContactBundle& c, WideBody& a, WideBody& b, const WideVec3& d,
-                      const WideVec3& ia_ra_d, const WideVec3& ib_rb_d, Wide lambda) {
-  a.v = a.v - (c.inv_mass_a * lambda) * d;
-  a.w = a.w - lambda * ia_ra_d;
-  b.v = b.v + (c.inv_mass_b * lambda) * d;
-  b.w = b.w + lambda * ib_rb_d;
+// Applies impulse `lambda` along a non-penetration row: linear part along n, angular parts
+// I^-1 (r x n). A side that is not written has zero inverse mass and inertia.
+inline void apply_row(const ContactBundle& c, WideBody& a, WideBody& b, const WideContactPoint& p,
+                      Wide lambda) {
+  const WideVec3 ia_ra_n = c.inv_inertia_a * p.ra_n;
+  const WideVec3 ib_rb_n = c.inv_inertia_b * p.rb_n;
+  a.v = a.v - (c.inv_mass_a * lambda) * c.normal;
+  a.w = a.w - lambda * ia_ra_n;
+  b.v = b.v + (c.inv_mass_b * lambda) * c.normal;
+  b.w = b.w + lambda * ib_rb_n;
 }
 
 // The tangent impulse (t0, t1) at the centre, applied as one impulse p there: the angular
@@ -153,8 +155,6 @@ void set_point_arms(const ContactBundle& c, WideContactPoint& p, int l, const Ve
   const Vec3 ia_ra_n = ia * ra_n, ib_rb_n = ib * rb_n;
   set_lane(p.ra_n, l, ra_n);
   set_lane(p.rb_n, l, rb_n);
-  set_lane(p.ia_ra_n, l, ia_ra_n);
-  set_lane(p.ib_rb_n, l, ib_rb_n);
   const Real k_n = c.inv_mass_a[l] + c.inv_mass_b[l] + ra_n.dot(ia_ra_n) + rb_n.dot(ib_rb_n);
   p.normal_mass[l] = k_n > 0 ? 1 / k_n : 0;
 }
@@ -238,8 +238,12 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
         continue;
       }
       const Manifold& m = manifolds[c.manifold[l]];
+      // The inertia of the current orientation (integrate_positions turns it for gyroscopic
+      // bodies): the integrator keeps L = I w with it, so impulses must change w through it too.
       const SymMat3& ia = ctx.params[c.packet_a[l]].inv_inertia;
       const SymMat3& ib = ctx.params[c.packet_b[l]].inv_inertia;
+      set_lane(c.inv_inertia_a, l, ia);
+      set_lane(c.inv_inertia_b, l, ib);
       const Vec3 n = lane(c.normal, l);
       // Centres now, relative to A's centre at the step's start (keeps the numbers small).
       const Vec3 xa = a.dp;
@@ -279,10 +283,19 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
     WideBody a, b;
     gather_velocity(bodies, c.packet_a, a);
     gather_velocity(bodies, c.packet_b, b);
+    // The points' impulses summed first: one angular response per side instead of one per point.
+    Wide total{};
+    WideVec3 ra_n_sum, rb_n_sum;
     for (int k = 0; k < c.max_count; ++k) {
       const WideContactPoint& p = rows[k];
-      apply_row(c, a, b, c.normal, p.ia_ra_n, p.ib_rb_n, p.normal_impulse);
+      total += p.normal_impulse;
+      ra_n_sum = ra_n_sum + p.normal_impulse * p.ra_n;
+      rb_n_sum = rb_n_sum + p.normal_impulse * p.rb_n;
     }
+    a.v = a.v - (c.inv_mass_a * total) * c.normal;
+    a.w = a.w - c.inv_inertia_a * ra_n_sum;
+    b.v = b.v + (c.inv_mass_b * total) * c.normal;
+    b.w = b.w + c.inv_inertia_b * rb_n_sum;
     apply_friction(c, cross(c.normal, c.tangent), a, b, c.tangent_impulse[0], c.tangent_impulse[1]);
     apply_twist(c, a, b, c.twist_impulse);
     scatter_velocity(bodies, c.packet_a, c.write_a, a);
@@ -372,7 +385,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       impulse = updated - p.normal_impulse;
       p.normal_impulse = updated;
       p.max_normal_impulse = wide_max(p.max_normal_impulse, impulse);
-      apply_row(c, a, b, n, p.ia_ra_n, p.ib_rb_n, impulse);
+      apply_row(c, a, b, p, impulse);
     }
     scatter_velocity(bodies, c.packet_a, c.write_a, a);
     scatter_velocity(bodies, c.packet_b, c.write_b, b);
@@ -404,7 +417,7 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
       impulse = updated - p.normal_impulse;
       p.normal_impulse = updated;
       p.max_normal_impulse = wide_max(p.max_normal_impulse, impulse);
-      apply_row(c, a, b, c.normal, p.ia_ra_n, p.ib_rb_n, impulse);
+      apply_row(c, a, b, p, impulse);
     }
     scatter_velocity(bodies, c.packet_a, c.write_a, a);
     scatter_velocity(bodies, c.packet_b, c.write_b, b);

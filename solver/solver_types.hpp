@@ -73,15 +73,15 @@ inline void set_lane(WideSym3& w, int l, const SymMat3& m) {
   w.yz[l] = m.yz;
 }
 
-// One non-penetration row per lane in Jacobian form, J = [-n, -(ra x n), n, (rb x n)], with
-// the products that every pass needs precomputed once per step. A bundle's rows are stored
-// apart from it, only as many as its lanes have points (ContactBundle::first_row); points past
-// a lane's count are zero, so they apply no impulse.
+// One non-penetration row per lane in Jacobian form, J = [-n, -(ra x n), n, (rb x n)]. A
+// bundle's rows are stored apart from it, only as many as its lanes have points
+// (ContactBundle::first_row); points past a lane's count are zero, so they apply no impulse.
+// perf: the angular responses I^-1 (r x n) are not stored but recomputed from the bundle's
+// inverse inertias in every pass (15 operations a side, off the chain of dependent updates):
+// stored, they were 6 of 17 values a row, and the passes are bound by memory traffic.
 struct WideContactPoint {
   WideVec3 ra_n;              // m: ra x n (ra = point minus A's centre of mass, world)
   WideVec3 rb_n;              // m: rb x n
-  WideVec3 ia_ra_n;           // 1/(kg m): I_a^-1 (ra x n)
-  WideVec3 ib_rb_n;           // 1/(kg m): I_b^-1 (rb x n)
   Wide separation{};          // m at the step's start; s = this + J . (dp, dtheta)
   Wide normal_mass{};         // kg: 1 / (J M^-1 J^T)
   Wide twist_lever{};         // m: distance from the manifold centre (twist friction limit)
@@ -104,9 +104,9 @@ struct ContactBundle {
   uint8_t write_a[kLanes] = {}, write_b[kLanes] = {};  // dynamic bodies only are written
   int lanes = 0;                                       // lanes in use
   int max_count = 0;                                   // most points of any lane
-  uint32_t first_row = 0;           // its points are rows [first_row, first_row + max_count)
-  Wide inv_mass_a{}, inv_mass_b{};  // 0 for a side that is not written
-  WideSym3 inv_inertia_a, inv_inertia_b;
+  uint32_t first_row = 0;                 // its points are rows [first_row, first_row + max_count)
+  Wide inv_mass_a{}, inv_mass_b{};        // 0 for a side that is not written
+  WideSym3 inv_inertia_a, inv_inertia_b;  // world; turned with the body by refresh_contacts
   WideVec3 normal;
   WideVec3 tangent;  // first axis of tangent_basis(normal); the second is normal x tangent
   Wide friction{};
