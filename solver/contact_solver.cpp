@@ -121,30 +121,27 @@ inline bool any_lane(Wide v) {
   return false;
 }
 
-// The friction rows at the manifold centre and the inverse of their 2x2 mass matrix
-// K = J M^-1 J^T, inverted in closed form, for lane l.
-void set_friction_rows(ContactBundle& c, int l, const Vec3& center_ra, const Vec3& center_rb,
-                       const SymMat3& ia, const SymMat3& ib) {
-  set_lane(c.center_ra, l, center_ra);
-  set_lane(c.center_rb, l, center_rb);
-  const Vec3 n = lane(c.normal, l);
-  const Vec3 tangent[2] = {lane(c.tangent, l), n.cross(lane(c.tangent, l))};
-  Vec3 ra_t[2], rb_t[2], ia_ra_t[2], ib_rb_t[2];
+// The inverse of the 2x2 mass matrix K = J M^-1 J^T of the friction rows at the manifold
+// centre, in closed form, from the bundle's centre arms and inverse inertias.
+void set_friction_mass(ContactBundle& c) {
+  const Wide zero{};
+  const WideVec3 tangent[2] = {c.tangent, cross(c.normal, c.tangent)};
+  WideVec3 ra_t[2], rb_t[2], ia_ra_t[2], ib_rb_t[2];
   for (int t = 0; t < 2; ++t) {
-    ra_t[t] = center_ra.cross(tangent[t]);
-    rb_t[t] = center_rb.cross(tangent[t]);
-    ia_ra_t[t] = ia * ra_t[t];
-    ib_rb_t[t] = ib * rb_t[t];
+    ra_t[t] = cross(c.center_ra, tangent[t]);
+    rb_t[t] = cross(c.center_rb, tangent[t]);
+    ia_ra_t[t] = c.inv_inertia_a * ra_t[t];
+    ib_rb_t[t] = c.inv_inertia_b * rb_t[t];
   }
-  const Real m_sum = c.inv_mass_a[l] + c.inv_mass_b[l];
-  const Real k00 = m_sum + ra_t[0].dot(ia_ra_t[0]) + rb_t[0].dot(ib_rb_t[0]);
-  const Real k01 = ra_t[0].dot(ia_ra_t[1]) + rb_t[0].dot(ib_rb_t[1]);
-  const Real k11 = m_sum + ra_t[1].dot(ia_ra_t[1]) + rb_t[1].dot(ib_rb_t[1]);
-  const Real det = k00 * k11 - k01 * k01;
-  const Real inv_det = det > 0 ? 1 / det : 0;
-  c.inv_k00[l] = k11 * inv_det;
-  c.inv_k01[l] = -k01 * inv_det;
-  c.inv_k11[l] = k00 * inv_det;
+  const Wide m_sum = c.inv_mass_a + c.inv_mass_b;
+  const Wide k00 = m_sum + dot(ra_t[0], ia_ra_t[0]) + dot(rb_t[0], ib_rb_t[0]);
+  const Wide k01 = dot(ra_t[0], ia_ra_t[1]) + dot(rb_t[0], ib_rb_t[1]);
+  const Wide k11 = m_sum + dot(ra_t[1], ia_ra_t[1]) + dot(rb_t[1], ib_rb_t[1]);
+  const Wide det = k00 * k11 - k01 * k01;
+  const Wide inv_det = det > zero ? splat(1) / (det > zero ? det : splat(1)) : zero;
+  c.inv_k00 = k11 * inv_det;
+  c.inv_k01 = -k01 * inv_det;
+  c.inv_k11 = k00 * inv_det;
 }
 
 // Lever arms of one point (row p) of lane l and the normal mass they give.
@@ -161,64 +158,114 @@ void set_point_arms(const ContactBundle& c, WideContactPoint& p, int l, const Ve
 
 }  // namespace
 
-void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
-                     std::span<const uint32_t> packet_of, const ContactSolverContext& ctx,
-                     uint32_t bundle, int l) {
+void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
+                    std::span<const Manifold> manifolds, std::span<const uint32_t> packet_of,
+                    uint32_t bundle, std::span<const uint32_t> lanes) {
   ContactBundle& c = ctx.bundles[bundle];
   WideContactPoint* rows = ctx.rows.data() + c.first_row;
   BundleRestitution& bounce = ctx.restitution[bundle];
-  const uint32_t a = m.body_a, b = m.body_b;
-  const uint32_t packet_a = packet_of[a], packet_b = packet_of[b];
-  const bool write_a = bodies.is_dynamic(a), write_b = bodies.is_dynamic(b);
-  c.packet_a[l] = packet_a;
-  c.packet_b[l] = packet_b;
-  c.manifold[l] = manifold_index;
-  c.write_a[l] = write_a;
-  c.write_b[l] = write_b;
-  c.lanes = std::max(c.lanes, l + 1);
-  const SolverBodyParams& pa = ctx.params[packet_a];
-  const SolverBodyParams& pb = ctx.params[packet_b];
-  const SymMat3 ia = write_a ? pa.inv_inertia : SymMat3{};
-  const SymMat3 ib = write_b ? pb.inv_inertia : SymMat3{};
-  c.inv_mass_a[l] = write_a ? pa.inv_mass : 0;
-  c.inv_mass_b[l] = write_b ? pb.inv_mass : 0;
-  set_lane(c.inv_inertia_a, l, ia);
-  set_lane(c.inv_inertia_b, l, ib);
-  c.friction[l] = std::sqrt(bodies.friction[a] * bodies.friction[b]);
-  bounce.restitution[l] = std::max(bodies.restitution[a], bodies.restitution[b]);
-  const Vec3 n = m.normal;
-  set_lane(c.normal, l, n);
-  Vec3 t0, t1;
-  tangent_basis(n, t0, t1);
-  set_lane(c.tangent, l, t0);
-  const SolverBody& sa = ctx.bodies[packet_a];
-  const SolverBody& sb = ctx.bodies[packet_b];
-
-  Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
-  for (int i = 0; i < m.point_count; ++i) {
-    const ContactPoint& mp = m.points[i];
-    WideContactPoint& p = rows[i];
-    set_point_arms(c, p, l, mp.anchor_a, mp.anchor_b, ia, ib);
-    p.separation[l] = mp.separation;
-    p.normal_impulse[l] = mp.normal_impulse;
-    const Vec3 ra_n = lane(p.ra_n, l), rb_n = lane(p.rb_n, l);
-    bounce.relative_velocity[i][l] = n.dot(sb.v - sa.v) + rb_n.dot(sb.w) - ra_n.dot(sa.w);
-    center_ra += mp.anchor_a;
-    center_rb += mp.anchor_b;
+  const int lane_count = int(lanes.size());
+  c.lanes = lane_count;
+  // Lane by lane: the inputs, scattered over manifolds, bodies and packets, into lanes.
+  // Unused lanes stay zero (packet 0, no mass), so every product below is zero there.
+  c.inv_mass_a = c.inv_mass_b = c.friction = bounce.restitution = Wide{};
+  c.inv_inertia_a = c.inv_inertia_b = WideSym3{};
+  c.normal = c.tangent = WideVec3{};
+  c.tangent_impulse[0] = c.tangent_impulse[1] = c.twist_impulse = Wide{};
+  WideBody va, vb;
+  Wide point_count{};
+  for (int l = 0; l < kLanes; ++l) {
+    if (l >= lane_count) {
+      c.packet_a[l] = c.packet_b[l] = c.manifold[l] = 0;
+      c.write_a[l] = c.write_b[l] = 0;
+      continue;
+    }
+    const Manifold& m = manifolds[lanes[l]];
+    const uint32_t a = m.body_a, b = m.body_b;
+    const uint32_t packet_a = packet_of[a], packet_b = packet_of[b];
+    const bool write_a = bodies.is_dynamic(a), write_b = bodies.is_dynamic(b);
+    c.packet_a[l] = packet_a;
+    c.packet_b[l] = packet_b;
+    c.manifold[l] = lanes[l];
+    c.write_a[l] = write_a;
+    c.write_b[l] = write_b;
+    const SolverBodyParams& pa = ctx.params[packet_a];
+    const SolverBodyParams& pb = ctx.params[packet_b];
+    c.inv_mass_a[l] = write_a ? pa.inv_mass : 0;
+    c.inv_mass_b[l] = write_b ? pb.inv_mass : 0;
+    if (write_a) set_lane(c.inv_inertia_a, l, pa.inv_inertia);
+    if (write_b) set_lane(c.inv_inertia_b, l, pb.inv_inertia);
+    c.friction[l] = std::sqrt(bodies.friction[a] * bodies.friction[b]);
+    bounce.restitution[l] = std::max(bodies.restitution[a], bodies.restitution[b]);
+    set_lane(c.normal, l, m.normal);
+    Vec3 t0, t1;
+    tangent_basis(m.normal, t0, t1);
+    set_lane(c.tangent, l, t0);
+    c.tangent_impulse[0][l] = m.tangent_impulse[0];
+    c.tangent_impulse[1][l] = m.tangent_impulse[1];
+    c.twist_impulse[l] = m.twist_impulse;
+    const SolverBody& sa = ctx.bodies[packet_a];
+    const SolverBody& sb = ctx.bodies[packet_b];
+    set_lane(va.v, l, sa.v);
+    set_lane(va.w, l, sa.w);
+    set_lane(vb.v, l, sb.v);
+    set_lane(vb.w, l, sb.w);
+    point_count[l] = Real(m.point_count);
   }
-  const Real inv_count = m.point_count > 0 ? Real(1) / Real(m.point_count) : Real(0);
-  center_ra *= inv_count;
-  center_rb *= inv_count;
-  for (int i = 0; i < m.point_count; ++i) {
-    const Vec3 offset = m.points[i].anchor_a - center_ra;
-    rows[i].twist_lever[l] = (offset - offset.dot(n) * n).norm();
+  const Wide zero{};
+  const Wide one = splat(1);
+  const WideVec3& n = c.normal;
+  const Wide m_sum = c.inv_mass_a + c.inv_mass_b;
+  WideVec3 ra[kMaxManifoldPoints], center_ra, center_rb;
+  for (int k = 0; k < c.max_count; ++k) {
+    WideContactPoint& p = rows[k];
+    WideVec3 rb;
+    p.separation = p.normal_impulse = Wide{};
+    for (int l = 0; l < lane_count; ++l) {
+      const Manifold& m = manifolds[lanes[l]];
+      if (k >= m.point_count) {
+        set_lane(ra[k], l, Vec3::Zero());
+        set_lane(rb, l, Vec3::Zero());
+        continue;
+      }
+      set_lane(ra[k], l, m.points[k].anchor_a);
+      set_lane(rb, l, m.points[k].anchor_b);
+      p.separation[l] = m.points[k].separation;
+      p.normal_impulse[l] = m.points[k].normal_impulse;
+    }
+    for (int l = lane_count; l < kLanes; ++l) {
+      set_lane(ra[k], l, Vec3::Zero());
+      set_lane(rb, l, Vec3::Zero());
+    }
+    // Lanes with fewer points leave this row empty: zero arms and zero mass apply no impulse.
+    const auto used = point_count > splat(Real(k));
+    p.ra_n = cross(ra[k], n);
+    p.rb_n = cross(rb, n);
+    const Wide k_n =
+        m_sum + dot(p.ra_n, c.inv_inertia_a * p.ra_n) + dot(p.rb_n, c.inv_inertia_b * p.rb_n);
+    p.normal_mass = (used & (k_n > zero)) ? one / (used ? k_n : one) : zero;
+    p.max_normal_impulse = zero;
+    bounce.relative_velocity[k] =
+        used ? dot(n, vb.v - va.v) + dot(p.rb_n, vb.w) - dot(p.ra_n, va.w) : zero;
+    center_ra = center_ra + ra[k];
+    center_rb = center_rb + rb;
   }
-  set_friction_rows(c, l, center_ra, center_rb, ia, ib);
-  const Real k_twist = n.dot(ia * n) + n.dot(ib * n);
-  c.twist_mass[l] = k_twist > 0 ? 1 / k_twist : 0;
-  c.tangent_impulse[0][l] = m.tangent_impulse[0];
-  c.tangent_impulse[1][l] = m.tangent_impulse[1];
-  c.twist_impulse[l] = m.twist_impulse;
+  const Wide inv_count = point_count > zero ? one / (point_count > zero ? point_count : one) : zero;
+  center_ra = inv_count * center_ra;
+  center_rb = inv_count * center_rb;
+  for (int k = 0; k < c.max_count; ++k) {
+    const auto used = point_count > splat(Real(k));
+    const WideVec3 offset = ra[k] - center_ra;
+    const WideVec3 in_plane = offset - dot(offset, n) * n;
+    Wide lever = dot(in_plane, in_plane);
+    for (int l = 0; l < kLanes; ++l) lever[l] = std::sqrt(lever[l]);
+    rows[k].twist_lever = used ? lever : zero;
+  }
+  c.center_ra = center_ra;
+  c.center_rb = center_rb;
+  set_friction_mass(c);
+  const Wide k_twist = dot(n, c.inv_inertia_a * n) + dot(n, c.inv_inertia_b * n);
+  c.twist_mass = k_twist > zero ? one / (k_twist > zero ? k_twist : one) : zero;
 }
 
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
@@ -226,6 +273,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
     WideContactPoint* rows = ctx.rows.data() + c.first_row;
+    bool refreshed = false;
     for (int l = 0; l < c.lanes; ++l) {
       // Against a static or kinematic body the impulse is external anyway: keep the arms.
       if (!(c.write_a[l] && c.write_b[l])) continue;
@@ -270,8 +318,12 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
       const Real inv_count = m.point_count > 0 ? Real(1) / Real(m.point_count) : Real(0);
       center_ra *= inv_count;
       center_rb *= inv_count;
-      set_friction_rows(c, l, center_ra, center_rb, ia, ib);
+      set_lane(c.center_ra, l, center_ra);
+      set_lane(c.center_rb, l, center_rb);
+      refreshed = true;
     }
+    // Lanes that were not refreshed get the same values again.
+    if (refreshed) set_friction_mass(c);
   }
 }
 

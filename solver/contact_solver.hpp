@@ -35,12 +35,13 @@ struct ContactSolverContext {
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
 };
 
-// Builds lane `lane` of bundle `bundle` from manifold `m` (index `manifold_index`). The bundle,
-// its rows and its BundleRestitution must start zeroed, with first_row and max_count set: lanes
-// and points left unset then apply no impulse.
-void prepare_contact(const Manifold& m, uint32_t manifold_index, const BodyStore& bodies,
-                     std::span<const uint32_t> packet_of, const ContactSolverContext& ctx,
-                     uint32_t bundle, int lane);
+// Builds bundle `bundle` from the manifolds `lanes` (indices into `manifolds`, at most kLanes,
+// sharing no dynamic body), lane l from lanes[l]. The bundle's first_row and max_count (the
+// most points of its manifolds) must be set; every other field of it, of its rows and of its
+// BundleRestitution is written, unused lanes and points with zero mass so they apply nothing.
+void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
+                    std::span<const Manifold> manifolds, std::span<const uint32_t> packet_of,
+                    uint32_t bundle, std::span<const uint32_t> lanes);
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // Re-places the lever arms of every point between two dynamic bodies at one shared point: the

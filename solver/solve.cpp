@@ -198,16 +198,12 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   const ContactSolverContext ctx = make_context(settings, st);
   for_each_bundle([&](std::size_t j, uint32_t first, uint32_t last) {
     ContactBundle& bundle = st.bundles[j];
-    bundle = ContactBundle{};
     bundle.first_row = st.row_start[j];
     bundle.max_count = int(st.row_start[j + 1] - st.row_start[j]);
-    std::fill(st.rows.begin() + st.row_start[j], st.rows.begin() + st.row_start[j + 1],
-              WideContactPoint{});
-    st.restitution[j] = BundleRestitution{};
-    for (uint32_t k = first; k < last; ++k) {
-      const uint32_t m = st.candidates[st.order[k]];
-      prepare_contact(contacts[m], m, bodies, st.packet_of, ctx, uint32_t(j), int(k - first));
-    }
+    uint32_t lanes[kLanes];
+    for (uint32_t k = first; k < last; ++k) lanes[k - first] = st.candidates[st.order[k]];
+    prepare_bundle(ctx, bodies, contacts, st.packet_of, uint32_t(j),
+                   std::span<const uint32_t>(lanes, last - first));
   });
   stats.color_ms = ms_since(t0);
 }
