@@ -268,6 +268,14 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   c.twist_mass = k_twist > zero ? one / (k_twist > zero ? k_twist : one) : zero;
 }
 
+void mark_moved(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
+  for (uint32_t i = begin; i < end; ++i) {
+    const SolverBody& b = ctx.bodies[i];
+    ctx.moved[i] = b.dp.squaredNorm() >= Real(0.25) * kRefreshDistance * kRefreshDistance ||
+                   b.dtheta.squaredNorm() >= Real(0.5) * kRefreshAngle * kRefreshAngle;
+  }
+}
+
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                       std::span<const Manifold> manifolds, uint32_t begin, uint32_t end) {
   for (uint32_t i = begin; i < end; ++i) {
@@ -277,6 +285,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     for (int l = 0; l < c.lanes; ++l) {
       // Against a static or kinematic body the impulse is external anyway: keep the arms.
       if (!(c.write_a[l] && c.write_b[l])) continue;
+      if (!ctx.moved[c.packet_a[l]] && !ctx.moved[c.packet_b[l]]) continue;
       const SolverBody& a = ctx.bodies[c.packet_a[l]];
       const SolverBody& b = ctx.bodies[c.packet_b[l]];
       // perf: resting contacts (most of a pile or stack) have barely moved since the step began;

@@ -42,6 +42,7 @@ ContactSolverContext make_context(const SolveSettings& settings, SolverState& st
   ctx.bundles = state.bundles;
   ctx.rows = state.rows;
   ctx.restitution = state.restitution;
+  ctx.moved = state.moved;
   ctx.h = settings.dt / Real(settings.substeps);
   ctx.inv_h = 1 / ctx.h;
   // Box2D v3: contact stiffness at most a quarter of the substep rate, twice as stiff against
@@ -75,6 +76,7 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     if (simulated) st.packet_of[i] = uint32_t(count++);
   }
   st.packets.resize(count);
+  st.moved.assign(count, 0);
   st.params.resize(count);
   st.packets[0] = SolverBody{};
   st.params[0] = SolverBodyParams{};
@@ -229,7 +231,6 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
   const uint32_t sweep_blocks = uint32_t(block_count(st.bundles.size(), kSweepBlock));
   for (int s = 0; s < settings.substeps; ++s) {
     stages.push_back({body_blocks, kIntegrateVelocities, 0});
-    if (s == 0) stages.push_back({sweep_blocks, kRefreshContacts, 0});
     add_constraint_pass(kWarmStart);
     for (int it = 0; it < settings.iterations; ++it) add_constraint_pass(kSolve);
     stages.push_back({body_blocks, kIntegratePositions, 0});
@@ -250,6 +251,7 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
         integrate_velocities(st.packets, st.params, h, begin, end);
       } else {
         integrate_positions(st.packets, st.params, bodies, h, begin, end);
+        mark_moved(ctx, begin, end);
       }
       return;
     }
