@@ -245,6 +245,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
         m_sum + dot(p.ra_n, c.inv_inertia_a * p.ra_n) + dot(p.rb_n, c.inv_inertia_b * p.rb_n);
     p.normal_mass = (used & (k_n > zero)) ? one / (used ? k_n : one) : zero;
     p.max_normal_impulse = zero;
+    p.current_separation = p.separation;
     bounce.relative_velocity[k] =
         used ? dot(n, vb.v - va.v) + dot(p.rb_n, vb.w) - dot(p.ra_n, va.w) : zero;
     center_ra = center_ra + ra[k];
@@ -281,6 +282,16 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
     WideContactPoint* rows = ctx.rows.data() + c.first_row;
+    // Current separation from the pose change since the step began, linearised in the
+    // rotation: s = s0 + n.(dp_b - dp_a) + (rb x n).dtheta_b - (ra x n).dtheta_a.
+    WideVec3 dp_a, dtheta_a, dp_b, dtheta_b;
+    gather_pose(ctx.bodies.data(), c.packet_a, dp_a, dtheta_a);
+    gather_pose(ctx.bodies.data(), c.packet_b, dp_b, dtheta_b);
+    const Wide dp_n = dot(c.normal, dp_b - dp_a);
+    for (int k = 0; k < c.max_count; ++k) {
+      WideContactPoint& p = rows[k];
+      p.current_separation = p.separation + dp_n + dot(p.rb_n, dtheta_b) - dot(p.ra_n, dtheta_a);
+    }
     bool refreshed = false;
     for (int l = 0; l < c.lanes; ++l) {
       // Against a static or kinematic body the impulse is external anyway: keep the arms.
@@ -305,12 +316,11 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
       // Centres now, relative to A's centre at the step's start (keeps the numbers small).
       const Vec3 xa = a.dp;
       const Vec3 xb = bodies.position(m.body_b) - bodies.position(m.body_a) + b.dp;
-      const Real dp_n = n.dot(b.dp - a.dp);
+      const Real lane_dp_n = n.dot(b.dp - a.dp);
       Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
       for (int k = 0; k < m.point_count; ++k) {
         WideContactPoint& p = rows[k];
-        const Real s =
-            p.separation[l] + dp_n + lane(p.rb_n, l).dot(b.dtheta) - lane(p.ra_n, l).dot(a.dtheta);
+        const Real s = p.current_separation[l];
         // The contact point of the step's start, carried by the mean translation of the two
         // bodies (not their rotation: a rolling sphere's contact stays under its centre).
         const Vec3 start_b = xb - b.dp;
@@ -318,9 +328,9 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                             Real(0.5) * (a.dp + b.dp);
         const Vec3 ra = shared - xa, rb = shared - xb;
         set_point_arms(c, p, l, ra, rb, ia, ib);
-        // Same separation as before, expressed with the new arms.
+        // The same current separation, expressed with the new arms.
         p.separation[l] =
-            s - (dp_n + lane(p.rb_n, l).dot(b.dtheta) - lane(p.ra_n, l).dot(a.dtheta));
+            s - (lane_dp_n + lane(p.rb_n, l).dot(b.dtheta) - lane(p.ra_n, l).dot(a.dtheta));
         center_ra += ra;
         center_rb += rb;
       }
@@ -416,10 +426,6 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       apply_twist(c, a, b, twist - c.twist_impulse);
       c.twist_impulse = twist;
     }
-    WideVec3 dp_a, dtheta_a, dp_b, dtheta_b;
-    gather_pose(bodies, c.packet_a, dp_a, dtheta_a);
-    gather_pose(bodies, c.packet_b, dp_b, dtheta_b);
-    const Wide dp_n = dot(n, dp_b - dp_a);
     const Wide inv_h = splat(ctx.inv_h);
     const Wide max_push = splat(-ctx.max_push_velocity);
     const auto fixed_b = c.inv_mass_b == zero;
@@ -428,9 +434,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     const Wide soft_impulse = fixed_b ? splat(fix.impulse_scale) : splat(dyn.impulse_scale);
     for (int k = 0; k < c.max_count; ++k) {
       WideContactPoint& p = rows[k];
-      // Current separation from the pose change since the step began, linearised in the
-      // rotation: s = s0 + n.(dp_b - dp_a) + (rb x n).dtheta_b - (ra x n).dtheta_a.
-      const Wide s = p.separation + dp_n + dot(p.rb_n, dtheta_b) - dot(p.ra_n, dtheta_a);
+      const Wide s = p.current_separation;
       // Speculative (s > 0): allow closing the gap within this substep only. Penetrating: the
       // soft spring pushes out, or nothing in the relax pass.
       const auto gap = s > zero;

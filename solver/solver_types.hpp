@@ -80,9 +80,12 @@ inline void set_lane(WideSym3& w, int l, const SymMat3& m) {
 // inverse inertias in every pass (15 operations a side, off the chain of dependent updates):
 // stored, they were 6 of 17 values a row, and the passes are bound by memory traffic.
 struct WideContactPoint {
-  WideVec3 ra_n;              // m: ra x n (ra = point minus A's centre of mass, world)
-  WideVec3 rb_n;              // m: rb x n
-  Wide separation{};          // m at the step's start; s = this + J . (dp, dtheta)
+  WideVec3 ra_n;      // m: ra x n (ra = point minus A's centre of mass, world)
+  WideVec3 rb_n;      // m: rb x n
+  Wide separation{};  // m at the step's start; s = this + J . (dp, dtheta)
+  // m: s at the current pose. Positions change once per substep, so refresh_contacts computes
+  // it then for every pass until the next (it was 12 body values gathered per lane per pass).
+  Wide current_separation{};
   Wide normal_mass{};         // kg: 1 / (J M^-1 J^T)
   Wide twist_lever{};         // m: distance from the manifold centre (twist friction limit)
   Wide normal_impulse{};      // N s, accumulated over the substep (warm started)
