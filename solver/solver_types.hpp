@@ -96,9 +96,9 @@ struct WideContactPoint {
 // over the lanes, solved together (Box2D v3's b2ContactConstraintSIMD). Unused lanes have
 // packet 0 (the static dummy), zero coefficients and are never written back.
 //
-// perf: every solver pass streams all bundles through the cache (4 MB a pass on jolt_pyramid,
-// 10 MB on pile10k), so a bundle keeps only what a pass cannot derive cheaply in registers, as
-// bepuphysics2 does: the friction Jacobians come from the manifold centre and the tangent, the
+// perf: every solver pass streams all bundles through the cache (megabytes a pass on
+// jolt_pyramid and pile10k), so a bundle keeps only what a pass cannot derive cheaply in registers,
+// as bepuphysics2 does: the friction Jacobians come from the manifold centre and the tangent, the
 // angular responses from the inverse inertias, the softness from whether B is written, and the
 // restitution inputs, read once per step, live apart (ContactSolverContext::restitution).
 struct ContactBundle {
