@@ -136,11 +136,11 @@ void BM_CollidePairsPile(benchmark::State& state) {
   CollideScratch slots;
   std::vector<Manifold> out, previous;
   arena.execute(
-      [&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, previous, slots, out); });
+      [&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, previous, {}, slots, out); });
   previous = out;
   for (auto _ : state) {
     arena.execute(
-        [&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, previous, slots, out); });
+        [&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, previous, {}, slots, out); });
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(l.pairs.size()));

@@ -31,18 +31,30 @@ struct CollideSettings {
 // pair's approach over the step (|relative velocity of the centres| * dt, so fast bodies get
 // speculative points before they reach each other). Then matches each new point with the
 // previous step's manifold of the same key and feature id and copies its impulses (warm start),
-// and joins the touching manifolds into `out_contacts` in key order. A pair whose relative pose
-// moved less than 0.2 mm and 0.5 degrees since its points were computed reuses them, carried
-// with the bodies (the body pair cache of Jolt), without running collide().
-// `previous` is last step's out_contacts, sorted by key. Parallel over fixed blocks of pairs;
-// each block appends its touching manifolds to its own buffer in `scratch`, and the buffers are
-// joined in block order, so the result does not depend on the thread count and no memory is
-// held for pairs that do not touch.
-using CollideScratch = std::vector<std::vector<Manifold>>;
+// and joins the touching manifolds, with the carried ones, into `out_contacts` in key order. A pair
+// whose relative pose moved less than 0.2 mm and 0.5 degrees since its points were computed reuses
+// them, carried with the bodies (the body pair cache of Jolt), without running collide().
+// `previous` is last step's out_contacts, sorted by key.
+//
+// Carrying: a manifold of `previous` whose two bodies are both flagged in `idle` (per body; the
+// world flags static and sleeping bodies) and whose key has no touching manifold this step is
+// kept as it is, so a sleeping island keeps its contacts and wakes warm-started (the broadphase
+// does not report pairs of two idle bodies). An empty `idle` carries nothing.
+//
+// Parallel over fixed blocks of pairs; each block appends its touching manifolds to its own
+// buffer in `scratch`. The join is parallel too: block b owns the keys from its first pair's up
+// to the next block's first pair's, merges the carried manifolds of that key range of
+// `previous` into its own, and copies the result to its offset (a prefix sum of the blocks'
+// counts). Nothing depends on the thread count, and no memory is held for pairs that do not
+// touch.
+struct CollideScratch {
+  std::vector<std::vector<Manifold>> blocks;  // per block of pairs: its touching manifolds
+  std::vector<std::size_t> offsets;           // per block: where its output starts
+};
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
-                   std::span<const Manifold> previous, CollideScratch& scratch,
-                   std::vector<Manifold>& out_contacts);
+                   std::span<const Manifold> previous, std::span<const uint8_t> idle,
+                   CollideScratch& scratch, std::vector<Manifold>& out_contacts);
 
 // Time of impact by conservative advancement on the GJK distance: the earliest t in [0, 1] at
 // which A moving linearly from xa0 to xa1 (rotation slerped) comes within `target` of B moving

@@ -107,15 +107,16 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
 
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
-                   std::span<const Manifold> previous, CollideScratch& scratch,
-                   std::vector<Manifold>& out_contacts) {
+                   std::span<const Manifold> previous, std::span<const uint8_t> idle,
+                   CollideScratch& scratch, std::vector<Manifold>& out_contacts) {
   const std::size_t n = pairs.size();
-  if (scratch.size() < block_count(n, kPairGrain)) scratch.resize(block_count(n, kPairGrain));
+  const std::size_t blocks = block_count(n, kPairGrain);
+  if (scratch.blocks.size() < blocks) scratch.blocks.resize(blocks);
   // determinism: block b owns scratch[b] and writes its pairs' manifolds there in pair order;
   // its merge with `previous` starts at a binary search on the block's first key, so nothing
   // depends on which thread ran a block (rule 1: joined in block order below).
   for_blocks(n, kPairGrain, [&](std::size_t begin, std::size_t end, std::size_t block) {
-    std::vector<Manifold>& touching = scratch[block];
+    std::vector<Manifold>& touching = scratch.blocks[block];
     touching.clear();
     Manifold m;
     auto prev_it = std::lower_bound(previous.begin(), previous.end(), pairs[begin],
@@ -160,11 +161,49 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       if (m.point_count > 0) touching.push_back(m);
     }
   });
-  // perf: one serial pass of copies; blocks are already in key order.
-  out_contacts.clear();
-  for (std::size_t b = 0; b < block_count(n, kPairGrain); ++b) {
-    out_contacts.insert(out_contacts.end(), scratch[b].begin(), scratch[b].end());
-  }
+  // The join. With no pairs there is one (empty) part, to carry what `previous` holds.
+  const std::size_t parts = std::max<std::size_t>(blocks, 1);
+  auto previous_at = [&](std::size_t part) -> std::size_t {
+    if (part == 0) return 0;
+    if (part >= parts) return previous.size();
+    return std::size_t(std::lower_bound(previous.begin(), previous.end(), pairs[part * kPairGrain],
+                                        [](const Manifold& x, uint64_t k) { return x.key < k; }) -
+                       previous.begin());
+  };
+  auto carried = [&](const Manifold& m) {
+    return !idle.empty() && m.point_count > 0 && idle[m.body_a] && idle[m.body_b];
+  };
+  // Calls emit(m) for the part's manifolds in key order: its new ones merged with the carried
+  // ones of its key range of `previous` whose key found no new manifold.
+  auto merge_part = [&](std::size_t part, const auto& emit) {
+    static const std::vector<Manifold> kNone;
+    const std::vector<Manifold>& fresh = part < blocks ? scratch.blocks[part] : kNone;
+    const std::size_t last = previous_at(part + 1);
+    std::size_t j = 0;
+    for (std::size_t i = previous_at(part); i < last; ++i) {
+      const Manifold& m = previous[i];
+      if (!carried(m)) continue;
+      while (j < fresh.size() && fresh[j].key < m.key) emit(fresh[j++]);
+      if (j < fresh.size() && fresh[j].key == m.key) continue;  // found again this step
+      emit(m);
+    }
+    while (j < fresh.size()) emit(fresh[j++]);
+  };
+  scratch.offsets.resize(parts + 1);
+  for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
+    std::size_t count = 0;
+    merge_part(part, [&](const Manifold&) { ++count; });
+    scratch.offsets[part + 1] = count;
+  });
+  scratch.offsets[0] = 0;
+  for (std::size_t b = 0; b < parts; ++b) scratch.offsets[b + 1] += scratch.offsets[b];
+  // perf: the list swaps with last step's each step, so it is about this size already and
+  // resizing constructs few manifolds.
+  out_contacts.resize(scratch.offsets[parts]);
+  for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
+    Manifold* out = out_contacts.data() + scratch.offsets[part];
+    merge_part(part, [&](const Manifold& m) { *out++ = m; });
+  });
 }
 
 }  // namespace elan::detail

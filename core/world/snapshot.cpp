@@ -393,7 +393,7 @@ void commit(WorldState& s, Decoded&& d) {
   s.free_slots = std::move(d.free_slots);
   s.contacts = std::move(d.contacts);
   s.previous_contacts.clear();
-  s.contact_blocks.clear();
+  s.contact_blocks = {};
   s.pairs.clear();
   s.sap = detail::SweepAndPrune{};
   s.all_pairs = detail::AllPairs{};

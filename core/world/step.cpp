@@ -32,38 +32,6 @@ BroadKind broad_kind(const BodyStore& b, std::size_t i) {
 
 }  // namespace
 
-void carry_sleeping_contacts(const BodyStore& bodies, std::span<const Manifold> previous,
-                             std::vector<Manifold>& contacts) {
-  auto carried = [&](const Manifold& m) {
-    auto idle = [&](uint32_t i) {
-      return !bodies.is_dynamic(i) ? bodies.is_static(i)
-                                   : (!bodies.is_awake(i) && !(bodies.flags[i] & kFrozen));
-    };
-    return m.point_count > 0 && idle(m.body_a) && idle(m.body_b);
-  };
-  // Both lists are sorted by key. Count the carried manifolds that were not found again, then
-  // merge them in from the back, in place: no third manifold-sized buffer is held.
-  std::size_t extra = 0;
-  std::size_t j = 0;
-  for (const Manifold& m : previous) {
-    if (!carried(m)) continue;
-    while (j < contacts.size() && contacts[j].key < m.key) ++j;
-    if (j < contacts.size() && contacts[j].key == m.key) continue;  // found again this step
-    ++extra;
-  }
-  if (extra == 0) return;
-  std::size_t read = contacts.size();
-  contacts.resize(read + extra);
-  std::size_t write = contacts.size();
-  for (std::size_t i = previous.size(); i-- > 0;) {
-    const Manifold& m = previous[i];
-    if (!carried(m)) continue;
-    while (read > 0 && contacts[read - 1].key > m.key) contacts[--write] = contacts[--read];
-    if (read > 0 && contacts[read - 1].key == m.key) continue;
-    contacts[--write] = m;
-  }
-}
-
 uint32_t run_step(WorldState& w, Real dt) {
   using clock = std::chrono::steady_clock;
   StepStats& stats = w.stats;
@@ -76,9 +44,14 @@ uint32_t run_step(WorldState& w, Real dt) {
 
   w.broad_kind.resize(n);
   w.is_plane.resize(n);
+  w.idle.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    w.broad_kind[i] = uint8_t(broad_kind(bodies, i));
+    const BroadKind kind = broad_kind(bodies, i);
+    w.broad_kind[i] = uint8_t(kind);
     w.is_plane[i] = w.shapes[bodies.shape[i]].type == ShapeType::Plane;
+    // Static, or asleep (a frozen body is out of the simulation and keeps no contacts).
+    w.idle[i] =
+        kind == BroadKind::Static || (kind == BroadKind::Sleeping && !(bodies.flags[i] & kFrozen));
   }
   BroadphaseInput input{&w.bounds, w.broad_kind, bodies.category, bodies.mask, w.is_plane};
   if (w.def.broadphase == BroadphaseType::AllPairs) {
@@ -93,9 +66,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   CollideSettings collide_settings;
   collide_settings.speculative_distance = kSpeculativeDistance;
   collide_settings.dt = dt;
-  collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.previous_contacts, w.contact_blocks,
-                w.contacts);
-  carry_sleeping_contacts(bodies, w.previous_contacts, w.contacts);
+  collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.previous_contacts, w.idle,
+                w.contact_blocks, w.contacts);
   const auto t3 = clock::now();
 
   SolveSettings solve_settings;

@@ -42,6 +42,7 @@ struct WorldState {
   BoundsColumns bounds;
   std::vector<uint8_t> broad_kind;
   std::vector<uint8_t> is_plane;
+  std::vector<uint8_t> idle;  // static or asleep: contacts carried (collide_pairs)
   AllPairs all_pairs;
   SweepAndPrune sap;
   std::vector<uint64_t> pairs;
