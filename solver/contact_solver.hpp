@@ -55,8 +55,9 @@ void mark_moved(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // step's contact point moved by the two bodies' mean translation, keeping the current
 // separation. With arms fixed at the step's start, once the bodies have slid apart the two
 // halves of an impulse act at different points and angular momentum about any origin changes by
-// (dp_b - dp_a) x P; with one shared point it cannot. Called after every position update of
-// the substeps (before the first, nothing has moved). Writes the bundles only.
+// (dp_b - dp_a) x P; with one shared point it cannot. Also sets each row's current_separation.
+// Called after every position update of the substeps, before any other pass over the bundle
+// (before the first update, nothing has moved). Reads poses only; writes the bundles only.
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                       std::span<const Manifold> manifolds, uint32_t begin, uint32_t end);
 void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, bool use_bias);
