@@ -3,6 +3,8 @@
 #include "narrowphase/sat.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <limits>
 
 #include "narrowphase/clip.hpp"
@@ -59,49 +61,67 @@ FaceQuery query_faces(const Polyhedron& a, const Polyhedron& b) {
   return q;
 }
 
-// Per-edge data of B for the edge query, computed once per call instead of once per edge pair.
-struct EdgeData {
-  Vec3 c, d, dxc;  // -B's face normals (its Gauss-map arc on -B) and the arc's plane normal
-  Vec3 p, u;       // first vertex and direction
+// Per-edge data of B for the edge query, computed once per call instead of once per edge pair,
+// as columns so that the Gauss-map test below runs over B's edges in SIMD lanes.
+struct EdgeArcs {
+  // -B's face normals c, d (its Gauss-map arc on -B) and the arc's plane normal d x c.
+  alignas(64) std::array<Real, kMaxPolyEdges> cx, cy, cz, dx, dy, dz, nx, ny, nz;
 };
 
 // Arcs (a, b) of A's Gauss map and (c, d) of -B's Gauss map cross exactly when the edges build a
 // face of the Minkowski difference; bxa and dxc are the arcs' plane normals (Gregorius 2013).
-// perf: the first test rejects most pairs, so its two dot products come first.
-bool is_minkowski_face(const Vec3& a, const Vec3& b, const Vec3& bxa, const EdgeData& e) {
-  const Real cba = e.c.dot(bxa), dba = e.d.dot(bxa);
-  if (cba * dba >= 0) return false;
-  const Real adc = a.dot(e.dxc), bdc = b.dot(e.dxc);
-  return adc * bdc < 0 && cba * bdc > 0;
+// perf: a hull pair has thousands of edge pairs and only about one per Minkowski face passes,
+// so the test runs over all of B's edges at once in SIMD lanes (on pile10k the edge query was
+// 15 % of the step) and only the passing pairs are looked at one by one.
+void mark_minkowski_faces(const Vec3& a, const Vec3& b, const Vec3& bxa, const EdgeArcs& e, int n,
+                          uint8_t* pass) {
+  const Real ax = a.x(), ay = a.y(), az = a.z(), bx = b.x(), by = b.y(), bz = b.z();
+  const Real sx = bxa.x(), sy = bxa.y(), sz = bxa.z();
+#pragma omp simd
+  for (int k = 0; k < n; ++k) {
+    const Real cba = e.cx[k] * sx + e.cy[k] * sy + e.cz[k] * sz;
+    const Real dba = e.dx[k] * sx + e.dy[k] * sy + e.dz[k] * sz;
+    const Real adc = ax * e.nx[k] + ay * e.ny[k] + az * e.nz[k];
+    const Real bdc = bx * e.nx[k] + by * e.ny[k] + bz * e.nz[k];
+    pass[k] = uint8_t((cba * dba < 0) & (adc * bdc < 0) & (cba * bdc > 0));
+  }
 }
 
 EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b) {
-  std::array<EdgeData, kMaxPolyEdges> eb_data;
+  EdgeArcs arcs;
   for (int eb = 0; eb < b.edge_count; ++eb) {
-    EdgeData& e = eb_data[eb];
-    e.c = -b.normals[b.edge_faces[eb][0]];
-    e.d = -b.normals[b.edge_faces[eb][1]];
-    e.dxc = e.d.cross(e.c);
-    e.p = b.vertices[b.edges[eb][0]];
-    e.u = b.vertices[b.edges[eb][1]] - e.p;
+    const Vec3 c = -b.normals[b.edge_faces[eb][0]];
+    const Vec3 d = -b.normals[b.edge_faces[eb][1]];
+    const Vec3 dxc = d.cross(c);
+    arcs.cx[eb] = c.x();
+    arcs.cy[eb] = c.y();
+    arcs.cz[eb] = c.z();
+    arcs.dx[eb] = d.x();
+    arcs.dy[eb] = d.y();
+    arcs.dz[eb] = d.z();
+    arcs.nx[eb] = dxc.x();
+    arcs.ny[eb] = dxc.y();
+    arcs.nz[eb] = dxc.z();
   }
+  alignas(64) std::array<uint8_t, kMaxPolyEdges> pass;
   EdgeQuery q;
   for (int ea = 0; ea < a.edge_count; ++ea) {
     const Vec3& pa = a.vertices[a.edges[ea][0]];
     const Vec3 ua = a.vertices[a.edges[ea][1]] - pa;
     const Vec3& na = a.normals[a.edge_faces[ea][0]];
     const Vec3& nb = a.normals[a.edge_faces[ea][1]];
-    const Vec3 bxa = nb.cross(na);
+    mark_minkowski_faces(na, nb, nb.cross(na), arcs, b.edge_count, pass.data());
     const Real ua_len2 = ua.squaredNorm();
     for (int eb = 0; eb < b.edge_count; ++eb) {
-      const EdgeData& e = eb_data[eb];
-      if (!is_minkowski_face(na, nb, bxa, e)) continue;
-      Vec3 axis = ua.cross(e.u);
+      if (!pass[eb]) continue;
+      const Vec3& pb = b.vertices[b.edges[eb][0]];
+      const Vec3 ub = b.vertices[b.edges[eb][1]] - pb;
+      Vec3 axis = ua.cross(ub);
       const Real len = axis.norm();
-      if (len <= kParallelSine * std::sqrt(ua_len2 * e.u.squaredNorm())) continue;
+      if (len <= kParallelSine * std::sqrt(ua_len2 * ub.squaredNorm())) continue;
       axis /= len;
       if (axis.dot(pa - a.centre) < 0) axis = -axis;
-      const Real s = axis.dot(e.p - pa);
+      const Real s = axis.dot(pb - pa);
       if (s > q.separation) {
         q.separation = s;
         q.edge_a = ea;
