@@ -144,18 +144,6 @@ void set_friction_mass(ContactBundle& c) {
   c.inv_k11 = k00 * inv_det;
 }
 
-// Lever arms of one point (row p) of lane l and the normal mass they give.
-void set_point_arms(const ContactBundle& c, WideContactPoint& p, int l, const Vec3& ra,
-                    const Vec3& rb, const SymMat3& ia, const SymMat3& ib) {
-  const Vec3 n = lane(c.normal, l);
-  const Vec3 ra_n = ra.cross(n), rb_n = rb.cross(n);
-  const Vec3 ia_ra_n = ia * ra_n, ib_rb_n = ib * rb_n;
-  set_lane(p.ra_n, l, ra_n);
-  set_lane(p.rb_n, l, rb_n);
-  const Real k_n = c.inv_mass_a[l] + c.inv_mass_b[l] + ra_n.dot(ia_ra_n) + rb_n.dot(ib_rb_n);
-  p.normal_mass[l] = k_n > 0 ? 1 / k_n : 0;
-}
-
 }  // namespace
 
 void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
@@ -269,16 +257,11 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   c.twist_mass = k_twist > zero ? one / (k_twist > zero ? k_twist : one) : zero;
 }
 
-void mark_moved(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
-  for (uint32_t i = begin; i < end; ++i) {
-    const SolverBody& b = ctx.bodies[i];
-    ctx.moved[i] = b.dp.squaredNorm() >= Real(0.25) * kRefreshDistance * kRefreshDistance ||
-                   b.dtheta.squaredNorm() >= Real(0.5) * kRefreshAngle * kRefreshAngle;
-  }
-}
-
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                       std::span<const Manifold> manifolds, uint32_t begin, uint32_t end) {
+  const Wide zero{};
+  const Wide one = splat(1);
+  const Wide half = splat(Real(0.5));
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
     WideContactPoint* rows = ctx.rows.data() + c.first_row;
@@ -287,62 +270,70 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     WideVec3 dp_a, dtheta_a, dp_b, dtheta_b;
     gather_pose(ctx.bodies.data(), c.packet_a, dp_a, dtheta_a);
     gather_pose(ctx.bodies.data(), c.packet_b, dp_b, dtheta_b);
-    const Wide dp_n = dot(c.normal, dp_b - dp_a);
+    const WideVec3& n = c.normal;
+    const Wide dp_n = dot(n, dp_b - dp_a);
     for (int k = 0; k < c.max_count; ++k) {
       WideContactPoint& p = rows[k];
       p.current_separation = p.separation + dp_n + dot(p.rb_n, dtheta_b) - dot(p.ra_n, dtheta_a);
     }
-    bool refreshed = false;
+    // Against a static or kinematic body (not written: no inverse mass) the impulse is external
+    // anyway: keep the arms. perf: resting contacts (most of a pile or stack) have barely moved
+    // since the step began; their arms are then the step's own, within 0.1 mm, and re-deriving
+    // them buys nothing.
+    const WideVec3 slid = dp_b - dp_a;
+    const auto refresh = (c.inv_mass_a > zero) & (c.inv_mass_b > zero) &
+                         ((dot(slid, slid) >= splat(kRefreshDistance * kRefreshDistance)) |
+                          (dot(dtheta_a, dtheta_a) + dot(dtheta_b, dtheta_b) >=
+                           splat(kRefreshAngle * kRefreshAngle)));
+    if (!any_lane(refresh ? one : zero)) continue;
+    // Lane by lane, for the lanes refreshed only: the inertia of the current orientation
+    // (integrate_positions turns it for gyroscopic bodies: the integrator keeps L = I w with
+    // it, so impulses must change w through it too), B's centre from A's at the step's start,
+    // the point count and the contact points of the step's start.
+    WideVec3 start_b, anchor_a[kMaxManifoldPoints], anchor_b[kMaxManifoldPoints];
+    Wide count{};
     for (int l = 0; l < c.lanes; ++l) {
-      // Against a static or kinematic body the impulse is external anyway: keep the arms.
-      if (!(c.write_a[l] && c.write_b[l])) continue;
-      if (!ctx.moved[c.packet_a[l]] && !ctx.moved[c.packet_b[l]]) continue;
-      const SolverBody& a = ctx.bodies[c.packet_a[l]];
-      const SolverBody& b = ctx.bodies[c.packet_b[l]];
-      // perf: resting contacts (most of a pile or stack) have barely moved since the step began;
-      // their arms are then the step's own, within 0.1 mm, and re-deriving them buys nothing.
-      if ((b.dp - a.dp).squaredNorm() < kRefreshDistance * kRefreshDistance &&
-          a.dtheta.squaredNorm() + b.dtheta.squaredNorm() < kRefreshAngle * kRefreshAngle) {
-        continue;
-      }
+      if (!refresh[l]) continue;
       const Manifold& m = manifolds[c.manifold[l]];
-      // The inertia of the current orientation (integrate_positions turns it for gyroscopic
-      // bodies): the integrator keeps L = I w with it, so impulses must change w through it too.
-      const SymMat3& ia = ctx.params[c.packet_a[l]].inv_inertia;
-      const SymMat3& ib = ctx.params[c.packet_b[l]].inv_inertia;
-      set_lane(c.inv_inertia_a, l, ia);
-      set_lane(c.inv_inertia_b, l, ib);
-      const Vec3 n = lane(c.normal, l);
-      // Centres now, relative to A's centre at the step's start (keeps the numbers small).
-      const Vec3 xa = a.dp;
-      const Vec3 xb = bodies.position(m.body_b) - bodies.position(m.body_a) + b.dp;
-      const Real lane_dp_n = n.dot(b.dp - a.dp);
-      Vec3 center_ra = Vec3::Zero(), center_rb = Vec3::Zero();
+      set_lane(c.inv_inertia_a, l, ctx.params[c.packet_a[l]].inv_inertia);
+      set_lane(c.inv_inertia_b, l, ctx.params[c.packet_b[l]].inv_inertia);
+      set_lane(start_b, l, bodies.position(m.body_b) - bodies.position(m.body_a));
+      count[l] = Real(m.point_count);
       for (int k = 0; k < m.point_count; ++k) {
-        WideContactPoint& p = rows[k];
-        const Real s = p.current_separation[l];
-        // The contact point of the step's start, carried by the mean translation of the two
-        // bodies (not their rotation: a rolling sphere's contact stays under its centre).
-        const Vec3 start_b = xb - b.dp;
-        const Vec3 shared = Real(0.5) * (m.points[k].anchor_a + start_b + m.points[k].anchor_b) +
-                            Real(0.5) * (a.dp + b.dp);
-        const Vec3 ra = shared - xa, rb = shared - xb;
-        set_point_arms(c, p, l, ra, rb, ia, ib);
-        // The same current separation, expressed with the new arms.
-        p.separation[l] =
-            s - (lane_dp_n + lane(p.rb_n, l).dot(b.dtheta) - lane(p.ra_n, l).dot(a.dtheta));
-        center_ra += ra;
-        center_rb += rb;
+        set_lane(anchor_a[k], l, m.points[k].anchor_a);
+        set_lane(anchor_b[k], l, m.points[k].anchor_b);
       }
-      const Real inv_count = m.point_count > 0 ? Real(1) / Real(m.point_count) : Real(0);
-      center_ra *= inv_count;
-      center_rb *= inv_count;
-      set_lane(c.center_ra, l, center_ra);
-      set_lane(c.center_rb, l, center_rb);
-      refreshed = true;
     }
+    // Centres now, relative to A's centre at the step's start (keeps the numbers small).
+    const WideVec3& xa = dp_a;
+    const WideVec3 xb = start_b + dp_b;
+    const WideVec3 mean_dp = half * (dp_a + dp_b);
+    const Wide m_sum = c.inv_mass_a + c.inv_mass_b;
+    WideVec3 center_ra, center_rb;
+    for (int k = 0; k < c.max_count; ++k) {
+      WideContactPoint& p = rows[k];
+      const auto used = refresh & (count > splat(Real(k)));
+      // The contact point of the step's start, carried by the mean translation of the two
+      // bodies (not their rotation: a rolling sphere's contact stays under its centre).
+      const WideVec3 shared = half * (anchor_a[k] + start_b + anchor_b[k]) + mean_dp;
+      const WideVec3 ra = shared - xa, rb = shared - xb;
+      const WideVec3 ra_n = cross(ra, n), rb_n = cross(rb, n);
+      const Wide k_n =
+          m_sum + dot(ra_n, c.inv_inertia_a * ra_n) + dot(rb_n, c.inv_inertia_b * rb_n);
+      // The same current separation, expressed with the new arms.
+      const Wide s0 = p.current_separation - (dp_n + dot(rb_n, dtheta_b) - dot(ra_n, dtheta_a));
+      p.ra_n = select(used, ra_n, p.ra_n);
+      p.rb_n = select(used, rb_n, p.rb_n);
+      p.normal_mass = used ? (k_n > zero ? one / (k_n > zero ? k_n : one) : zero) : p.normal_mass;
+      p.separation = used ? s0 : p.separation;
+      center_ra = center_ra + select(used, ra, WideVec3{});
+      center_rb = center_rb + select(used, rb, WideVec3{});
+    }
+    const Wide inv_count = one / (refresh ? count : one);
+    c.center_ra = select(refresh, inv_count * center_ra, c.center_ra);
+    c.center_rb = select(refresh, inv_count * center_rb, c.center_rb);
     // Lanes that were not refreshed get the same values again.
-    if (refreshed) set_friction_mass(c);
+    set_friction_mass(c);
   }
 }
 

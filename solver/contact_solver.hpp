@@ -27,8 +27,7 @@ struct ContactSolverContext {
   std::span<ContactBundle> bundles;          // grouped by colour
   std::span<WideContactPoint> rows;          // the bundles' point rows (ContactBundle::first_row)
   std::span<BundleRestitution> restitution;  // per bundle
-  std::span<uint8_t> moved;  // per packet: moved past half the refresh tolerance (mark_moved)
-  Real h = 0;                // s, substep
+  Real h = 0;                                // s, substep
   Real inv_h = 0;
   Softness contact_softness;       // dynamic vs dynamic
   Softness static_softness;        // against a static or kinematic body (stiffer)
@@ -45,12 +44,6 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
                     uint32_t bundle, std::span<const uint32_t> lanes);
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
-// perf: most bodies of a pile or stack at rest barely move within a step. Flags packets
-// [begin, end) that moved more than half of refresh_contacts' tolerances since the step began,
-// so that it can pass over a lane whose two bodies are both unflagged (their relative motion is
-// then within the tolerances) after reading two bytes instead of both packets. Call after
-// every position update.
-void mark_moved(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // Re-places the lever arms of every point between two dynamic bodies at one shared point: the
 // step's contact point moved by the two bodies' mean translation, keeping the current
 // separation. With arms fixed at the step's start, once the bodies have slid apart the two

@@ -41,7 +41,6 @@ ContactSolverContext make_context(const SolveSettings& settings, SolverState& st
   ctx.bundles = state.bundles;
   ctx.rows = state.rows;
   ctx.restitution = state.restitution;
-  ctx.moved = state.moved;
   ctx.h = settings.dt / Real(settings.substeps);
   ctx.inv_h = 1 / ctx.h;
   // Box2D v3: contact stiffness at most a quarter of the substep rate, twice as stiff against
@@ -75,7 +74,6 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     if (simulated) st.packet_of[i] = uint32_t(count++);
   }
   st.packets.resize(count);
-  st.moved.assign(count, 0);
   st.params.resize(count);
   st.packets[0] = SolverBody{};
   st.params[0] = SolverBodyParams{};
@@ -256,7 +254,6 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
         integrate_velocities(st.packets, st.params, h, begin, end);
       } else {
         integrate_positions(st.packets, st.params, bodies, h, begin, end);
-        mark_moved(ctx, begin, end);
       }
       return;
     }

@@ -26,6 +26,9 @@ inline constexpr int kLanes = 8;
 
 typedef Real Wide __attribute__((vector_size(kLanes * sizeof(Real))));
 
+// Lane masks, as comparisons of Wide values give them (all bits set where true).
+typedef decltype(Wide{} < Wide{}) WideMask;
+
 struct WideVec3 {
   Wide x{}, y{}, z{};
 };
@@ -55,6 +58,11 @@ inline WideVec3 operator*(Wide s, const WideVec3& a) {
 
 inline WideVec3 cross(const WideVec3& a, const WideVec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Per lane: a where the mask is set, else b.
+inline WideVec3 select(WideMask m, const WideVec3& a, const WideVec3& b) {
+  return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
 }
 
 // One lane of a WideVec3 as a Vec3, and back.
