@@ -63,9 +63,12 @@ FaceQuery query_faces(const Polyhedron& a, const Polyhedron& b) {
 
 // Per-edge data of B for the edge query, computed once per call instead of once per edge pair,
 // as columns so that the Gauss-map test below runs over B's edges in SIMD lanes.
+// Padded with zero arcs, which never pass, to a whole number of SIMD blocks: no scalar epilogue.
+constexpr int kArcBlock = 16;
 struct EdgeArcs {
   // -B's face normals c, d (its Gauss-map arc on -B) and the arc's plane normal d x c.
-  alignas(64) std::array<Real, kMaxPolyEdges> cx, cy, cz, dx, dy, dz, nx, ny, nz;
+  alignas(64) std::array<Real, kMaxPolyEdges + kArcBlock> cx, cy, cz, dx, dy, dz, nx, ny, nz;
+  int padded_count = 0;
 };
 
 // Arcs (a, b) of A's Gauss map and (c, d) of -B's Gauss map cross exactly when the edges build a
@@ -89,9 +92,11 @@ void mark_minkowski_faces(const Vec3& a, const Vec3& b, const Vec3& bxa, const E
 
 EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b) {
   EdgeArcs arcs;
-  for (int eb = 0; eb < b.edge_count; ++eb) {
-    const Vec3 c = -b.normals[b.edge_faces[eb][0]];
-    const Vec3 d = -b.normals[b.edge_faces[eb][1]];
+  arcs.padded_count = (b.edge_count + kArcBlock - 1) / kArcBlock * kArcBlock;
+  for (int eb = 0; eb < arcs.padded_count; ++eb) {
+    const bool real = eb < b.edge_count;
+    const Vec3 c = real ? Vec3(-b.normals[b.edge_faces[eb][0]]) : Vec3::Zero();
+    const Vec3 d = real ? Vec3(-b.normals[b.edge_faces[eb][1]]) : Vec3::Zero();
     const Vec3 dxc = d.cross(c);
     arcs.cx[eb] = c.x();
     arcs.cy[eb] = c.y();
@@ -103,14 +108,14 @@ EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b) {
     arcs.ny[eb] = dxc.y();
     arcs.nz[eb] = dxc.z();
   }
-  alignas(64) std::array<uint8_t, kMaxPolyEdges> pass;
+  alignas(64) std::array<uint8_t, kMaxPolyEdges + kArcBlock> pass;
   EdgeQuery q;
   for (int ea = 0; ea < a.edge_count; ++ea) {
     const Vec3& pa = a.vertices[a.edges[ea][0]];
     const Vec3 ua = a.vertices[a.edges[ea][1]] - pa;
     const Vec3& na = a.normals[a.edge_faces[ea][0]];
     const Vec3& nb = a.normals[a.edge_faces[ea][1]];
-    mark_minkowski_faces(na, nb, nb.cross(na), arcs, b.edge_count, pass.data());
+    mark_minkowski_faces(na, nb, nb.cross(na), arcs, arcs.padded_count, pass.data());
     const Real ua_len2 = ua.squaredNorm();
     for (int eb = 0; eb < b.edge_count; ++eb) {
       if (!pass[eb]) continue;
