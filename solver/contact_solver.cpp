@@ -209,21 +209,14 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     WideContactPoint& p = rows[k];
     WideVec3 rb;
     p.separation = p.normal_impulse = Wide{};
+    // Arms of lanes without this point, and of unused lanes, stay zero.
     for (int l = 0; l < lane_count; ++l) {
       const Manifold& m = manifolds[lanes[l]];
-      if (k >= m.point_count) {
-        set_lane(ra[k], l, Vec3::Zero());
-        set_lane(rb, l, Vec3::Zero());
-        continue;
-      }
+      if (k >= m.point_count) continue;
       set_lane(ra[k], l, m.points[k].anchor_a);
       set_lane(rb, l, m.points[k].anchor_b);
       p.separation[l] = m.points[k].separation;
       p.normal_impulse[l] = m.points[k].normal_impulse;
-    }
-    for (int l = lane_count; l < kLanes; ++l) {
-      set_lane(ra[k], l, Vec3::Zero());
-      set_lane(rb, l, Vec3::Zero());
     }
     // Lanes with fewer points leave this row empty: zero arms and zero mass apply no impulse.
     const auto used = point_count > splat(Real(k));
@@ -231,7 +224,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     p.rb_n = cross(rb, n);
     const Wide k_n =
         m_sum + dot(p.ra_n, c.inv_inertia_a * p.ra_n) + dot(p.rb_n, c.inv_inertia_b * p.rb_n);
-    p.normal_mass = (used & (k_n > zero)) ? one / (used ? k_n : one) : zero;
+    p.normal_mass = (used & (k_n > zero)) ? one / (k_n > zero ? k_n : one) : zero;
     p.max_normal_impulse = zero;
     p.current_separation = p.separation;
     bounce.relative_velocity[k] =
