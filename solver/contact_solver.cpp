@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace elan::detail {
 
@@ -115,10 +116,13 @@ inline void apply_twist(const ContactBundle& c, WideBody& a, WideBody& b, Wide t
   b.w = b.w + c.inv_inertia_b * l;
 }
 
-inline bool any_lane(Wide v) {
-  for (int l = 0; l < kLanes; ++l)
-    if (v[l] != 0) return true;
-  return false;
+// Whether any lane of the mask is set: one OR over its words, not a branch per lane.
+inline bool any_lane(WideMask m) {
+  uint64_t words[sizeof(WideMask) / sizeof(uint64_t)];
+  std::memcpy(words, &m, sizeof(m));
+  uint64_t any = 0;
+  for (const uint64_t w : words) any |= w;
+  return any != 0;
 }
 
 // The inverse of the 2x2 mass matrix K = J M^-1 J^T of the friction rows at the manifold
@@ -278,7 +282,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                          ((dot(slid, slid) >= splat(kRefreshDistance * kRefreshDistance)) |
                           (dot(dtheta_a, dtheta_a) + dot(dtheta_b, dtheta_b) >=
                            splat(kRefreshAngle * kRefreshAngle)));
-    if (!any_lane(refresh ? one : zero)) continue;
+    if (!any_lane(refresh)) continue;
     // Lane by lane, for the lanes refreshed only: the inertia of the current orientation
     // (integrate_positions turns it for gyroscopic bodies: the integrator keeps L = I w with
     // it, so impulses must change w through it too), B's centre from A's at the step's start,
@@ -391,7 +395,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       const Wide max_friction = c.friction * total_normal;
       const Wide len2 = f0 * f0 + f1 * f1;
       const auto outside = len2 > max_friction * max_friction;
-      if (any_lane(outside ? one : zero)) {
+      if (any_lane(outside)) {
         // Outside the cone len2 > 0, so the division is safe where it is used.
         Wide len = outside ? len2 : one;
         for (int l = 0; l < kLanes; ++l) len[l] = std::sqrt(len[l]);
@@ -447,7 +451,7 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
   const Wide threshold = splat(-ctx.restitution_threshold);
   for (uint32_t i = begin; i < end; ++i) {
     const BundleRestitution& bounce = ctx.restitution[i];
-    if (!any_lane(bounce.restitution)) continue;
+    if (!any_lane(bounce.restitution != zero)) continue;
     const ContactBundle& c = ctx.bundles[i];
     WideContactPoint* rows = ctx.rows.data() + c.first_row;
     WideBody a, b;
