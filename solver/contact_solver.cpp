@@ -71,11 +71,12 @@ inline void gather_pose(const SolverBody* bodies, const uint32_t* packets, WideV
 }
 
 // Static, kinematic and unused sides are read-only: only lanes flagged `write` are stored.
+// perf: a lane that is not written stores into a local sink instead of branching over it.
 inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
                              const WideBody& in) {
+  SolverBody sink;
   for (int l = 0; l < kLanes; ++l) {
-    if (!write[l]) continue;
-    SolverBody& b = bodies[packets[l]];
+    SolverBody& b = write[l] ? bodies[packets[l]] : sink;
     b.v = lane(in.v, l);
     b.w = lane(in.w, l);
   }
