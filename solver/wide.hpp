@@ -1,8 +1,8 @@
 // Lane-parallel arithmetic for the contact solver: kLanes constraints at once in a GCC/Clang
 // vector type. The compiler maps it to one AVX-512 or AVX register (or several narrower ones),
 // and the values stay in registers across a whole constraint, which per-loop `omp simd` would
-// not give. Each lane does the same operations whatever the width, so the lane count does not
-// change any result bit.
+// not give. Each lane does the same operations whatever the width: built with the same flags,
+// 8 and 16 lanes gave the same state hashes (pile10k, jolt_pyramid).
 #pragma once
 
 #include <cmath>
