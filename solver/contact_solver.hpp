@@ -50,7 +50,9 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
 // halves of an impulse act at different points and angular momentum about any origin changes by
 // (dp_b - dp_a) x P; with one shared point it cannot. Also sets each row's current_separation.
 // Called after every position update of the substeps, before any other pass over the bundle
-// (before the first update, nothing has moved). Reads poses only; writes the bundles only.
+// (before the first update, nothing has moved). Reads the packets' pose changes (no velocity),
+// their current inverse inertias, the bodies' positions and the manifolds' anchors; writes
+// the bundles [begin, end) only, so it may run inside a constraint pass of the same colour.
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                       std::span<const Manifold> manifolds, uint32_t begin, uint32_t end);
 void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, bool use_bias);
