@@ -41,12 +41,12 @@ struct CollideSettings {
 // kept as it is, so a sleeping island keeps its contacts and wakes warm-started (the broadphase
 // does not report pairs of two idle bodies). An empty `idle` carries nothing.
 //
-// Parallel over fixed blocks of pairs; each block appends its touching manifolds to its own
-// buffer in `scratch`. The join is parallel too: block b owns the keys from its first pair's up
-// to the next block's first pair's, merges the carried manifolds of that key range of
-// `previous` into its own, and copies the result to its offset (a prefix sum of the blocks'
-// counts). Nothing depends on the thread count, and no memory is held for pairs that do not
-// touch.
+// Parallel over fixed blocks of pairs. Block b owns the keys from its first pair's up to the
+// next block's first pair's and writes its manifolds, new and carried, in key order to its own
+// buffer in `scratch`; the join copies each buffer to its offset (a prefix sum of the blocks'
+// counts), in parallel too. Nothing depends on the thread count, and no memory is held for pairs
+// that do not touch. `previous` is read in full before `out_contacts` is written, so the two may
+// share storage (the world passes its one contact list as both: no second list is kept).
 struct CollideScratch {
   std::vector<std::vector<Manifold>> blocks;  // per block of pairs: its touching manifolds
   std::vector<std::size_t> offsets;           // per block: where its output starts

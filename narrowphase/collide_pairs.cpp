@@ -110,19 +110,38 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Manifold> previous, std::span<const uint8_t> idle,
                    CollideScratch& scratch, std::vector<Manifold>& out_contacts) {
   const std::size_t n = pairs.size();
-  const std::size_t blocks = block_count(n, kPairGrain);
-  if (scratch.blocks.size() < blocks) scratch.blocks.resize(blocks);
-  // determinism: block b owns scratch[b] and writes its pairs' manifolds there in pair order;
-  // its merge with `previous` starts at a binary search on the block's first key, so nothing
-  // depends on which thread ran a block (rule 1: joined in block order below).
-  for_blocks(n, kPairGrain, [&](std::size_t begin, std::size_t end, std::size_t block) {
-    std::vector<Manifold>& touching = scratch.blocks[block];
-    touching.clear();
+  // With no pairs there is one (empty) part, to carry what `previous` holds.
+  const std::size_t parts = std::max<std::size_t>(block_count(n, kPairGrain), 1);
+  if (scratch.blocks.size() < parts) scratch.blocks.resize(parts);
+  // Part p owns the keys from its first pair's up to the next part's first pair's (the first
+  // part from 0, the last to the end): its range of `previous` starts at a binary search.
+  auto previous_at = [&](std::size_t part) -> std::size_t {
+    if (part == 0) return 0;
+    if (part >= parts) return previous.size();
+    return std::size_t(std::lower_bound(previous.begin(), previous.end(), pairs[part * kPairGrain],
+                                        [](const Manifold& x, uint64_t k) { return x.key < k; }) -
+                       previous.begin());
+  };
+  auto carried = [&](const Manifold& m) {
+    return !idle.empty() && m.point_count > 0 && idle[m.body_a] && idle[m.body_b];
+  };
+  // determinism: part p owns scratch.blocks[p] and writes its manifolds there in key order: its
+  // pairs' touching manifolds merged with the carried manifolds of its key range of `previous`
+  // whose key found no new manifold. Nothing depends on which thread ran a part (rule 1: joined
+  // in part order below).
+  for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
+    std::vector<Manifold>& out = scratch.blocks[part];
+    out.clear();
+    const std::size_t begin = std::min(n, part * kPairGrain);
+    const std::size_t end = std::min(n, begin + kPairGrain);
+    const Manifold* prev_it = previous.data() + previous_at(part);
+    const Manifold* const prev_end = previous.data() + previous_at(part + 1);
     Manifold m;
-    auto prev_it = std::lower_bound(previous.begin(), previous.end(), pairs[begin],
-                                    [](const Manifold& x, uint64_t k) { return x.key < k; });
     for (std::size_t i = begin; i < end; ++i) {
       const uint64_t key = pairs[i];
+      for (; prev_it != prev_end && prev_it->key < key; ++prev_it) {
+        if (carried(*prev_it)) out.push_back(*prev_it);
+      }
       uint32_t a = pair_first(key), b = pair_second(key);
       // The static or kinematic body, if any, is B (architecture rule 4).
       if (!bodies.is_dynamic(a) && bodies.is_dynamic(b)) std::swap(a, b);
@@ -132,13 +151,11 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       m.point_count = 0;
       const Transform xa{bodies.position(a), bodies.orientation(a)};
       const Transform xb{bodies.position(b), bodies.orientation(b)};
-      while (prev_it != previous.end() && prev_it->key < key) ++prev_it;
-      const Manifold* old =
-          (prev_it != previous.end() && prev_it->key == key && prev_it->body_a == a) ? &*prev_it
-                                                                                     : nullptr;
+      const Manifold* same_key = (prev_it != prev_end && prev_it->key == key) ? prev_it++ : nullptr;
+      const Manifold* old = (same_key != nullptr && same_key->body_a == a) ? same_key : nullptr;
       const bool cacheable = !rolls(shapes[bodies.shape[a]]) && !rolls(shapes[bodies.shape[b]]);
       if (old != nullptr && old->point_count > 0 && cacheable && reuse_manifold(*old, xa, xb, m)) {
-        touching.push_back(m);
+        out.push_back(m);
         continue;
       }
       const Real approach =
@@ -158,51 +175,26 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       m.exact_rotation = xa.rotation.conjugate() * xb.rotation;
       m.exact_position = m.relative_position;
       if (m.point_count > 0 && old != nullptr) warm_start(*old, m);
-      if (m.point_count > 0) touching.push_back(m);
+      if (m.point_count > 0) {
+        out.push_back(m);
+      } else if (same_key != nullptr && carried(*same_key)) {
+        out.push_back(*same_key);
+      }
+    }
+    for (; prev_it != prev_end; ++prev_it) {
+      if (carried(*prev_it)) out.push_back(*prev_it);
     }
   });
-  // The join. With no pairs there is one (empty) part, to carry what `previous` holds.
-  const std::size_t parts = std::max<std::size_t>(blocks, 1);
-  auto previous_at = [&](std::size_t part) -> std::size_t {
-    if (part == 0) return 0;
-    if (part >= parts) return previous.size();
-    return std::size_t(std::lower_bound(previous.begin(), previous.end(), pairs[part * kPairGrain],
-                                        [](const Manifold& x, uint64_t k) { return x.key < k; }) -
-                       previous.begin());
-  };
-  auto carried = [&](const Manifold& m) {
-    return !idle.empty() && m.point_count > 0 && idle[m.body_a] && idle[m.body_b];
-  };
-  // Calls emit(m) for the part's manifolds in key order: its new ones merged with the carried
-  // ones of its key range of `previous` whose key found no new manifold.
-  auto merge_part = [&](std::size_t part, const auto& emit) {
-    static const std::vector<Manifold> kNone;
-    const std::vector<Manifold>& fresh = part < blocks ? scratch.blocks[part] : kNone;
-    const std::size_t last = previous_at(part + 1);
-    std::size_t j = 0;
-    for (std::size_t i = previous_at(part); i < last; ++i) {
-      const Manifold& m = previous[i];
-      if (!carried(m)) continue;
-      while (j < fresh.size() && fresh[j].key < m.key) emit(fresh[j++]);
-      if (j < fresh.size() && fresh[j].key == m.key) continue;  // found again this step
-      emit(m);
-    }
-    while (j < fresh.size()) emit(fresh[j++]);
-  };
+  // The join: `previous` is not read from here on, so out_contacts may be its storage.
   scratch.offsets.resize(parts + 1);
-  for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
-    std::size_t count = 0;
-    merge_part(part, [&](const Manifold&) { ++count; });
-    scratch.offsets[part + 1] = count;
-  });
   scratch.offsets[0] = 0;
-  for (std::size_t b = 0; b < parts; ++b) scratch.offsets[b + 1] += scratch.offsets[b];
-  // perf: the list swaps with last step's each step, so it is about this size already and
-  // resizing constructs few manifolds.
+  for (std::size_t p = 0; p < parts; ++p) {
+    scratch.offsets[p + 1] = scratch.offsets[p] + scratch.blocks[p].size();
+  }
   out_contacts.resize(scratch.offsets[parts]);
   for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
-    Manifold* out = out_contacts.data() + scratch.offsets[part];
-    merge_part(part, [&](const Manifold& m) { *out++ = m; });
+    std::copy(scratch.blocks[part].begin(), scratch.blocks[part].end(),
+              out_contacts.begin() + std::ptrdiff_t(scratch.offsets[part]));
   });
 }
 

@@ -1,4 +1,5 @@
-// Contact begin/end events by one merge of two key-sorted manifold lists, and the pair filter.
+// Contact begin/end events by one merge of key-sorted lists (last step's touching pairs, this
+// step's manifolds), and the pair filter.
 #include "core/world/events.hpp"
 
 #include "core/base/pair_key.hpp"
@@ -45,12 +46,19 @@ void filter_pairs(WorldState& w) {
   w.pairs.resize(kept);
 }
 
+void remember_touching(WorldState& w) {
+  w.previous_touching.clear();
+  for (const Manifold& m : w.contacts) {
+    if (m.point_count > 0) w.previous_touching.push_back({m.key, m.body_a, m.body_b});
+  }
+}
+
 void compute_contact_events(WorldState& w) {
   std::vector<ContactBeginEvent>& begins = w.api.begin_events;
   std::vector<ContactEndEvent>& ends = w.api.end_events;
   begins.clear();
   ends.clear();
-  const std::vector<Manifold>& old_list = w.previous_contacts;
+  const std::vector<ContactRecord>& old_list = w.previous_touching;
   const std::vector<Manifold>& new_list = w.contacts;
   // determinism: a serial merge by key; events come out in pair-key order (rule 4).
   std::size_t i = 0, j = 0;
@@ -59,12 +67,10 @@ void compute_contact_events(WorldState& w) {
         j == new_list.size() || (i < old_list.size() && old_list[i].key <= new_list[j].key);
     const bool take_new =
         i == old_list.size() || (j < new_list.size() && new_list[j].key <= old_list[i].key);
-    const bool was = take_old && old_list[i].point_count > 0;
     const bool is = take_new && new_list[j].point_count > 0;
-    if (is && !was) begins.push_back(begin_event(w, new_list[j]));
-    if (was && !is) {
-      const Manifold& m = old_list[i];
-      ends.push_back({body_id_at(w, m.body_a), body_id_at(w, m.body_b)});
+    if (is && !take_old) begins.push_back(begin_event(w, new_list[j]));
+    if (take_old && !is) {
+      ends.push_back({body_id_at(w, old_list[i].body_a), body_id_at(w, old_list[i].body_b)});
     }
     if (take_old) ++i;
     if (take_new) ++j;

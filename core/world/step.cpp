@@ -62,12 +62,12 @@ uint32_t run_step(WorldState& w, Real dt) {
   filter_pairs(w);
   const auto t2 = clock::now();
 
-  w.previous_contacts.swap(w.contacts);
+  remember_touching(w);
   CollideSettings collide_settings;
   collide_settings.speculative_distance = kSpeculativeDistance;
   collide_settings.dt = dt;
-  collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.previous_contacts, w.idle,
-                w.contact_blocks, w.contacts);
+  collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.contacts, w.idle, w.contact_blocks,
+                w.contacts);
   const auto t3 = clock::now();
 
   SolveSettings solve_settings;

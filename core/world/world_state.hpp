@@ -25,6 +25,12 @@ namespace elan::detail {
 inline constexpr Real kBoundsMargin = Real(0.04);
 inline constexpr Real kSpeculativeDistance = Real(0.02);
 
+// A touching pair of last step: what contact events need of it (a whole manifold is 288 bytes).
+struct ContactRecord {
+  uint64_t key = 0;
+  uint32_t body_a = 0, body_b = 0;
+};
+
 struct WorldState {
   WorldDef def;
   int threads = 1;  // resolved worker count
@@ -47,9 +53,10 @@ struct WorldState {
   SweepAndPrune sap;
   std::vector<uint64_t> pairs;
 
-  // Contacts: this step's, sorted by key; last step's for warm starting; per-pair slots.
+  // Contacts, sorted by key: the one list, which collide_pairs reads as last step's and rewrites;
+  // the pairs that touched last step, for contact events; the collide stage's per-block buffers.
   std::vector<Manifold> contacts;
-  std::vector<Manifold> previous_contacts;
+  std::vector<ContactRecord> previous_touching;
   CollideScratch contact_blocks;
 
   SolverState solver;
