@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/base/convex_hull.hpp"
+#include "core/world/world_state.hpp"
 
 namespace elan {
 namespace {
@@ -665,14 +666,21 @@ void load_into(const Scene& scene, World& world, const std::string& file_name) {
   // in first-use order, so ids depend on the scene alone.
   std::map<std::string, ShapeId> shapes;
   std::string key;
+  // First the distinct shapes, so the world can make room for exactly what the scene adds.
+  for (const SceneBody& b : scene.bodies) {
+    shape_key(b.shape, key);
+    shapes.emplace(key, ShapeId{});
+  }
+  world.reserve(world.body_count() + scene.bodies.size(),
+                world.state().shapes.size() + shapes.size());
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const SceneBody& b = scene.bodies[i];
     const Ctx ctx{file_name, body_where(i, b.name), ""};
     shape_key(b.shape, key);
-    auto it = shapes.find(key);
-    if (it == shapes.end()) {
+    const auto it = shapes.find(key);
+    if (it->second.is_null()) {
       try {
-        it = shapes.emplace(key, world.create_shape(b.shape)).first;
+        it->second = world.create_shape(b.shape);
       } catch (const Error& e) {
         const std::string& f = e.field();
         const std::string message =

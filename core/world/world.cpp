@@ -55,6 +55,18 @@ World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
+void World::reserve(std::size_t bodies, std::size_t shapes) {
+  // Dense indices and shape indices are 32-bit, UINT32_MAX marking "none".
+  constexpr std::size_t kMax = std::size_t(UINT32_MAX) - 1;
+  check_arg(bodies <= kMax, "bodies", "more than 2^32 - 2");
+  check_arg(shapes <= kMax, "shapes", "more than 2^32 - 2");
+  WorldState& s = *state_;
+  s.bodies.reserve(bodies);
+  s.slot_index.reserve(bodies);
+  s.slot_generation.reserve(bodies);
+  s.shapes.reserve(shapes);
+}
+
 ShapeId World::create_shape(const ShapeDef& def) {
   state_->shapes.push_back(detail::make_shape(def));
   return ShapeId{uint32_t(state_->shapes.size() - 1)};

@@ -49,6 +49,36 @@ TEST(WorldApi, StaleIdsAreReportedAfterDestroyAndSlotReuse) {
   }
 }
 
+// reserve() is a capacity hint: bodies and shapes up to it fit without the store growing, past it
+// the world still grows, and absurd counts are refused naming the argument.
+TEST(WorldApi, ReserveMakesRoomAndRejectsImpossibleCounts) {
+  World w;
+  w.reserve(100, 3);
+  const ShapeId box = make_box(w, Vec3(0.5, 0.5, 0.5));
+  const Real* px = nullptr;
+  for (int i = 0; i < 100; ++i) {
+    add(w, box, Vec3(Real(2 * i), 0, 0));
+    if (i == 0) px = w.body_columns().px.data();
+  }
+  // The position column never moved: no reallocation up to the reserved count.
+  EXPECT_EQ(w.body_columns().px.data(), px);
+  add(w, box, Vec3(-5, 0, 0));
+  EXPECT_EQ(w.body_count(), 101u);
+  EXPECT_EQ(w.body_columns().px[100], Real(-5));
+  try {
+    w.reserve(std::size_t(UINT32_MAX), 1);
+    ADD_FAILURE() << "reserve of 2^32 - 1 bodies accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.field(), "bodies");
+  }
+  try {
+    w.reserve(1, std::size_t(UINT32_MAX) + 5);
+    ADD_FAILURE() << "reserve of 2^32 + 4 shapes accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.field(), "shapes");
+  }
+}
+
 TEST(WorldApi, ShapeInUseCannotBeDestroyedAndDestroyedShapeIsInvalid) {
   World w;
   const ShapeId box = make_box(w, Vec3::Constant(1));

@@ -40,6 +40,11 @@ class World {
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
+  /// Makes room for `bodies` bodies and `shapes` shapes in all, so that creating up to that many
+  /// allocates nothing more for them (Jolt takes such maxima up front; here they are a hint, and
+  /// a world may grow past them). Without it the stores grow by doubling and keep up to half
+  /// their capacity unused. Throws elan::Error "bodies" or "shapes" for more than 2^32 - 2.
+  void reserve(std::size_t bodies, std::size_t shapes);
   /// Creates an immutable shape that any number of bodies may share. Throws elan::Error.
   ShapeId create_shape(const ShapeDef& def);
   /// Destroys a shape no body uses (elan::Error "shape" if one does). Its id stays invalid:
