@@ -181,6 +181,8 @@ def main():
     # Memory.
     heap_elan = med(runs, "memory/elan/pile10k", "heap_bytes_per_body")
     heap_bullet = med(runs, "memory/bullet/pile10k", "heap_bytes_per_body")
+    mem_parts = [(part, med(runs, "memory/elan/pile10k", "mem_" + part))
+                 for part in ("bodies", "shapes", "broadphase", "contacts", "solver", "api")]
     rss_elan, rss_bullet = peak_rss_kib(os.path.join(a.raw, "rss_elan.txt")), peak_rss_kib(
         os.path.join(a.raw, "rss_bullet.txt"))
 
@@ -250,6 +252,11 @@ def main():
     L.append("\n## Memory, pile10k\n")
     L.append(f"- heap held by a live world after the scene's steps: elan {fmt(heap_elan, 0)} B/body, "
              f"Bullet {fmt(heap_bullet, 0)} B/body (glibc mallinfo2, in process)")
+    if all(v == v for _, v in mem_parts):
+        L.append("- elan's by part (buffer capacities, B/body; the contacts part holds the contact list and "
+                 "the collide stage's per-block copy of it): " +
+                 ", ".join(f"{part} {fmt(v, 0)}" for part, v in mem_parts) +
+                 f"; sum {fmt(sum(v for _, v in mem_parts), 0)}")
     L.append(f"- peak RSS, separate processes, {a.rss_steps} steps, 1 thread, both parsing the scene with "
              f"elan::load_scene: elan {rss_elan} KiB, Bullet {rss_bullet} KiB")
     L.append("\n## Targets of the issue\n")

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/world/memory_use.hpp"
 #include "elan/scene.hpp"
 #include "elan/world.hpp"
 #ifdef ELAN_HAVE_BULLET
@@ -335,6 +336,7 @@ double heap_in_use() {
 // description (held by the benchmark for both engines) excluded.
 void bm_memory(benchmark::State& state, Case c, bool bullet) {
   double per_body = 0;
+  elan::detail::MemoryUse use;
   for (auto _ : state) {
     const double before = heap_in_use();
     double after = before;
@@ -351,12 +353,23 @@ void bm_memory(benchmark::State& state, Case c, bool bullet) {
       elan::load_into(*c.scene, world, c.name);
       for (int i = 0; i < c.warmup + c.steps; ++i) world.step(c.scene->timestep);
       after = heap_in_use();
+      use = elan::detail::memory_use(world.state());
     }
     per_body = (after - before) / double(c.scene->bodies.size());
     state.SetIterationTime(1e-3);
   }
   state.counters["heap_bytes_per_body"] = per_body;
   state.counters["bodies"] = double(c.scene->bodies.size());
+  if (!bullet) {
+    // Where elan's bytes are (buffer capacities, allocator overhead not included).
+    const double n = double(c.scene->bodies.size());
+    state.counters["mem_bodies"] = double(use.bodies) / n;
+    state.counters["mem_shapes"] = double(use.shapes) / n;
+    state.counters["mem_broadphase"] = double(use.broadphase) / n;
+    state.counters["mem_contacts"] = double(use.contacts) / n;
+    state.counters["mem_solver"] = double(use.solver) / n;
+    state.counters["mem_api"] = double(use.api) / n;
+  }
 }
 
 // Calibration kernels: the same total work split into kChunks independent pieces, run in an

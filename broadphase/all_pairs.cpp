@@ -102,4 +102,8 @@ void AllPairs::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_
   sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_);
 }
 
+std::size_t AllPairs::heap_bytes() const {
+  return detail::heap_bytes(block_pairs_) + detail::heap_bytes(pair_sort_);
+}
+
 }  // namespace elan::detail

@@ -44,6 +44,7 @@ void find_pairs_brute_force(const BroadphaseInput& in, std::vector<uint64_t>& ou
 class AllPairs {
  public:
   void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
+  std::size_t heap_bytes() const;  // scratch kept between steps (the memory report)
 
  private:
   std::vector<std::vector<uint64_t>> block_pairs_;  // one per tile
@@ -60,6 +61,7 @@ class SweepAndPrune {
   static constexpr std::size_t kStripPad = 8;
 
   void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
+  std::size_t heap_bytes() const;  // sorted boxes, strips and scratch (the memory report)
 
  private:
   bool choose_axis(const BroadphaseInput& in);

@@ -580,4 +580,18 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
   sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_);
 }
 
+std::size_t SweepAndPrune::heap_bytes() const {
+  using detail::heap_bytes;
+  return heap_bytes(order_) + heap_bytes(sorted_min_) + heap_bytes(sorted_max_) +
+         heap_bytes(sorted_lo1_) + heap_bytes(sorted_hi1_) + heap_bytes(sorted_lo2_) +
+         heap_bytes(sorted_hi2_) + heap_bytes(entry_min_) + heap_bytes(entry_max_) +
+         heap_bytes(entry_lo1_) + heap_bytes(entry_hi1_) + heap_bytes(entry_lo2_) +
+         heap_bytes(entry_hi2_) + heap_bytes(entry_body_) + heap_bytes(entry_first_) +
+         heap_bytes(entry_kind_) + heap_bytes(entry_category_) + heap_bytes(entry_mask_) +
+         heap_bytes(strip_begin_) + heap_bytes(sorted_strips_) + heap_bytes(deal_counts_) +
+         heap_bytes(axis_partials_) + heap_bytes(planes_) + heap_bytes(block_pairs_) +
+         heap_bytes(sort_keys_) + heap_bytes(range_partials_) + heap_bytes(key_sort_) +
+         heap_bytes(pair_sort_);
+}
+
 }  // namespace elan::detail

@@ -44,6 +44,12 @@ class StageExecutor {
     run_parallel(stages, participants, work);
   }
 
+  // Counters and claim flags kept between runs (the memory report).
+  std::size_t heap_bytes() const {
+    return capacity_ * sizeof(Counter) + claim_capacity_ * sizeof(std::atomic<uint32_t>) +
+           first_block_.capacity() * sizeof(std::size_t);
+  }
+
  private:
   // Type-erased by reference only (no allocation): a pointer to the caller's callable.
   struct WorkRef {

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/heap_bytes.hpp"
+
 namespace elan::detail {
 
 inline constexpr std::size_t block_count(std::size_t count, std::size_t grain) {
@@ -75,6 +77,10 @@ struct KeySortScratch {
   std::vector<uint64_t> keys;
   std::vector<uint32_t> counts;
 };
+
+inline std::size_t heap_bytes(const KeySortScratch& s) {
+  return heap_bytes(s.keys) + heap_bytes(s.counts);
+}
 
 // Parallel sort of 64-bit keys, every key <= max_key: an MSD pass on the top 8 bits below
 // max_key's width scatters block by block into 256 buckets, then each bucket is sorted alone.

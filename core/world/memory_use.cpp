@@ -1,0 +1,66 @@
+// The memory report: every buffer the world keeps, grouped by the stage that owns it.
+#include "core/world/memory_use.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "core/base/heap_bytes.hpp"
+
+namespace elan::detail {
+
+namespace {
+
+std::size_t bounds_bytes(const BoundsColumns& b) {
+  return heap_bytes(b.min_x) + heap_bytes(b.min_y) + heap_bytes(b.min_z) + heap_bytes(b.max_x) +
+         heap_bytes(b.max_y) + heap_bytes(b.max_z);
+}
+
+std::size_t hull_bytes(const ConvexHull& h) {
+  return sizeof(ConvexHull) + heap_bytes(h.vertices) + heap_bytes(h.faces) +
+         heap_bytes(h.face_vertices) + heap_bytes(h.edges) + heap_bytes(h.edge_faces);
+}
+
+}  // namespace
+
+MemoryUse memory_use(const WorldState& w) {
+  MemoryUse m;
+  for_each_column(w.bodies, [&](const auto& c) { m.bodies += heap_bytes(c); });
+  m.bodies += heap_bytes(w.slot_index) + heap_bytes(w.slot_generation) + heap_bytes(w.free_slots);
+
+  // Shapes may share a hull (copies of one shape): count each once.
+  std::vector<const ConvexHull*> hulls;
+  for (const Shape& s : w.shapes) {
+    if (s.hull) hulls.push_back(s.hull.get());
+  }
+  std::sort(hulls.begin(), hulls.end());
+  hulls.erase(std::unique(hulls.begin(), hulls.end()), hulls.end());
+  m.shapes = heap_bytes(w.shapes);
+  for (const ConvexHull* h : hulls) m.shapes += hull_bytes(*h);
+
+  m.broadphase = bounds_bytes(w.bounds) + heap_bytes(w.broad_kind) + heap_bytes(w.is_plane) +
+                 heap_bytes(w.idle) + w.all_pairs.heap_bytes() + w.sap.heap_bytes() +
+                 heap_bytes(w.pairs);
+
+  m.contacts = heap_bytes(w.contacts) + heap_bytes(w.previous_touching) +
+               heap_bytes(w.contact_blocks.blocks) + heap_bytes(w.contact_blocks.offsets);
+
+  const SolverState& v = w.solver;
+  m.solver = heap_bytes(v.packet_of) + heap_bytes(v.packets) + heap_bytes(v.params) +
+             heap_bytes(v.candidates) + heap_bytes(v.color_input) + heap_bytes(v.order) +
+             heap_bytes(v.color_start) + heap_bytes(v.order_scratch) + heap_bytes(v.bundles) +
+             heap_bytes(v.row_start) + heap_bytes(v.rows) + heap_bytes(v.restitution) +
+             heap_bytes(v.bundle_start) + heap_bytes(v.color_scratch.bits) +
+             heap_bytes(v.color_scratch.color_of) + heap_bytes(v.color_scratch.cursor) +
+             heap_bytes(v.island_scratch.parent) + heap_bytes(v.island_scratch.island_sleep_time) +
+             heap_bytes(v.island_scratch.island_awake) + v.executor.heap_bytes() +
+             heap_bytes(v.stages) + heap_bytes(v.block_flags) + heap_bytes(v.fast) +
+             heap_bytes(v.pair_toi) + heap_bytes(v.earliest_toi);
+
+  const ApiState& a = w.api;
+  m.api = heap_bytes(a.begin_events) + heap_bytes(a.end_events) + heap_bytes(a.pair_keep) +
+          heap_bytes(a.pair_scratch) + heap_bytes(a.shape_destroyed) + heap_bytes(a.body_ids) +
+          bounds_bytes(a.query_bounds);
+  return m;
+}
+
+}  // namespace elan::detail
