@@ -134,13 +134,11 @@ void BM_CollidePairsPile(benchmark::State& state) {
   tbb::task_arena arena(int(state.range(0)));
   CollideSettings settings;
   CollideScratch slots;
-  std::vector<Manifold> out, previous;
-  arena.execute(
-      [&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, previous, {}, slots, out); });
-  previous = out;
+  std::vector<Manifold> out;
+  arena.execute([&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, slots, out); });
   for (auto _ : state) {
-    arena.execute(
-        [&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, previous, {}, slots, out); });
+    // The poses stay, so each pass updates the list the pass before left, as a step would.
+    arena.execute([&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, slots, out); });
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(l.pairs.size()));

@@ -254,7 +254,7 @@ def main():
              f"Bullet {fmt(heap_bullet, 0)} B/body (glibc mallinfo2, in process)")
     if all(v == v for _, v in mem_parts):
         L.append("- elan's by part (buffer capacities, B/body; the contacts part holds the contact list and "
-                 "the collide stage's per-block copy of it): " +
+                 "the collide stage's buffers of keys new to it): " +
                  ", ".join(f"{part} {fmt(v, 0)}" for part, v in mem_parts) +
                  f"; sum {fmt(sum(v for _, v in mem_parts), 0)}")
     L.append(f"- peak RSS, separate processes, {a.rss_steps} steps, 1 thread, both parsing the scene with "

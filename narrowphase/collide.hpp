@@ -25,36 +25,40 @@ struct CollideSettings {
   Real dt = Real(1.0 / 60.0);              // s: for the motion allowance
 };
 
-// The stage. For pair i of `pairs` (sorted keys), writes slot i of out_manifolds: key, body_a and
-// body_b (the static or kinematic body, if any, as B; otherwise the lower index as A), and the
-// manifold from collide() with speculative distance settings.speculative_distance plus the
-// pair's approach over the step (|relative velocity of the centres| * dt, so fast bodies get
-// speculative points before they reach each other). Then matches each new point with the
-// previous step's manifold of the same key and feature id and copies its impulses (warm start),
-// and joins the touching manifolds, with the carried ones, into `out_contacts` in key order. A pair
-// whose relative pose moved less than 0.2 mm and 0.5 degrees since its points were computed reuses
-// them, carried with the bodies (the body pair cache of Jolt), without running collide().
-// `previous` is last step's out_contacts, sorted by key.
+// The stage. `contacts` holds last step's manifolds, sorted by key, and receives this step's. For
+// each pair of `pairs` (sorted keys): key, body_a and body_b (the static or kinematic body, if
+// any, as B; otherwise the lower index as A), and the manifold from collide() with speculative
+// distance settings.speculative_distance plus the pair's approach over the step (|relative
+// velocity of the centres| * dt, so fast bodies get speculative points before they reach each
+// other). Each new point takes the impulses of last step's point of the same key and feature id
+// (warm start). A pair whose relative pose moved less than 0.2 mm and 0.5 degrees since its
+// points were computed reuses them, carried with the bodies (the body pair cache of Jolt),
+// without running collide(). On return `contacts` holds the touching manifolds and the carried
+// ones, in key order.
 //
-// Carrying: a manifold of `previous` whose two bodies are both flagged in `idle` (per body; the
-// world flags static and sleeping bodies) and whose key has no touching manifold this step is
-// kept as it is, so a sleeping island keeps its contacts and wakes warm-started (the broadphase
-// does not report pairs of two idle bodies). An empty `idle` carries nothing.
+// Carrying: a manifold whose two bodies are both flagged in `idle` (per body; the world flags
+// static and sleeping bodies) and whose key has no touching manifold this step is kept as it is,
+// so a sleeping island keeps its contacts and wakes warm-started (the broadphase does not report
+// pairs of two idle bodies). An empty `idle` carries nothing.
 //
-// Parallel over fixed blocks of pairs. Block b owns the keys from its first pair's up to the
-// next block's first pair's and writes its manifolds, new and carried, in key order to its own
-// buffer in `scratch`; the join copies each buffer to its offset (a prefix sum of the blocks'
-// counts), in parallel too. Nothing depends on the thread count, and no memory is held for pairs
-// that do not touch. `previous` is read in full before `out_contacts` is written, so the two may
-// share storage (the world passes its one contact list as both: no second list is kept).
+// The list is updated in place, so no second copy of it is ever held (Box2D v3 and Jolt keep
+// their contacts in place too). Parallel over fixed blocks of pairs: block b owns the keys from
+// its first pair's up to the next block's first pair's. It rewrites the manifolds of its key
+// range where they are, marks those that end, and collects manifolds of keys new to the list in
+// its own buffer; a serial join then closes the gaps and merges the new ones in. Nothing depends
+// on the thread count, and no memory is held for pairs that do not touch.
 struct CollideScratch {
-  std::vector<std::vector<Manifold>> blocks;  // per block of pairs: its touching manifolds
-  std::vector<std::size_t> offsets;           // per block: where its output starts
+  std::vector<std::vector<Manifold>> added;  // per block: manifolds of new keys, in key order
+  std::vector<std::size_t> start;            // per block + 1: its range of the list on entry
+  std::vector<std::size_t> live;             // per block: manifolds of its range that stay
+  std::vector<std::size_t> at;               // per block + 1: its range of the list on return
+  std::vector<std::size_t> waiting;          // the join: blocks waiting for their right neighbour
+  std::vector<Manifold> bounce;              // the join: one block's manifolds on their way
 };
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
-                   std::span<const Manifold> previous, std::span<const uint8_t> idle,
-                   CollideScratch& scratch, std::vector<Manifold>& out_contacts);
+                   std::span<const uint8_t> idle, CollideScratch& scratch,
+                   std::vector<Manifold>& contacts);
 
 // Time of impact by conservative advancement on the GJK distance: the earliest t in [0, 1] at
 // which A moving linearly from xa0 to xa1 (rotation slerped) comes within `target` of B moving

@@ -103,45 +103,70 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
   return true;
 }
 
+// The join's move of one part: its live manifolds, merged in key order with its added ones, to
+// their place from `at`. Through `bounce`, since the part's old and new places may overlap.
+void place_part(std::vector<Manifold>& contacts, std::size_t from, std::size_t to,
+                const std::vector<Manifold>& added, std::vector<Manifold>& bounce, std::size_t at) {
+  bounce.clear();
+  auto next_added = added.begin();
+  for (std::size_t i = from; i < to; ++i) {
+    if (contacts[i].point_count == 0) continue;
+    for (; next_added != added.end() && next_added->key < contacts[i].key; ++next_added) {
+      bounce.push_back(*next_added);
+    }
+    bounce.push_back(contacts[i]);
+  }
+  bounce.insert(bounce.end(), next_added, added.end());
+  std::copy(bounce.begin(), bounce.end(), contacts.begin() + std::ptrdiff_t(at));
+}
+
 }  // namespace
 
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
-                   std::span<const Manifold> previous, std::span<const uint8_t> idle,
-                   CollideScratch& scratch, std::vector<Manifold>& out_contacts) {
+                   std::span<const uint8_t> idle, CollideScratch& scratch,
+                   std::vector<Manifold>& contacts) {
   const std::size_t n = pairs.size();
-  // With no pairs there is one (empty) part, to carry what `previous` holds.
+  // With no pairs there is one (empty) part, to carry what the list holds.
   const std::size_t parts = std::max<std::size_t>(block_count(n, kPairGrain), 1);
-  if (scratch.blocks.size() < parts) scratch.blocks.resize(parts);
+  if (scratch.added.size() < parts) scratch.added.resize(parts);
+  scratch.start.resize(parts + 1);
+  scratch.live.resize(parts);
   // Part p owns the keys from its first pair's up to the next part's first pair's (the first
-  // part from 0, the last to the end): its range of `previous` starts at a binary search.
-  auto previous_at = [&](std::size_t part) -> std::size_t {
-    if (part == 0) return 0;
-    if (part >= parts) return previous.size();
-    return std::size_t(std::lower_bound(previous.begin(), previous.end(), pairs[part * kPairGrain],
-                                        [](const Manifold& x, uint64_t k) { return x.key < k; }) -
-                       previous.begin());
-  };
+  // part from 0, the last to the end). Its range of the list is found before any part writes.
+  scratch.start[0] = 0;
+  scratch.start[parts] = contacts.size();
+  for (std::size_t part = 1; part < parts; ++part) {
+    scratch.start[part] =
+        std::size_t(std::lower_bound(contacts.begin(), contacts.end(), pairs[part * kPairGrain],
+                                     [](const Manifold& x, uint64_t k) { return x.key < k; }) -
+                    contacts.begin());
+  }
   auto carried = [&](const Manifold& m) {
     return !idle.empty() && m.point_count > 0 && idle[m.body_a] && idle[m.body_b];
   };
-  // determinism: part p owns scratch.blocks[p] and writes its manifolds there in key order: its
-  // pairs' touching manifolds merged with the carried manifolds of its key range of `previous`
-  // whose key found no new manifold. Nothing depends on which thread ran a part (rule 1: joined
-  // in part order below).
+  // determinism: part p writes only its range of the list and scratch.added[p]. A manifold whose
+  // key is in the list is updated where it is; a key new to the list goes to added[p]; one that
+  // neither touches nor is carried is marked dead (point_count 0, which no live manifold has).
+  // Nothing depends on which thread ran a part.
   for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
-    std::vector<Manifold>& out = scratch.blocks[part];
-    out.clear();
+    std::vector<Manifold>& added = scratch.added[part];
+    added.clear();
     const std::size_t begin = std::min(n, part * kPairGrain);
     const std::size_t end = std::min(n, begin + kPairGrain);
-    const Manifold* prev_it = previous.data() + previous_at(part);
-    const Manifold* const prev_end = previous.data() + previous_at(part + 1);
+    Manifold* prev_it = contacts.data() + scratch.start[part];
+    Manifold* const prev_end = contacts.data() + scratch.start[part + 1];
+    std::size_t dead = 0;
+    auto keep_if_carried = [&](Manifold& old) {
+      if (!carried(old)) {
+        old.point_count = 0;
+        ++dead;
+      }
+    };
     Manifold m;
     for (std::size_t i = begin; i < end; ++i) {
       const uint64_t key = pairs[i];
-      for (; prev_it != prev_end && prev_it->key < key; ++prev_it) {
-        if (carried(*prev_it)) out.push_back(*prev_it);
-      }
+      for (; prev_it != prev_end && prev_it->key < key; ++prev_it) keep_if_carried(*prev_it);
       uint32_t a = pair_first(key), b = pair_second(key);
       // The static or kinematic body, if any, is B (architecture rule 4).
       if (!bodies.is_dynamic(a) && bodies.is_dynamic(b)) std::swap(a, b);
@@ -151,11 +176,11 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       m.point_count = 0;
       const Transform xa{bodies.position(a), bodies.orientation(a)};
       const Transform xb{bodies.position(b), bodies.orientation(b)};
-      const Manifold* same_key = (prev_it != prev_end && prev_it->key == key) ? prev_it++ : nullptr;
+      Manifold* same_key = (prev_it != prev_end && prev_it->key == key) ? prev_it++ : nullptr;
       const Manifold* old = (same_key != nullptr && same_key->body_a == a) ? same_key : nullptr;
       const bool cacheable = !rolls(shapes[bodies.shape[a]]) && !rolls(shapes[bodies.shape[b]]);
       if (old != nullptr && old->point_count > 0 && cacheable && reuse_manifold(*old, xa, xb, m)) {
-        out.push_back(m);
+        *same_key = m;
         continue;
       }
       const Real approach =
@@ -175,27 +200,45 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       m.exact_rotation = xa.rotation.conjugate() * xb.rotation;
       m.exact_position = m.relative_position;
       if (m.point_count > 0 && old != nullptr) warm_start(*old, m);
-      if (m.point_count > 0) {
-        out.push_back(m);
-      } else if (same_key != nullptr && carried(*same_key)) {
-        out.push_back(*same_key);
+      if (same_key == nullptr) {
+        if (m.point_count > 0) added.push_back(m);
+      } else if (m.point_count > 0) {
+        *same_key = m;
+      } else {
+        keep_if_carried(*same_key);
       }
     }
-    for (; prev_it != prev_end; ++prev_it) {
-      if (carried(*prev_it)) out.push_back(*prev_it);
-    }
+    for (; prev_it != prev_end; ++prev_it) keep_if_carried(*prev_it);
+    scratch.live[part] = scratch.start[part + 1] - scratch.start[part] - dead;
   });
-  // The join: `previous` is not read from here on, so out_contacts may be its storage.
-  scratch.offsets.resize(parts + 1);
-  scratch.offsets[0] = 0;
+
+  // The join, serial: each part's live and added manifolds move to their final place, a prefix
+  // sum of the parts' counts, in one pass over the list with no second copy of it. Part p moves
+  // from [start[p], start[p+1]) to [at[p], at[p+1]); it can overwrite its left neighbour's old
+  // range only if it moves left (at[p] < start[p]), and its right neighbour's only if that one
+  // moves right (at[p+1] > start[p+1]), so each boundary says which side goes first, and the
+  // order is a chain: parts waiting for their right neighbour are stacked until it has moved.
+  std::vector<std::size_t>& at = scratch.at;
+  at.resize(parts + 1);
+  at[0] = 0;
+  for (std::size_t p = 0; p < parts; ++p)
+    at[p + 1] = at[p] + scratch.live[p] + scratch.added[p].size();
+  const std::size_t total = at[parts];
+  if (total > contacts.capacity()) contacts.reserve(total + total / 4);
+  if (total > contacts.size()) contacts.resize(total);
+  auto place = [&](std::size_t p) {
+    const std::size_t from = scratch.start[p], to = scratch.start[p + 1];
+    if (at[p] == from && scratch.live[p] == to - from && scratch.added[p].empty()) return;
+    place_part(contacts, from, to, scratch.added[p], scratch.bounce, at[p]);
+  };
+  std::vector<std::size_t>& waiting = scratch.waiting;
+  waiting.clear();
   for (std::size_t p = 0; p < parts; ++p) {
-    scratch.offsets[p + 1] = scratch.offsets[p] + scratch.blocks[p].size();
+    waiting.push_back(p);
+    if (p + 1 < parts && at[p + 1] > scratch.start[p + 1]) continue;
+    for (; !waiting.empty(); waiting.pop_back()) place(waiting.back());
   }
-  out_contacts.resize(scratch.offsets[parts]);
-  for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
-    std::copy(scratch.blocks[part].begin(), scratch.blocks[part].end(),
-              out_contacts.begin() + std::ptrdiff_t(scratch.offsets[part]));
-  });
+  contacts.resize(total);
 }
 
 }  // namespace elan::detail

@@ -61,10 +61,9 @@ std::vector<Manifold> run(const Scene& s, std::vector<uint64_t> pairs,
                           const std::vector<Manifold>& previous, int threads = 1) {
   std::sort(pairs.begin(), pairs.end());
   CollideScratch scratch;
-  std::vector<Manifold> out;
-  tbb::task_arena(threads).execute([&] {
-    collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, previous, s.idle, scratch, out);
-  });
+  std::vector<Manifold> out = previous;
+  tbb::task_arena(threads).execute(
+      [&] { collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, scratch, out); });
   return out;
 }
 
