@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -214,6 +215,59 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
     }
   }
   EXPECT_GT(matched, total * 9 / 10) << "small motion keeps almost every feature";
+}
+
+// The list is updated in place: manifolds that end leave gaps, new keys are merged in, and whole
+// blocks move left or right. Starting from lists with long runs of both (last step's manifolds
+// missing, and stale keys of pairs the broadphase no longer reports), the result must be exactly
+// the touching pairs in key order, with the same bits under 1 and 2 threads.
+TEST(CollidePairs, InPlaceUpdateGivesEveryTouchingPairWhateverTheListHeld) {
+  const Pile p = make_pile(400, 3);
+  CollideSettings settings;
+  CollideScratch slots;
+  std::vector<Manifold> fresh;
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, fresh);
+  ASSERT_GT(p.pairs.size(), 8 * 64u) << "enough blocks of pairs to shift across";
+  std::vector<uint64_t> stale;
+  for (uint32_t i = 1; i < p.bodies.size(); ++i) {
+    for (uint32_t j = i + 1; j < p.bodies.size(); ++j) {
+      const uint64_t key = make_pair_key(i, j);
+      if (!std::binary_search(p.pairs.begin(), p.pairs.end(), key)) stale.push_back(key);
+    }
+  }
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 12; ++trial) {
+    // Runs of about 40 keys alternate between dropping and keeping last step's manifolds and
+    // between few and many stale keys, so shifts grow and shrink along the list.
+    std::vector<Manifold> start;
+    std::size_t s = 0;
+    for (std::size_t i = 0; i < fresh.size(); ++i) {
+      const bool drop_run = ((i / 40 + trial) % 3) == 0;
+      const int stale_here = ((i / 40 + trial) % 4) == 1 ? 3 : int(rng() % 2);
+      for (int k = 0; k < stale_here && s < stale.size(); ++k, s += 1 + rng() % 5) {
+        if (stale[s] > fresh[i].key) break;
+        Manifold m;
+        m.key = stale[s];
+        m.body_a = pair_first(stale[s]);
+        m.body_b = pair_second(stale[s]);
+        m.point_count = 1;
+        start.push_back(m);
+      }
+      while (s < stale.size() && stale[s] < fresh[i].key) ++s;
+      if (!drop_run || rng() % 8 == 0) start.push_back(fresh[i]);
+    }
+    std::vector<Manifold> one = start, two = start;
+    tbb::task_arena(1).execute(
+        [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, one); });
+    tbb::task_arena(2).execute(
+        [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, two); });
+    ASSERT_EQ(one.size(), fresh.size()) << "trial " << trial;
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      ASSERT_EQ(one[i].key, fresh[i].key) << "trial " << trial << ", manifold " << i;
+      ASSERT_EQ(one[i].point_count, fresh[i].point_count);
+    }
+    expect_identical(one, two);
+  }
 }
 
 }  // namespace
