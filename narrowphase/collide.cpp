@@ -2,6 +2,7 @@
 // SAT with clipping, or the general GJK/EPA path).
 #include "narrowphase/collide.hpp"
 
+#include <cstring>
 #include <utility>
 
 #include "narrowphase/general.hpp"
@@ -24,6 +25,19 @@ bool collide_sat(const Shape& a, const Transform& xa, const Shape& b, const Tran
   make_polyhedron(a, xa.rotation, Vec3::Zero(), pa);
   make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
   return collide_polyhedra(pa, pb, speculative_distance, out);
+}
+
+bool collide_sat_cached(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                        Real speculative_distance, Manifold& out, PolyhedronCache& cache) {
+  if (cache.shape != &a ||
+      std::memcmp(cache.rotation.coeffs().data(), xa.rotation.coeffs().data(), sizeof(Quat)) != 0) {
+    make_polyhedron(a, xa.rotation, Vec3::Zero(), cache.polyhedron);
+    cache.shape = &a;
+    cache.rotation = xa.rotation;
+  }
+  Polyhedron pb;
+  make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
+  return collide_polyhedra(cache.polyhedron, pb, speculative_distance, out);
 }
 
 bool collide_capsule_poly(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
@@ -70,6 +84,15 @@ PairFn pick(const Shape& a, const Shape& b) {
 }
 
 }  // namespace
+
+bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+             Real speculative_distance, Manifold& out, PolyhedronCache& cache) {
+  if (pick(a, b) == collide_sat) {
+    out.point_count = 0;
+    return collide_sat_cached(a, xa, b, xb, speculative_distance, out, cache);
+  }
+  return collide(a, xa, b, xb, speculative_distance, out);
+}
 
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
              Real speculative_distance, Manifold& out) {

@@ -8,6 +8,7 @@
 #include "core/base/body_store.hpp"
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
+#include "narrowphase/polyhedron.hpp"
 
 namespace elan::detail {
 
@@ -19,6 +20,19 @@ namespace elan::detail {
 // coincident centres, identical shapes at one pose) still gives a finite unit normal.
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
              Real speculative_distance, Manifold& out);
+
+// A's polyhedron from the last box or hull pair, for a caller that tests one body against
+// several in a row: the SAT works in a frame centred on A, so A's vertices and planes depend on
+// its shape and rotation alone, and the next pair with the same A (bit for bit) reuses them.
+// collide_pairs' pairs are sorted by their first body, and on pile4k three in four hull pairs
+// follow one with the same A.
+struct PolyhedronCache {
+  const Shape* shape = nullptr;
+  Quat rotation = Quat::Identity();
+  Polyhedron polyhedron;
+};
+bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+             Real speculative_distance, Manifold& out, PolyhedronCache& cache);
 
 struct CollideSettings {
   Real speculative_distance = Real(0.02);  // m: contacts kept this far apart, plus motion below

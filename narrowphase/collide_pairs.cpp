@@ -157,6 +157,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     Manifold* prev_it = contacts.data() + scratch.start[part];
     Manifold* const prev_end = contacts.data() + scratch.start[part + 1];
     std::size_t dead = 0;
+    PolyhedronCache polyhedron_cache;
     auto keep_if_carried = [&](Manifold& old) {
       if (!carried(old)) {
         old.point_count = 0;
@@ -186,7 +187,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       const Real approach =
           (bodies.linear_velocity(a) - bodies.linear_velocity(b)).norm() * settings.dt;
       collide(shapes[bodies.shape[a]], xa, shapes[bodies.shape[b]], xb,
-              settings.speculative_distance + approach, m);
+              settings.speculative_distance + approach, m, polyhedron_cache);
       for (int k = 0; k < m.point_count; ++k) {
         ContactPoint& p = m.points[k];
         p.normal_impulse = 0;
