@@ -59,10 +59,15 @@ struct CollideSettings {
 // their contacts in place too). Parallel over fixed blocks of pairs: block b owns the keys from
 // its first pair's up to the next block's first pair's. It rewrites the manifolds of its key
 // range where they are, marks those that end, and collects manifolds of keys new to the list in
-// its own buffer; a serial join then closes the gaps and merges the new ones in. Nothing depends
-// on the thread count, and no memory is held for pairs that do not touch.
+// its thread's buffer; a serial join then closes the gaps and merges the new ones in. Nothing
+// depends on the thread count, and no memory is held for pairs that do not touch.
 struct CollideScratch {
-  std::vector<std::vector<Manifold>> added;  // per block: manifolds of new keys, in key order
+  struct Run {
+    uint32_t thread = 0;
+    std::size_t first = 0, count = 0;
+  };
+  std::vector<std::vector<Manifold>> added;  // per thread: manifolds of new keys, block by block
+  std::vector<Run> added_run;                // per block: its new keys' run, in key order
   std::vector<std::size_t> start;            // per block + 1: its range of the list on entry
   std::vector<std::size_t> live;             // per block: manifolds of its range that stay
   std::vector<std::size_t> at;               // per block + 1: its range of the list on return

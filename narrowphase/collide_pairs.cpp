@@ -1,6 +1,9 @@
 // Stage 3, collide_pairs(): manifolds for every broadphase pair in parallel over fixed blocks,
 // warm-start impulses matched by key and feature id, touching manifolds compacted in key order.
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <span>
 
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
@@ -106,7 +109,7 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
 // The join's move of one part: its live manifolds, merged in key order with its added ones, to
 // their place from `at`. Through `bounce`, since the part's old and new places may overlap.
 void place_part(std::vector<Manifold>& contacts, std::size_t from, std::size_t to,
-                const std::vector<Manifold>& added, std::vector<Manifold>& bounce, std::size_t at) {
+                std::span<const Manifold> added, std::vector<Manifold>& bounce, std::size_t at) {
   bounce.clear();
   auto next_added = added.begin();
   for (std::size_t i = from; i < to; ++i) {
@@ -129,7 +132,12 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   const std::size_t n = pairs.size();
   // With no pairs there is one (empty) part, to carry what the list holds.
   const std::size_t parts = std::max<std::size_t>(block_count(n, kPairGrain), 1);
-  if (scratch.added.size() < parts) scratch.added.resize(parts);
+  // One buffer of new keys per thread of the arena, not per block: a block's new manifolds are
+  // one run in its thread's buffer, so only a step's new keys are held, not each block's most.
+  const std::size_t threads = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  if (scratch.added.size() < threads) scratch.added.resize(threads);
+  for (std::vector<Manifold>& buffer : scratch.added) buffer.clear();
+  scratch.added_run.resize(parts);
   scratch.start.resize(parts + 1);
   scratch.live.resize(parts);
   // Part p owns the keys from its first pair's up to the next part's first pair's (the first
@@ -145,13 +153,17 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   auto carried = [&](const Manifold& m) {
     return !idle.empty() && m.point_count > 0 && idle[m.body_a] && idle[m.body_b];
   };
-  // determinism: part p writes only its range of the list and scratch.added[p]. A manifold whose
-  // key is in the list is updated where it is; a key new to the list goes to added[p]; one that
-  // neither touches nor is carried is marked dead (point_count 0, which no live manifold has).
+  // determinism: part p writes only its range of the list and one run of its thread's buffer. A
+  // manifold whose key is in the list is updated where it is; a key new to the list goes to the
+  // run (which thread's buffer holds it changes nothing: the join reads runs in part order); one
+  // that neither touches nor is carried is marked dead (point_count 0, which no live manifold has).
   // Nothing depends on which thread ran a part.
   for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
-    std::vector<Manifold>& added = scratch.added[part];
-    added.clear();
+    // Outside any arena (a serial call from a thread TBB has not seen) the index is negative.
+    const int thread = tbb::this_task_arena::current_thread_index();
+    const std::size_t slot = thread < 0 ? 0 : std::size_t(thread);
+    std::vector<Manifold>& added = scratch.added[slot];
+    const std::size_t first_added = added.size();
     const std::size_t begin = std::min(n, part * kPairGrain);
     const std::size_t end = std::min(n, begin + kPairGrain);
     Manifold* prev_it = contacts.data() + scratch.start[part];
@@ -211,6 +223,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     }
     for (; prev_it != prev_end; ++prev_it) keep_if_carried(*prev_it);
     scratch.live[part] = scratch.start[part + 1] - scratch.start[part] - dead;
+    scratch.added_run[part] = {uint32_t(slot), first_added, added.size() - first_added};
   });
 
   // The join, serial: each part's live and added manifolds move to their final place, a prefix
@@ -223,7 +236,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   at.resize(parts + 1);
   at[0] = 0;
   for (std::size_t p = 0; p < parts; ++p)
-    at[p + 1] = at[p] + scratch.live[p] + scratch.added[p].size();
+    at[p + 1] = at[p] + scratch.live[p] + scratch.added_run[p].count;
   const std::size_t total = at[parts];
   // Doubling, as std::vector grows: each growth holds the old list and the new at once, and the
   // freed lists leave the allocator's heap in pieces, so fewer growths mean a lower peak. On
@@ -232,8 +245,10 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   if (total > contacts.size()) contacts.resize(total);
   auto place = [&](std::size_t p) {
     const std::size_t from = scratch.start[p], to = scratch.start[p + 1];
-    if (at[p] == from && scratch.live[p] == to - from && scratch.added[p].empty()) return;
-    place_part(contacts, from, to, scratch.added[p], scratch.bounce, at[p]);
+    const CollideScratch::Run& run = scratch.added_run[p];
+    if (at[p] == from && scratch.live[p] == to - from && run.count == 0) return;
+    const std::span<const Manifold> added(scratch.added[run.thread].data() + run.first, run.count);
+    place_part(contacts, from, to, added, scratch.bounce, at[p]);
   };
   std::vector<std::size_t>& waiting = scratch.waiting;
   waiting.clear();

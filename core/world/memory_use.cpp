@@ -42,9 +42,10 @@ MemoryUse memory_use(const WorldState& w) {
                  heap_bytes(w.pairs);
 
   m.contacts = heap_bytes(w.contacts) + heap_bytes(w.previous_touching) +
-               heap_bytes(w.contact_blocks.added) + heap_bytes(w.contact_blocks.start) +
-               heap_bytes(w.contact_blocks.live) + heap_bytes(w.contact_blocks.at) +
-               heap_bytes(w.contact_blocks.waiting) + heap_bytes(w.contact_blocks.bounce);
+               heap_bytes(w.contact_blocks.added) + heap_bytes(w.contact_blocks.added_run) +
+               heap_bytes(w.contact_blocks.start) + heap_bytes(w.contact_blocks.live) +
+               heap_bytes(w.contact_blocks.at) + heap_bytes(w.contact_blocks.waiting) +
+               heap_bytes(w.contact_blocks.bounce);
 
   const SolverState& v = w.solver;
   m.solver = heap_bytes(v.packet_of) + heap_bytes(v.packets) + heap_bytes(v.params) +
