@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "solver/body_lanes.hpp"
+
 namespace elan::detail {
 
 SymMat3 rotate_diagonal(const Quat& q, const Vec3& d) {
@@ -46,41 +48,6 @@ constexpr Real kTorsionPatch = Real(0.005);
 // arms (m, rad): the angular momentum error left is at most this distance times the impulse.
 constexpr Real kRefreshDistance = Real(1e-4);
 constexpr Real kRefreshAngle = Real(1e-4);
-
-// Velocities of the kLanes bodies on one side of a bundle.
-struct WideBody {
-  WideVec3 v, w;
-};
-
-// Lane-by-lane loads and stores: the packets of a bundle are scattered in memory.
-inline void gather_velocity(const SolverBody* bodies, const uint32_t* packets, WideBody& out) {
-  for (int l = 0; l < kLanes; ++l) {
-    const SolverBody& b = bodies[packets[l]];
-    set_lane(out.v, l, b.v);
-    set_lane(out.w, l, b.w);
-  }
-}
-
-inline void gather_pose(const SolverBody* bodies, const uint32_t* packets, WideVec3& dp,
-                        WideVec3& dtheta) {
-  for (int l = 0; l < kLanes; ++l) {
-    const SolverBody& b = bodies[packets[l]];
-    set_lane(dp, l, b.dp);
-    set_lane(dtheta, l, b.dtheta);
-  }
-}
-
-// Static, kinematic and unused sides are read-only: only lanes flagged `write` are stored.
-// perf: a lane that is not written stores into a local sink instead of branching over it.
-inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
-                             const WideBody& in) {
-  SolverBody sink;
-  for (int l = 0; l < kLanes; ++l) {
-    SolverBody& b = write[l] ? bodies[packets[l]] : sink;
-    b.v = lane(in.v, l);
-    b.w = lane(in.w, l);
-  }
-}
 
 // Relative velocity of B against A along a row with Jacobian [-d, -ra_d, d, rb_d].
 inline Wide row_velocity(const WideBody& a, const WideBody& b, const WideVec3& d,

@@ -1,0 +1,134 @@
+// Loads and stores of the bodies on one side of a contact bundle: lane l of the wide values is
+// the solver body packets[l]. gather_velocity reads v and w, gather_pose dp and dtheta, and
+// scatter_velocity writes v and w back to the lanes flagged `write` only (static, kinematic and
+// unused sides are read-only). The packets of a bundle are scattered in memory.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(ELAN_DOUBLE)
+#include <immintrin.h>
+#define ELAN_TRANSPOSED_LANES 1
+#endif
+
+#include "solver/solver_types.hpp"
+#include "solver/wide.hpp"
+
+namespace elan::detail {
+
+// Velocities of the kLanes bodies on one side of a bundle.
+struct WideBody {
+  WideVec3 v, w;
+};
+
+#if defined(ELAN_TRANSPOSED_LANES)
+// perf: inserting the 6 velocity components lane by lane was a quarter of solve_contacts on
+// jolt_pyramid. A body's v and w are its first six floats, so each lane loads them (and two
+// more) as one 8-float row; rows l and l + 8 share a register, and an 8x8 transpose within each
+// 256-bit half (unpack, shuffle, then a two-source permute for the 128-bit blocks) leaves
+// component j of all 16 lanes in register j. The transpose is its own inverse, which gives the
+// stores. Data movement only: the same bits as the lane loop.
+static_assert(kLanes == 16 && sizeof(SolverBody) == 64);
+static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(Real) &&
+              offsetof(SolverBody, dtheta) == offsetof(SolverBody, dp) + 3 * sizeof(Real) &&
+              offsetof(SolverBody, dp) + 8 * sizeof(Real) <= sizeof(SolverBody));
+
+inline void transpose_8x8_halves(const __m512 in[8], __m512 out[8]) {
+  __m512 t[8], u[8];
+  for (int i = 0; i < 4; ++i) {
+    t[2 * i] = _mm512_unpacklo_ps(in[2 * i], in[2 * i + 1]);
+    t[2 * i + 1] = _mm512_unpackhi_ps(in[2 * i], in[2 * i + 1]);
+  }
+  for (int i = 0; i < 2; ++i) {
+    u[4 * i + 0] = _mm512_shuffle_ps(t[4 * i + 0], t[4 * i + 2], 0x44);
+    u[4 * i + 1] = _mm512_shuffle_ps(t[4 * i + 0], t[4 * i + 2], 0xEE);
+    u[4 * i + 2] = _mm512_shuffle_ps(t[4 * i + 1], t[4 * i + 3], 0x44);
+    u[4 * i + 3] = _mm512_shuffle_ps(t[4 * i + 1], t[4 * i + 3], 0xEE);
+  }
+  // 128-bit blocks [a0 b0 a2 b2] and [a1 b1 a3 b3].
+  const __m512i low = _mm512_setr_epi32(0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25, 26, 27);
+  const __m512i high =
+      _mm512_setr_epi32(4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15, 28, 29, 30, 31);
+  for (int j = 0; j < 4; ++j) {
+    out[j] = _mm512_permutex2var_ps(u[j], low, u[j + 4]);
+    out[j + 4] = _mm512_permutex2var_ps(u[j], high, u[j + 4]);
+  }
+}
+
+// Two lanes' rows of 8 floats, from `lo` and `hi`, one in each 256-bit half.
+inline __m512 two_rows(const Real* lo, const Real* hi) {
+  const __m512d low = _mm512_castps_pd(_mm512_castps256_ps512(_mm256_loadu_ps(lo)));
+  return _mm512_castpd_ps(_mm512_insertf64x4(low, _mm256_castps_pd(_mm256_loadu_ps(hi)), 1));
+}
+
+// Components of two consecutive Vec3 members of the bundle's bodies, from `first` on: six
+// floats, and the two that follow are read and dropped (SolverBody is 64 bytes, so they exist).
+template <Vec3 SolverBody::*first>
+inline void gather_two(const SolverBody* bodies, const uint32_t* packets, WideVec3& p,
+                       WideVec3& q) {
+  __m512 rows[8], cols[8];
+  for (int l = 0; l < 8; ++l) {
+    rows[l] = two_rows((bodies[packets[l]].*first).data(), (bodies[packets[l + 8]].*first).data());
+  }
+  transpose_8x8_halves(rows, cols);
+  p = {Wide(cols[0]), Wide(cols[1]), Wide(cols[2])};
+  q = {Wide(cols[3]), Wide(cols[4]), Wide(cols[5])};
+}
+
+inline void gather_velocity(const SolverBody* bodies, const uint32_t* packets, WideBody& out) {
+  gather_two<&SolverBody::v>(bodies, packets, out.v, out.w);
+}
+
+inline void gather_pose(const SolverBody* bodies, const uint32_t* packets, WideVec3& dp,
+                        WideVec3& dtheta) {
+  gather_two<&SolverBody::dp>(bodies, packets, dp, dtheta);
+}
+#else
+inline void gather_velocity(const SolverBody* bodies, const uint32_t* packets, WideBody& out) {
+  for (int l = 0; l < kLanes; ++l) {
+    const SolverBody& b = bodies[packets[l]];
+    set_lane(out.v, l, b.v);
+    set_lane(out.w, l, b.w);
+  }
+}
+
+inline void gather_pose(const SolverBody* bodies, const uint32_t* packets, WideVec3& dp,
+                        WideVec3& dtheta) {
+  for (int l = 0; l < kLanes; ++l) {
+    const SolverBody& b = bodies[packets[l]];
+    set_lane(dp, l, b.dp);
+    set_lane(dtheta, l, b.dtheta);
+  }
+}
+#endif
+
+#if defined(ELAN_TRANSPOSED_LANES)
+inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
+                             const WideBody& in) {
+  const __m512 cols[8] = {__m512(in.v.x), __m512(in.v.y), __m512(in.v.z),      __m512(in.w.x),
+                          __m512(in.w.y), __m512(in.w.z), _mm512_setzero_ps(), _mm512_setzero_ps()};
+  __m512 rows[8];
+  transpose_8x8_halves(cols, rows);
+  for (int l = 0; l < 8; ++l) {
+    // The first six floats of the row, v and w; a lane not written stores nothing.
+    const __mmask8 lo = write[l] ? 0x3F : 0, hi = write[l + 8] ? 0x3F : 0;
+    _mm256_mask_storeu_ps(bodies[packets[l]].v.data(), lo, _mm512_castps512_ps256(rows[l]));
+    _mm256_mask_storeu_ps(bodies[packets[l + 8]].v.data(), hi,
+                          _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows[l]), 1)));
+  }
+}
+#else
+// perf: a lane that is not written stores into a local sink instead of branching over it.
+inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
+                             const WideBody& in) {
+  SolverBody sink;
+  for (int l = 0; l < kLanes; ++l) {
+    SolverBody& b = write[l] ? bodies[packets[l]] : sink;
+    b.v = lane(in.v, l);
+    b.w = lane(in.w, l);
+  }
+}
+#endif
+
+}  // namespace elan::detail
