@@ -211,8 +211,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     const auto used = point_count > splat(Real(k));
     const WideVec3 offset = ra[k] - center_ra;
     const WideVec3 in_plane = offset - dot(offset, n) * n;
-    Wide lever = dot(in_plane, in_plane);
-    for (int l = 0; l < kLanes; ++l) lever[l] = std::sqrt(lever[l]);
+    const Wide lever = wide_sqrt(dot(in_plane, in_plane));
     rows[k].twist_lever = used ? lever : zero;
   }
   c.center_ra = center_ra;
@@ -365,8 +364,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       const auto outside = len2 > max_friction * max_friction;
       if (any_lane(outside)) {
         // Outside the cone len2 > 0, so the division is safe where it is used.
-        Wide len = outside ? len2 : one;
-        for (int l = 0; l < kLanes; ++l) len[l] = std::sqrt(len[l]);
+        const Wide len = wide_sqrt(outside ? len2 : one);
         const Wide scale = outside ? max_friction / len : one;
         f0 *= scale;
         f1 *= scale;

@@ -8,6 +8,10 @@
 #include <cmath>
 #include <cstdint>
 
+#if defined(__AVX512F__) && !defined(ELAN_DOUBLE)
+#include <immintrin.h>
+#endif
+
 #include "elan/math.hpp"
 
 namespace elan::detail {
@@ -41,6 +45,18 @@ inline Wide wide_max(Wide a, Wide b) {
 }
 inline Wide wide_min(Wide a, Wide b) {
   return a < b ? a : b;
+}
+
+// Lane-wise square root. IEEE square roots are correctly rounded, so these are the bits of
+// std::sqrt lane by lane; the lane loop compiles to scalar calls (errno), the intrinsic to one
+// instruction.
+inline Wide wide_sqrt(Wide x) {
+#if defined(__AVX512F__) && !defined(ELAN_DOUBLE)
+  return Wide(_mm512_sqrt_ps(__m512(x)));
+#else
+  for (int l = 0; l < kLanes; ++l) x[l] = std::sqrt(x[l]);
+  return x;
+#endif
 }
 
 inline Wide dot(const WideVec3& a, const WideVec3& b) {
