@@ -16,6 +16,9 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#if defined(__GLIBC__)
+#include <malloc.h>  // mallopt
+#endif
 
 #include "core/world/world_state.hpp"
 #include "elan/elan.hpp"
@@ -481,6 +484,13 @@ int dispatch(const std::vector<std::string>& args) {
 
 int main(int argc, char** argv) {
   using namespace elan::cli;
+#if defined(__GLIBC__)
+  // Buffers of 128 KiB and more (the contact list, the solver's bundles) come from mmap and go
+  // back to the system when they grow. Left to itself, glibc raises this threshold to the size of
+  // each such buffer it frees, and later growths then fragment its heap: pile10k's peak RSS is
+  // 38.0 MB that way, 34.9 MB with the threshold fixed.
+  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+#endif
   try {
     return dispatch(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const UsageError& e) {

@@ -9,10 +9,17 @@
 #include <exception>
 #include <memory>
 #include <string>
+#if defined(__GLIBC__)
+#include <malloc.h>  // mallopt
+#endif
 
 #include "bench/peer/bullet_world.hpp"
 
 int main(int argc, char** argv) {
+#if defined(__GLIBC__)
+  // The allocator policy of `elan run` (tools/elan_main.cpp), so the two peaks stay comparable.
+  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+#endif
   if (argc < 2) {
     std::fprintf(stderr, "usage: bullet_runner SCENE.json [--steps N]\n");
     return 2;
