@@ -18,15 +18,7 @@ using PairFn = bool (*)(const Shape&, const Transform&, const Shape&, const Tran
                         Manifold&);
 
 // Both in one working frame: world rotation, origin at A's centre of mass, so coordinates stay
-// small far from the world origin.
-bool collide_sat(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                 Real speculative_distance, Manifold& out) {
-  Polyhedron pa, pb;
-  make_polyhedron(a, xa.rotation, Vec3::Zero(), pa);
-  make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
-  return collide_polyhedra(pa, pb, speculative_distance, out);
-}
-
+// small far from the world origin. A's polyhedron comes from `cache` when it holds A as it is.
 bool collide_sat_cached(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                         Real speculative_distance, Manifold& out, PolyhedronCache& cache) {
   if (cache.shape != &a ||
@@ -38,6 +30,12 @@ bool collide_sat_cached(const Shape& a, const Transform& xa, const Shape& b, con
   Polyhedron pb;
   make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
   return collide_polyhedra(cache.polyhedron, pb, speculative_distance, out);
+}
+
+bool collide_sat(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                 Real speculative_distance, Manifold& out) {
+  PolyhedronCache a_only;
+  return collide_sat_cached(a, xa, b, xb, speculative_distance, out, a_only);
 }
 
 bool collide_capsule_poly(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
@@ -83,21 +81,16 @@ PairFn pick(const Shape& a, const Shape& b) {
   return collide_general;
 }
 
-}  // namespace
-
-bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-             Real speculative_distance, Manifold& out, PolyhedronCache& cache) {
-  if (pick(a, b) == collide_sat) {
-    out.point_count = 0;
-    return collide_sat_cached(a, xa, b, xb, speculative_distance, out, cache);
-  }
-  return collide(a, xa, b, xb, speculative_distance, out);
-}
-
-bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-             Real speculative_distance, Manifold& out) {
+// One dispatch for both entry points; a box or hull pair reuses `cache` when there is one.
+bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+              Real speculative_distance, Manifold& out, PolyhedronCache* cache) {
   out.point_count = 0;
-  if (PairFn f = pick(a, b)) return f(a, xa, b, xb, speculative_distance, out);
+  if (PairFn f = pick(a, b)) {
+    if (f == collide_sat && cache != nullptr) {
+      return collide_sat_cached(a, xa, b, xb, speculative_distance, out, *cache);
+    }
+    return f(a, xa, b, xb, speculative_distance, out);
+  }
   if (a.type == ShapeType::Plane && b.type == ShapeType::Plane) return false;
   // Only the (B, A) routine exists: run it, then flip the normal and swap the anchors.
   PairFn g = pick(b, a);
@@ -109,6 +102,18 @@ bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transfor
   for (int k = 0; k < out.point_count; ++k)
     std::swap(out.points[k].anchor_a, out.points[k].anchor_b);
   return true;
+}
+
+}  // namespace
+
+bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+             Real speculative_distance, Manifold& out) {
+  return dispatch(a, xa, b, xb, speculative_distance, out, nullptr);
+}
+
+bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+             Real speculative_distance, Manifold& out, PolyhedronCache& cache) {
+  return dispatch(a, xa, b, xb, speculative_distance, out, &cache);
 }
 
 }  // namespace elan::detail

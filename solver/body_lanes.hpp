@@ -84,6 +84,21 @@ inline void gather_pose(const SolverBody* bodies, const uint32_t* packets, WideV
                         WideVec3& dtheta) {
   gather_two<&SolverBody::dp>(bodies, packets, dp, dtheta);
 }
+
+inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
+                             const WideBody& in) {
+  const __m512 cols[8] = {__m512(in.v.x), __m512(in.v.y), __m512(in.v.z),      __m512(in.w.x),
+                          __m512(in.w.y), __m512(in.w.z), _mm512_setzero_ps(), _mm512_setzero_ps()};
+  __m512 rows[8];
+  transpose_8x8_halves(cols, rows);
+  for (int l = 0; l < 8; ++l) {
+    // The first six floats of the row, v and w; a lane not written stores nothing.
+    const __mmask8 lo = write[l] ? 0x3F : 0, hi = write[l + 8] ? 0x3F : 0;
+    _mm256_mask_storeu_ps(bodies[packets[l]].v.data(), lo, _mm512_castps512_ps256(rows[l]));
+    _mm256_mask_storeu_ps(bodies[packets[l + 8]].v.data(), hi,
+                          _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows[l]), 1)));
+  }
+}
 #else
 inline void gather_velocity(const SolverBody* bodies, const uint32_t* packets, WideBody& out) {
   for (int l = 0; l < kLanes; ++l) {
@@ -101,24 +116,7 @@ inline void gather_pose(const SolverBody* bodies, const uint32_t* packets, WideV
     set_lane(dtheta, l, b.dtheta);
   }
 }
-#endif
 
-#if defined(ELAN_TRANSPOSED_LANES)
-inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
-                             const WideBody& in) {
-  const __m512 cols[8] = {__m512(in.v.x), __m512(in.v.y), __m512(in.v.z),      __m512(in.w.x),
-                          __m512(in.w.y), __m512(in.w.z), _mm512_setzero_ps(), _mm512_setzero_ps()};
-  __m512 rows[8];
-  transpose_8x8_halves(cols, rows);
-  for (int l = 0; l < 8; ++l) {
-    // The first six floats of the row, v and w; a lane not written stores nothing.
-    const __mmask8 lo = write[l] ? 0x3F : 0, hi = write[l + 8] ? 0x3F : 0;
-    _mm256_mask_storeu_ps(bodies[packets[l]].v.data(), lo, _mm512_castps512_ps256(rows[l]));
-    _mm256_mask_storeu_ps(bodies[packets[l + 8]].v.data(), hi,
-                          _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows[l]), 1)));
-  }
-}
-#else
 // perf: a lane that is not written stores into a local sink instead of branching over it.
 inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
                              const WideBody& in) {
