@@ -15,12 +15,13 @@ namespace elan::detail {
 namespace {
 
 using PairFn = bool (*)(const Shape&, const Transform&, const Shape&, const Transform&, Real,
-                        Manifold&);
+                        Manifold&, Separation*);
 
 // Both in one working frame: world rotation, origin at A's centre of mass, so coordinates stay
 // small far from the world origin. A's polyhedron comes from `cache` when it holds A as it is.
 bool collide_sat_cached(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                        Real speculative_distance, Manifold& out, PolyhedronCache& cache) {
+                        Real speculative_distance, Manifold& out, PolyhedronCache& cache,
+                        Separation* separation) {
   if (cache.shape != &a ||
       std::memcmp(cache.rotation.coeffs().data(), xa.rotation.coeffs().data(), sizeof(Quat)) != 0) {
     make_polyhedron(a, xa.rotation, Vec3::Zero(), cache.polyhedron);
@@ -29,17 +30,17 @@ bool collide_sat_cached(const Shape& a, const Transform& xa, const Shape& b, con
   }
   Polyhedron pb;
   make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
-  return collide_polyhedra(cache.polyhedron, pb, speculative_distance, out);
+  return collide_polyhedra(cache.polyhedron, pb, speculative_distance, out, separation);
 }
 
 bool collide_sat(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                 Real speculative_distance, Manifold& out) {
+                 Real speculative_distance, Manifold& out, Separation* separation) {
   PolyhedronCache a_only;
-  return collide_sat_cached(a, xa, b, xb, speculative_distance, out, a_only);
+  return collide_sat_cached(a, xa, b, xb, speculative_distance, out, a_only, separation);
 }
 
 bool collide_capsule_poly(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                          Real speculative_distance, Manifold& out) {
+                          Real speculative_distance, Manifold& out, Separation* separation) {
   Polyhedron pb;
   make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
   const Vec3 axis = xa.rotation * Vec3(0, a.half_height, 0);
@@ -47,7 +48,10 @@ bool collide_capsule_poly(const Shape& a, const Transform& xa, const Shape& b, c
   // (only the radius overlaps) needs the true closest points, which GJK gives.
   const GjkResult g = gjk_distance(a, xa, b, xb, false);
   if (!g.overlap && g.distance > Real(1e-6) * (a.half_height + a.radius)) {
-    if (g.distance - a.radius > speculative_distance) return false;
+    if (g.distance - a.radius > speculative_distance) {
+      report_separation(separation, Separation::Kind::Distance, g.lower_bound - a.radius);
+      return false;
+    }
     const Vec3 normal = (g.point_b - g.point_a) / g.distance;
     return collide_segment_polyhedron_separated(-axis, axis, a.radius, pb, normal,
                                                 g.point_a - xa.position, g.point_b - xa.position,
@@ -83,19 +87,27 @@ PairFn pick(const Shape& a, const Shape& b) {
 
 // One dispatch for both entry points; a box or hull pair reuses `cache` when there is one.
 bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-              Real speculative_distance, Manifold& out, PolyhedronCache* cache) {
+              Real speculative_distance, Manifold& out, PolyhedronCache* cache,
+              Separation* separation) {
   out.point_count = 0;
+  report_separation(separation, Separation::Kind::Unknown, 0);
   if (PairFn f = pick(a, b)) {
     if (f == collide_sat && cache != nullptr) {
-      return collide_sat_cached(a, xa, b, xb, speculative_distance, out, *cache);
+      return collide_sat_cached(a, xa, b, xb, speculative_distance, out, *cache, separation);
     }
-    return f(a, xa, b, xb, speculative_distance, out);
+    return f(a, xa, b, xb, speculative_distance, out, separation);
   }
   if (a.type == ShapeType::Plane && b.type == ShapeType::Plane) return false;
-  // Only the (B, A) routine exists: run it, then flip the normal and swap the anchors.
+  // Only the (B, A) routine exists: run it, then flip the normal and swap the anchors (and the
+  // frame of a face the rejection measured along).
   PairFn g = pick(b, a);
-  if (!g || !g(b, xb, a, xa, speculative_distance, out)) {
+  if (!g || !g(b, xb, a, xa, speculative_distance, out, separation)) {
     out.point_count = 0;
+    if (separation != nullptr && separation->kind == Separation::Kind::FaceOfA) {
+      separation->kind = Separation::Kind::FaceOfB;
+    } else if (separation != nullptr && separation->kind == Separation::Kind::FaceOfB) {
+      separation->kind = Separation::Kind::FaceOfA;
+    }
     return false;
   }
   out.normal = -out.normal;
@@ -108,12 +120,13 @@ bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transfo
 
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
              Real speculative_distance, Manifold& out) {
-  return dispatch(a, xa, b, xb, speculative_distance, out, nullptr);
+  return dispatch(a, xa, b, xb, speculative_distance, out, nullptr, nullptr);
 }
 
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-             Real speculative_distance, Manifold& out, PolyhedronCache& cache) {
-  return dispatch(a, xa, b, xb, speculative_distance, out, &cache);
+             Real speculative_distance, Manifold& out, PolyhedronCache& cache,
+             Separation& separation) {
+  return dispatch(a, xa, b, xb, speculative_distance, out, &cache, &separation);
 }
 
 }  // namespace elan::detail

@@ -9,6 +9,7 @@
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
 #include "narrowphase/polyhedron.hpp"
+#include "narrowphase/separation.hpp"
 
 namespace elan::detail {
 
@@ -31,12 +32,47 @@ struct PolyhedronCache {
   Quat rotation = Quat::Identity();
   Polyhedron polyhedron;
 };
+// As collide(), also telling what a rejection measured (`separation`, Unknown after a contact).
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-             Real speculative_distance, Manifold& out, PolyhedronCache& cache);
+             Real speculative_distance, Manifold& out, PolyhedronCache& cache,
+             Separation& separation);
 
 struct CollideSettings {
   Real speculative_distance = Real(0.02);  // m: contacts kept this far apart, plus motion below
   Real dt = Real(1.0 / 60.0);              // s: for the motion allowance
+};
+
+// A pair the exact test found apart, what the rejection measured, and B's pose relative to A at
+// that test: the reference the motion since is measured from.
+struct SeparatedPair {
+  uint64_t key = 0;
+  Vec3 position = Vec3::Zero();  // m: B's centre of mass minus A's, in A's frame
+  Real gap = 0;                  // m: Separation::gap
+  Eigen::Quaternion<Real, Eigen::DontAlign> rotation{1, 0, 0, 0};  // A's frame to B's (A^-1 B)
+  Separation::Kind kind = Separation::Kind::Unknown;  // Unknown marks an entry that ended
+};
+
+// Scratch of one list updated in place by collide_pairs (see there).
+template <class T>
+struct ListUpdate {
+  struct Run {
+    uint32_t thread = 0;
+    std::size_t first = 0, count = 0;
+  };
+  std::vector<std::vector<T>> added;  // per thread: entries of new keys, block by block
+  std::vector<Run> added_run;         // per block: its new keys' run, in key order
+  std::vector<std::size_t> start;     // per block + 1: its range of the list on entry
+  std::vector<std::size_t> live;      // per block: entries of its range that stay
+  std::vector<std::size_t> at;        // per block + 1: its range of the list on return
+  std::vector<std::size_t> waiting;   // the join: blocks waiting for their right neighbour
+  std::vector<T> bounce;              // the join: one block's entries on their way
+
+  std::size_t heap_bytes() const;
+};
+
+struct CollideScratch {
+  ListUpdate<Manifold> contacts;
+  ListUpdate<SeparatedPair> separated;
 };
 
 // The stage. `contacts` holds last step's manifolds, sorted by key, and receives this step's. For
@@ -50,34 +86,27 @@ struct CollideSettings {
 // without running collide(). On return `contacts` holds the touching manifolds and the carried
 // ones, in key order.
 //
+// Separation cache: `separated` holds, sorted by key, the pairs found apart with what their
+// rejection measured (Separation). While B's points have moved, relative to A, by less than
+// that gap minus the pair's speculative distance and a tolerance, the exact test is skipped: it
+// would reject the pair again, so the result is the same bits with or without the cache. It
+// belongs to one set of bodies and shapes: clear it when bodies are removed or renumbered.
+//
 // Carrying: a manifold whose two bodies are both flagged in `idle` (per body; the world flags
 // static and sleeping bodies) and whose key has no touching manifold this step is kept as it is,
 // so a sleeping island keeps its contacts and wakes warm-started (the broadphase does not report
 // pairs of two idle bodies). An empty `idle` carries nothing.
 //
-// The list is updated in place, so no second copy of it is ever held (Box2D v3 and Jolt keep
-// their contacts in place too). Parallel over fixed blocks of pairs: block b owns the keys from
-// its first pair's up to the next block's first pair's. It rewrites the manifolds of its key
-// range where they are, marks those that end, and collects manifolds of keys new to the list in
-// its thread's buffer; a serial join then closes the gaps and merges the new ones in. Nothing
-// depends on the thread count, and no memory is held for pairs that do not touch.
-struct CollideScratch {
-  struct Run {
-    uint32_t thread = 0;
-    std::size_t first = 0, count = 0;
-  };
-  std::vector<std::vector<Manifold>> added;  // per thread: manifolds of new keys, block by block
-  std::vector<Run> added_run;                // per block: its new keys' run, in key order
-  std::vector<std::size_t> start;            // per block + 1: its range of the list on entry
-  std::vector<std::size_t> live;             // per block: manifolds of its range that stay
-  std::vector<std::size_t> at;               // per block + 1: its range of the list on return
-  std::vector<std::size_t> waiting;          // the join: blocks waiting for their right neighbour
-  std::vector<Manifold> bounce;              // the join: one block's manifolds on their way
-};
+// Both lists are updated in place, so no second copy of either is ever held (Box2D v3 and Jolt
+// keep their contacts in place too). Parallel over fixed blocks of pairs: block b owns the keys
+// from its first pair's up to the next block's first pair's. It rewrites the entries of its key
+// range where they are, marks those that end, and collects entries of keys new to a list in its
+// thread's buffer; a serial join then closes the gaps and merges the new ones in. Nothing depends
+// on the thread count.
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,
-                   std::vector<Manifold>& contacts);
+                   std::vector<Manifold>& contacts, std::vector<SeparatedPair>& separated);
 
 // Time of impact by conservative advancement on the GJK distance: the earliest t in [0, 1] at
 // which A moving linearly from xa0 to xa1 (rotation slerped) comes within `target` of B moving

@@ -158,14 +158,17 @@ Real plane_gap(const Feature& ref, const Vec3& n, const Vec3& p, bool ref_is_a) 
 }  // namespace
 
 bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                     Real speculative_distance, Manifold& out) {
+                     Real speculative_distance, Manifold& out, Separation* separation) {
   out.point_count = 0;
   Vec3 n;
   Real sep;
   Vec3 pa, pb;  // world closest / deepest points on A and B
   const GjkResult g = gjk_distance(a, xa, b, xb, true);
   if (!g.overlap && g.distance > Real(1e-6) * std::max(a.bounding_radius, b.bounding_radius)) {
-    if (g.distance > speculative_distance) return false;
+    if (g.distance > speculative_distance) {
+      report_separation(separation, Separation::Kind::Distance, g.lower_bound);
+      return false;
+    }
     n = (g.point_b - g.point_a) / g.distance;
     sep = g.distance;
     pa = g.point_a;

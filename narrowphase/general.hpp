@@ -5,11 +5,12 @@
 
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
+#include "narrowphase/separation.hpp"
 
 namespace elan::detail {
 
 // Same contract as collide() in collide.hpp; neither shape may be a plane.
 bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                     Real speculative_distance, Manifold& out);
+                     Real speculative_distance, Manifold& out, Separation* separation = nullptr);
 
 }  // namespace elan::detail

@@ -210,6 +210,9 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
   s.lambda[0] = 1;
   Vec3 v = s.v[0].w;
   Real vv = v.squaredNorm();
+  // The last search: every point c of the Minkowski difference has v.c >= v.w, so the shapes
+  // are at least v.w / |v| apart.
+  Real searched_vw = 0, searched_vv = 0;
   for (int iter = 0; iter < kMaxIterations; ++iter) {
     result.iterations = iter + 1;
     Real max_ww = 0;
@@ -219,7 +222,9 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
       break;
     }
     const SimplexVertex w = support_minkowski(a, b, -v);
-    if (vv - v.dot(w.w) <= kRelTol * vv) break;
+    searched_vw = v.dot(w.w);
+    searched_vv = vv;
+    if (vv - searched_vw <= kRelTol * vv) break;
     bool repeated = false;
     for (int i = 0; i < s.count; ++i) repeated = repeated || s.v[i].w == w.w;
     if (repeated) break;
@@ -242,6 +247,9 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
   // unit normal to rounding even far from the origin; witnesses that meet mean touching.
   result.distance = result.overlap ? Real(0) : (result.point_b - result.point_a).norm();
   if (!(result.distance > 0)) result.overlap = true, result.distance = 0;
+  if (!result.overlap && searched_vw > 0) {
+    result.lower_bound = std::min(result.distance, searched_vw / std::sqrt(searched_vv));
+  }
   return result;
 }
 

@@ -11,6 +11,10 @@ struct GjkResult {
   Vec3 point_a = Vec3::Zero();  // world: closest point on A's core
   Vec3 point_b = Vec3::Zero();  // world: closest point on B's core
   bool overlap = false;         // cores intersect: use EPA for depth
+  // m: the shapes are at least this far apart (the gap along the last search direction, which
+  // any axis bounds from below); 0 when they overlap. Within the relative tolerance of
+  // `distance` when GJK converged.
+  Real lower_bound = 0;
   int iterations = 0;
 };
 

@@ -63,12 +63,15 @@ Vec3 closest_on_segment(const Vec3& c, const Vec3& h, const Vec3& p) {
 // normal along the centre line (fallback when the centres coincide).
 bool collide_balls(const Vec3& ca, Real ra, const Vec3& ca_body, const Vec3& cb, Real rb,
                    const Vec3& cb_body, const Vec3& fallback, Real speculative, uint32_t id,
-                   Manifold& out) {
+                   Manifold& out, Separation* separation) {
   const Vec3 d = cb - ca;
   const Real dist = d.norm();
   const Real sep = dist - ra - rb;
   begin(out, fallback);
-  if (sep > speculative) return false;
+  if (sep > speculative) {
+    report_separation(separation, Separation::Kind::Distance, sep);
+    return false;
+  }
   const Vec3 n = direction_or(d, ra + rb + dist, fallback);
   out.normal = n;
   add_point(out, ca + ra * n, cb - rb * n, sep, id, ca_body, cb_body);
@@ -117,25 +120,27 @@ void push_candidate(Candidate* c, int& count, const Candidate& x) {
 
 // |cb - ca| - ra - rb along the centre line.
 bool collide_sphere_sphere(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                           Real speculative_distance, Manifold& out) {
+                           Real speculative_distance, Manifold& out, Separation* separation) {
   return collide_balls(xa.position, a.radius, xa.position, xb.position, b.radius, xb.position,
-                       Vec3::UnitY(), speculative_distance, 0, out);
+                       Vec3::UnitY(), speculative_distance, 0, out, separation);
 }
 
 // Sphere against the ball at the closest point of the capsule's segment.
 bool collide_sphere_capsule(const Shape& a, const Transform& xa, const Shape& b,
-                            const Transform& xb, Real speculative_distance, Manifold& out) {
+                            const Transform& xb, Real speculative_distance, Manifold& out,
+                            Separation* separation) {
   const Vec3 h = capsule_axis(b, xb);
   const Vec3 q = closest_on_segment(xb.position, h, xa.position);
   const Vec3 fallback = h.squaredNorm() > 0 ? any_perpendicular(h) : Vec3::UnitY();
   return collide_balls(xa.position, a.radius, xa.position, q, b.radius, xb.position, fallback,
-                       speculative_distance, 0, out);
+                       speculative_distance, 0, out, separation);
 }
 
 // Segment-segment closest points; near-parallel segments clip the overlap of B's projection on
 // A's segment and report its two ends, each with its own separation along the common normal.
 bool collide_capsule_capsule(const Shape& a, const Transform& xa, const Shape& b,
-                             const Transform& xb, Real speculative_distance, Manifold& out) {
+                             const Transform& xb, Real speculative_distance, Manifold& out,
+                             Separation* separation) {
   const Vec3 ha = capsule_axis(a, xa), hb = capsule_axis(b, xb);
   const Vec3 a0 = xa.position - ha, b0 = xb.position - hb;
   const Vec3 d1 = 2 * ha, d2 = 2 * hb;
@@ -176,13 +181,13 @@ bool collide_capsule_capsule(const Shape& a, const Transform& xa, const Shape& b
              : len1 > 0                 ? any_perpendicular(d1)
                                         : Vec3::UnitY();
   return collide_balls(ca, a.radius, xa.position, cb, b.radius, xb.position, fallback,
-                       speculative_distance, 4, out);
+                       speculative_distance, 4, out, separation);
 }
 
 // Closest point on the box (clamp the centre in box coordinates); a centre inside the box is
 // pushed out through the face of least penetration.
 bool collide_sphere_box(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                        Real speculative_distance, Manifold& out) {
+                        Real speculative_distance, Manifold& out, Separation* separation) {
   const Mat3 rb = xb.rotation.toRotationMatrix();
   const Vec3 c = rb.transpose() * (xa.position - xb.position);
   const Vec3& he = b.half_extents;
@@ -192,7 +197,10 @@ bool collide_sphere_box(const Shape& a, const Transform& xa, const Shape& b, con
   begin(out, Vec3::UnitY());
   if (dist > 16 * kEps * he.maxCoeff()) {
     const Real sep = dist - a.radius;
-    if (sep > speculative_distance) return false;
+    if (sep > speculative_distance) {
+      report_separation(separation, Separation::Kind::Distance, sep);
+      return false;
+    }
     const Vec3 n = rb * (-d / dist);
     uint32_t region = 0;
     for (int i = 2; i >= 0; --i) region = region * 3 + (c[i] < -he[i] ? 0 : c[i] > he[i] ? 2 : 1);
@@ -220,7 +228,7 @@ bool collide_sphere_box(const Shape& a, const Transform& xa, const Shape& b, con
 // GJK between the sphere's centre and B's core; EPA when the centre is inside B. Radii are
 // added to the core result (exact for rounded shapes).
 bool collide_sphere_convex(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                           Real speculative_distance, Manifold& out) {
+                           Real speculative_distance, Manifold& out, Separation* separation) {
   const PlacedShape pa = place(a, xa, false), pb = place(b, xb, false);
   const Real radii = a.radius + core_radius(b);
   Simplex s;
@@ -230,7 +238,10 @@ bool collide_sphere_convex(const Shape& a, const Transform& xa, const Shape& b, 
   Real sep;
   if (!g.overlap && g.distance > 16 * kEps * b.bounding_radius) {
     sep = g.distance - radii;
-    if (sep > speculative_distance) return false;
+    if (sep > speculative_distance) {
+      report_separation(separation, Separation::Kind::Distance, g.lower_bound - radii);
+      return false;
+    }
     n = (g.point_b - g.point_a) / g.distance;
     point_b = g.point_b;
   } else {
@@ -249,7 +260,7 @@ bool collide_sphere_convex(const Shape& a, const Transform& xa, const Shape& b, 
 // candidates are A's deepest features: sphere bottom, capsule ends, box corners, hull vertices
 // (reduced to four with reduce_to_four), the cylinder's deepest rim points.
 bool collide_convex_plane(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                          Real speculative_distance, Manifold& out) {
+                          Real speculative_distance, Manifold& out, Separation* separation) {
   const Vec3 n = xb.rotation * b.plane_normal;
   const Real offset = b.plane_offset + n.dot(xb.position);
   const Mat3 ra = xa.rotation.toRotationMatrix();
@@ -258,9 +269,11 @@ bool collide_convex_plane(const Shape& a, const Transform& xa, const Shape& b, c
   begin(out, -n);
   Candidate cand[kMaxPlaneCandidates];
   int count = 0;
+  Real lowest = std::numeric_limits<Real>::max();  // A's support below the plane is a candidate
   // A local point's height above the plane, rounded by r (sphere, capsule) on the way down.
   auto consider = [&](const Vec3& local, Real r, uint32_t id) {
     const Real s = nl.dot(local) + centre_height - r;
+    lowest = std::min(lowest, s);
     if (s > speculative_distance) return;
     push_candidate(cand, count, {xa.position + ra * local - r * n, s, id});
   };
@@ -303,6 +316,8 @@ bool collide_convex_plane(const Shape& a, const Transform& xa, const Shape& b, c
     default:
       return false;
   }
+  // The half-space is B's one face: A's points move in B's frame.
+  if (count == 0) report_separation(separation, Separation::Kind::FaceOfB, lowest);
   Vec3 pos[kMaxPlaneCandidates];
   Real sep[kMaxPlaneCandidates];
   for (int i = 0; i < count; ++i) pos[i] = cand[i].point, sep[i] = cand[i].separation;

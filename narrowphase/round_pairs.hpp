@@ -5,6 +5,7 @@
 
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
+#include "narrowphase/separation.hpp"
 
 namespace elan::detail {
 
@@ -15,18 +16,23 @@ namespace elan::detail {
 inline constexpr uint32_t kFeatureRim = 0x100;
 
 bool collide_sphere_sphere(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                           Real speculative_distance, Manifold& out);
+                           Real speculative_distance, Manifold& out,
+                           Separation* separation = nullptr);
 bool collide_sphere_capsule(const Shape& a, const Transform& xa, const Shape& b,
-                            const Transform& xb, Real speculative_distance, Manifold& out);
+                            const Transform& xb, Real speculative_distance, Manifold& out,
+                            Separation* separation = nullptr);
 bool collide_capsule_capsule(const Shape& a, const Transform& xa, const Shape& b,
-                             const Transform& xb, Real speculative_distance, Manifold& out);
+                             const Transform& xb, Real speculative_distance, Manifold& out,
+                             Separation* separation = nullptr);
 bool collide_sphere_box(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                        Real speculative_distance, Manifold& out);
+                        Real speculative_distance, Manifold& out, Separation* separation = nullptr);
 // B is a convex hull or a cylinder (any shape with a support function).
 bool collide_sphere_convex(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                           Real speculative_distance, Manifold& out);
+                           Real speculative_distance, Manifold& out,
+                           Separation* separation = nullptr);
 // A is any non-plane shape, B a plane (static). Normal = minus the plane's world normal.
 bool collide_convex_plane(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                          Real speculative_distance, Manifold& out);
+                          Real speculative_distance, Manifold& out,
+                          Separation* separation = nullptr);
 
 }  // namespace elan::detail

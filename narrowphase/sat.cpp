@@ -337,12 +337,18 @@ bool segment_face_contact(const Vec3& s0, const Vec3& s1, Real radius, const Pol
 }  // namespace
 
 bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculative_distance,
-                       Manifold& out) {
+                       Manifold& out, Separation* separation) {
   out.point_count = 0;
   const FaceQuery fa = query_faces(a, b);
-  if (fa.separation > speculative_distance) return false;
+  if (fa.separation > speculative_distance) {
+    report_separation(separation, Separation::Kind::FaceOfA, fa.separation);
+    return false;
+  }
   const FaceQuery fb = query_faces(b, a);
-  if (fb.separation > speculative_distance) return false;
+  if (fb.separation > speculative_distance) {
+    report_separation(separation, Separation::Kind::FaceOfB, fb.separation);
+    return false;
+  }
   const EdgeQuery ee = query_edges(a, b);
   if (ee.separation > speculative_distance) return false;
 

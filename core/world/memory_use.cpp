@@ -41,11 +41,8 @@ MemoryUse memory_use(const WorldState& w) {
                  heap_bytes(w.idle) + w.all_pairs.heap_bytes() + w.sap.heap_bytes() +
                  heap_bytes(w.pairs);
 
-  m.contacts = heap_bytes(w.contacts) + heap_bytes(w.previous_touching) +
-               heap_bytes(w.contact_blocks.added) + heap_bytes(w.contact_blocks.added_run) +
-               heap_bytes(w.contact_blocks.start) + heap_bytes(w.contact_blocks.live) +
-               heap_bytes(w.contact_blocks.at) + heap_bytes(w.contact_blocks.waiting) +
-               heap_bytes(w.contact_blocks.bounce);
+  m.contacts = heap_bytes(w.contacts) + heap_bytes(w.separated) + heap_bytes(w.previous_touching) +
+               w.contact_blocks.contacts.heap_bytes() + w.contact_blocks.separated.heap_bytes();
 
   const SolverState& v = w.solver;
   m.solver = heap_bytes(v.packet_of) + heap_bytes(v.packets) + heap_bytes(v.params) +

@@ -392,6 +392,7 @@ void commit(WorldState& s, Decoded&& d) {
   s.slot_generation = std::move(d.slot_generation);
   s.free_slots = std::move(d.free_slots);
   s.contacts = std::move(d.contacts);
+  s.separated.clear();
   s.previous_touching.clear();
   s.contact_blocks = {};
   s.pairs.clear();
@@ -582,6 +583,7 @@ void restore_rollback(World& world, std::span<const uint8_t> bytes) {
   read_rollback<false>(check, s);
   ByteReader apply(payload, "rollback");
   read_rollback<true>(apply, s);
+  s.separated.clear();
   s.previous_touching.clear();
   forget_api_caches(s);
 }

@@ -189,6 +189,8 @@ void World::destroy_body(BodyId id) {
     contacts[kept++] = m;
   }
   contacts.resize(kept);
+  // The separation cache names bodies by index too; it is only a cache, so it starts over.
+  s.separated.clear();
   if (resort) {
     // determinism: keys are unique, so the sorted order is a function of the keys alone.
     std::sort(contacts.begin(), contacts.end(),

@@ -54,8 +54,11 @@ struct WorldState {
   std::vector<uint64_t> pairs;
 
   // Contacts, sorted by key: the one list, which collide_pairs reads as last step's and rewrites;
-  // the pairs that touched last step, for contact events; the collide stage's per-block buffers.
+  // the pairs found apart with what proves them apart (a cache: cleared when bodies are removed
+  // or the world restored); the pairs that touched last step, for contact events; the collide
+  // stage's per-block buffers.
   std::vector<Manifold> contacts;
+  std::vector<SeparatedPair> separated;
   std::vector<ContactRecord> previous_touching;
   CollideScratch contact_blocks;
 

@@ -62,8 +62,10 @@ std::vector<Manifold> run(const Scene& s, std::vector<uint64_t> pairs,
   std::sort(pairs.begin(), pairs.end());
   CollideScratch scratch;
   std::vector<Manifold> out = previous;
-  tbb::task_arena(threads).execute(
-      [&] { collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, scratch, out); });
+  std::vector<SeparatedPair> apart;
+  tbb::task_arena(threads).execute([&] {
+    collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, scratch, out, apart);
+  });
   return out;
 }
 

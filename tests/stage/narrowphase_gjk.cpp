@@ -119,6 +119,10 @@ TEST(Gjk, MatchesExactDistanceOnRandomHulls) {
       ASSERT_FALSE(g.overlap) << i;
       EXPECT_NEAR(g.distance, ref, 1e-4 * ref + 1e-6) << i;
       EXPECT_NEAR((g.point_b - g.point_a).norm(), g.distance, 1e-4 * ref + 1e-6) << i;
+      // The lower bound may not pass the exact distance (the separation cache relies on it),
+      // and is as tight as the distance.
+      EXPECT_LE(g.lower_bound, ref + 1e-6) << i;
+      EXPECT_GE(g.lower_bound, ref * (1 - 1e-4) - 1e-6) << i;
     } else if (depth > 1e-3) {
       ++overlapping;
       EXPECT_TRUE(g.overlap) << i;

@@ -1,0 +1,28 @@
+// Separation: what an exact test that found no contact measured, so that the next steps can
+// tell from the motion alone that it would find none again.
+#pragma once
+
+#include <cstdint>
+
+#include "elan/math.hpp"
+
+namespace elan::detail {
+
+// What a test that found no contact measured. Every routine rejects a pair on one separation it
+// computed against the speculative distance: a distance between the shapes (closed forms, GJK)
+// or the SAT gap along a face normal of one of them. `gap` is a lower bound of that separation.
+// A face of A is fixed in A's frame, so its gap shrinks by no more than B's points move in A's
+// frame; a face of B's by no more than A's points move in B's; a distance by no more than either.
+// While that motion stays below gap minus the speculative distance, the same routine rejects the
+// pair again (collide_pairs' separation cache). Unknown: nothing that lasts (an edge axis turns
+// with both bodies, a near-parallel capsule pair measures two points).
+struct Separation {
+  enum class Kind : uint8_t { Unknown, Distance, FaceOfA, FaceOfB };
+  Kind kind = Kind::Unknown;
+  Real gap = 0;  // m
+};
+inline void report_separation(Separation* s, Separation::Kind kind, Real gap) {
+  if (s != nullptr) *s = {kind, gap};
+}
+
+}  // namespace elan::detail
