@@ -206,7 +206,7 @@ def main():
     with open("/proc/cpuinfo") as f:
         cpu = re.search(r"model name\s*:\s*(.*)", f.read()).group(1)
     flags = (cache_value(a.build, "CMAKE_CXX_FLAGS") + " " + cache_value(a.build, "CMAKE_CXX_FLAGS_RELEASE") +
-             " -march=native -ffp-contract=off -fno-fast-math -fopenmp-simd").strip()
+             " -march=native -ffp-contract=off -fno-fast-math -fno-math-errno -fopenmp-simd").strip()
     L = []
     L.append(f"# Benchmark results: {cpu}\n")
     L.append(f"- date: {datetime.datetime.now().isoformat(timespec='seconds')}, mode `{a.mode}`, commit `{rev}`")
@@ -269,9 +269,11 @@ def main():
         L.append(f"| jolt_pyramid ≤ 6 ms/step at 1 thread, standing | {fmt(jp[0]['ms'])} ms, top {v} | "
                  f"{'yes' if jp[0]['ms'] <= 6 and v.startswith('stands') else 'no: ' + fmt(jp[0]['ms'] / 6) + '× the time'} |")
     if p4:
-        ratio = p4[0]["bullet_ms"] / min(p4[0]["ms"], p4[1]["ms"])
-        L.append(f"| pile4k ≥ 6× faster than Bullet | {fmt(ratio)}× (best elan vs Bullet 1t) | "
-                 f"{'yes' if ratio >= 6 else 'no: ' + fmt(6 / ratio) + '× short'} |")
+        # The target is at 1 thread; elan at 2 threads against Bullet's 1 is shown beside it.
+        ratio = p4[0]["bullet_ms"] / p4[0]["ms"]
+        ratio_2t = p4[0]["bullet_ms"] / p4[1]["ms"]
+        L.append(f"| pile4k ≥ 6× faster than Bullet at 1 thread | {fmt(ratio)}× (elan 2t vs Bullet 1t: "
+                 f"{fmt(ratio_2t)}×) | {'yes' if ratio >= 6 else 'no: ' + fmt(6 / ratio) + '× short'} |")
     if p10:
         sp = p10[0]["ms"] / p10[1]["ms"]
         frac = sp / calib["fma"][2]
