@@ -103,11 +103,7 @@ bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transfo
   PairFn g = pick(b, a);
   if (!g || !g(b, xb, a, xa, speculative_distance, out, separation)) {
     out.point_count = 0;
-    if (separation != nullptr && separation->kind == Separation::Kind::FaceOfA) {
-      separation->kind = Separation::Kind::FaceOfB;
-    } else if (separation != nullptr && separation->kind == Separation::Kind::FaceOfB) {
-      separation->kind = Separation::Kind::FaceOfA;
-    }
+    if (separation != nullptr) separation->kind = swap_sides(separation->kind);
     return false;
   }
   out.normal = -out.normal;

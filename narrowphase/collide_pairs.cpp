@@ -71,8 +71,9 @@ bool rolls(const Shape& s) {
          s.type == ShapeType::Cylinder;
 }
 
-bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& xb, Manifold& m) {
-  const Vec3 relative = xa.rotation.conjugate() * (xb.position - xa.position);
+// `relative`: B's centre of mass minus A's, in A's frame, now.
+bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& xb,
+                    const Vec3& relative, Manifold& m) {
   if ((relative - old.exact_position).squaredNorm() > kCacheDistance * kCacheDistance) {
     return false;
   }
@@ -294,7 +295,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       const Manifold* old = (same_key != nullptr && same_key->body_a == a) ? same_key : nullptr;
       SeparatedPair* apart = (apart_it != apart_end && apart_it->key == key) ? apart_it++ : nullptr;
       const bool cacheable = !rolls(shape_a) && !rolls(shape_b);
-      if (old != nullptr && old->point_count > 0 && cacheable && reuse_manifold(*old, xa, xb, m)) {
+      if (old != nullptr && old->point_count > 0 && cacheable &&
+          reuse_manifold(*old, xa, xb, relative, m)) {
         *same_key = m;
         continue;
       }

@@ -21,6 +21,17 @@ struct Separation {
   Kind kind = Kind::Unknown;
   Real gap = 0;  // m
 };
+// The same separation with A and B swapped: a face of one is a face of the other side.
+inline Separation::Kind swap_sides(Separation::Kind kind) {
+  switch (kind) {
+    case Separation::Kind::FaceOfA:
+      return Separation::Kind::FaceOfB;
+    case Separation::Kind::FaceOfB:
+      return Separation::Kind::FaceOfA;
+    default:
+      return kind;
+  }
+}
 inline void report_separation(Separation* s, Separation::Kind kind, Real gap) {
   if (s != nullptr) *s = {kind, gap};
 }
