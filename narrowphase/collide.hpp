@@ -43,14 +43,25 @@ struct CollideSettings {
 };
 
 // A pair the exact test found apart, what the rejection measured, and B's pose relative to A at
-// that test: the reference the motion since is measured from.
+// that test: the reference the motion since is measured from. 40 bytes: the rotation keeps three
+// of its four components.
 struct SeparatedPair {
   uint64_t key = 0;
   Vec3 position = Vec3::Zero();  // m: B's centre of mass minus A's, in A's frame
   Real gap = 0;                  // m: Separation::gap
-  Eigen::Quaternion<Real, Eigen::DontAlign> rotation{1, 0, 0, 0};  // A's frame to B's (A^-1 B)
+
+  // A's frame to B's (A^-1 B). The largest component of the unit quaternion is left out and
+  // made non-negative (q and -q are one rotation); it is at least 1/2, so it comes back from
+  // the unit norm as sqrt(1 - the others' squares) to within float rounding (the "smallest
+  // three" of network codecs). Leaving out w instead would lose half the digits near a half turn.
+  void set_rotation(const Quat& q);
+  Quat rotation() const;
+
+  Real kept[3] = {0, 0, 0};  // the other three of (x, y, z, w), in that order
+  uint8_t dropped = 3;       // which of (x, y, z, w) is left out
   Separation::Kind kind = Separation::Kind::Unknown;  // Unknown marks an entry that ended
 };
+static_assert(sizeof(Real) != 4 || sizeof(SeparatedPair) == 40, "SeparatedPair: 40 bytes in float");
 
 // Scratch of one list updated in place by collide_pairs (see there).
 template <class T>

@@ -4,6 +4,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <span>
 
@@ -115,8 +116,9 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
 // collide stage from 6.6 to 4.9 ms a step on pile4k.
 //
 // Tolerance of the separation cache, m, plus a part per metre of coordinate size: the exact
-// tests' rounding near the origin and GJK's relative tolerance (1e-5 of the distance) are far
-// below it, and coordinates far from the origin round to a step of about eps * |x|.
+// tests' rounding near the origin, GJK's relative tolerance (1e-5 of the distance) and the
+// stored rotation's rounding (a few 1e-7 rad, times the bounding radius) are far below it, and
+// coordinates far from the origin round to a step of about eps * |x|.
 constexpr Real kSeparationSlack = Real(1e-3);
 constexpr Real kSeparationSlackPerMetre = 64 * std::numeric_limits<Real>::epsilon();
 
@@ -126,7 +128,7 @@ constexpr Real kSeparationSlackPerMetre = 64 * std::numeric_limits<Real>::epsilo
 // |y| no more than B's bounding radius. A's points in B's frame likewise, from A's centre
 // p' = -q^-1 p and A's bounding radius. A distance is bounded by either.
 Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& a, const Shape& b) {
-  const Quat q0(s.rotation);
+  const Quat q0 = s.rotation();
   const Real chord = 2 * (q * q0.conjugate()).vec().norm();
   const Real in_a = (p - s.position).norm() + chord * b.bounding_radius;
   if (s.kind == Separation::Kind::FaceOfA) return in_a;
@@ -215,6 +217,29 @@ void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts) {
 }
 
 }  // namespace
+
+void SeparatedPair::set_rotation(const Quat& q) {
+  const auto& c = q.coeffs();  // x, y, z, w
+  int largest = 3;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(c[i]) > std::abs(c[largest])) largest = i;
+  }
+  const Real sign = c[largest] < 0 ? Real(-1) : Real(1);
+  dropped = uint8_t(largest);
+  for (int i = 0, k = 0; i < 4; ++i) {
+    if (i != largest) kept[k++] = sign * c[i];
+  }
+}
+
+Quat SeparatedPair::rotation() const {
+  Quat q;
+  auto& c = q.coeffs();
+  const Real rest = kept[0] * kept[0] + kept[1] * kept[1] + kept[2] * kept[2];
+  for (int i = 0, k = 0; i < 4; ++i) {
+    c[i] = i == dropped ? std::sqrt(std::max(Real(0), 1 - rest)) : kept[k++];
+  }
+  return q;
+}
 
 template <class T>
 std::size_t ListUpdate<T>::heap_bytes() const {
@@ -324,7 +349,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         s.key = key;
         s.position = relative;
         s.gap = separation.gap;
-        s.rotation = rotation;
+        s.set_rotation(rotation);
         s.kind = separation.kind;
         if (apart != nullptr) {
           *apart = s;

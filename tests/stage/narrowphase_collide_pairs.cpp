@@ -322,5 +322,28 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   EXPECT_GT(closed_in, 20) << "cached pairs that went on to touch";
 }
 
+TEST(SeparatedPair, StoredRotationComesBackToFloatRounding) {
+  // Three components kept, the largest rebuilt from the unit norm: it is at least 1/2, so its
+  // square root is well conditioned, near a half turn too (w near 0), where rebuilding w would
+  // lose half the digits (an error of about sqrt(eps), 3e-4). Each component comes back within a
+  // few roundings, up to the sign of the whole quaternion.
+  std::mt19937 rng(9);
+  std::normal_distribution<float> n(0, 1);
+  for (int trial = 0; trial < 20000; ++trial) {
+    Quat q(n(rng), n(rng), n(rng), n(rng));
+    if (trial % 4 == 1) q.w() = Real(1e-4) * n(rng);  // near a half turn
+    if (trial % 4 == 2) q.coeffs()[trial % 3] = 0;    // an exact zero among the kept
+    q.normalize();
+    SeparatedPair s;
+    s.set_rotation(q);
+    const Quat r = s.rotation();
+    const Real sign = q.dot(r) < 0 ? Real(-1) : Real(1);
+    EXPECT_LE((q.coeffs() - sign * r.coeffs()).cwiseAbs().maxCoeff(),
+              4 * std::numeric_limits<Real>::epsilon())
+        << "trial " << trial;
+    if (HasFailure()) return;
+  }
+}
+
 }  // namespace
 }  // namespace elan::detail
