@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "solver/body_lanes.hpp"
 
@@ -82,15 +81,6 @@ inline void apply_twist(const ContactBundle& c, WideBody& a, WideBody& b, Wide t
   const WideVec3 l = twist * c.normal;
   a.w = a.w - c.inv_inertia_a * l;
   b.w = b.w + c.inv_inertia_b * l;
-}
-
-// Whether any lane of the mask is set: one OR over its words, not a branch per lane.
-inline bool any_lane(WideMask m) {
-  uint64_t words[sizeof(WideMask) / sizeof(uint64_t)];
-  std::memcpy(words, &m, sizeof(m));
-  uint64_t any = 0;
-  for (const uint64_t w : words) any |= w;
-  return any != 0;
 }
 
 // The inverse of the 2x2 mass matrix K = J M^-1 J^T of the friction rows at the manifold

@@ -61,8 +61,8 @@ void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverB
 namespace {
 
 // Quaternions across the lanes, with the operations the integrator needs (Hamilton product,
-// rotation of a vector, normalisation); each lane does what the scalar Eigen code would, in a
-// fixed order of its own.
+// rotation of a vector, normalisation). Each lane runs the same formulas in the same order
+// whatever the lane width, so a body's bits do not depend on its lane.
 struct WideQuat {
   Wide w{}, x{}, y{}, z{};
 };
@@ -92,13 +92,6 @@ WideVec3 cwise_quotient(const WideVec3& a, const WideVec3& b) {
   return {a.x / b.x, a.y / b.y, a.z / b.z};
 }
 
-bool any(WideMask m) {
-  for (int l = 0; l < kLanes; ++l) {
-    if (m[l]) return true;
-  }
-  return false;
-}
-
 bool all_of(WideMask m, int count) {
   for (int l = 0; l < count; ++l) {
     if (!m[l]) return false;
@@ -113,7 +106,7 @@ WideQuat exp_map(const WideVec3& w, Real h) {
   WideQuat q{cos_series(y), Wide{}, Wide{}, Wide{}};
   Wide k = Real(0.5) * h * sinc_series(y);
   const WideMask fast = y > kSeriesLimit;
-  if (any(fast)) {
+  if (any_lane(fast)) {
     for (int l = 0; l < kLanes; ++l) {
       if (!fast[l]) continue;
       Real c, k_lane;
@@ -184,7 +177,7 @@ void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyPara
     const WideMask gyro = gyroscopic != 0;
     WideQuat next = dq;
     if (!all_of(gyro, count)) next = normalized(exp_map(w, h) * dq);
-    if (any(gyro)) {
+    if (any_lane(gyro)) {
       // Midpoint rule on the rotation group with L fixed (second order and symmetric, so the
       // energy error stays bounded instead of drifting as with a first-order update):
       //   L = I(q) w,  q_mid = exp(h/2 w) q,  w_mid = I(q_mid)^-1 L,  q' = exp(h w_mid) q,

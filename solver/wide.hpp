@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #if defined(__AVX512F__) && !defined(ELAN_DOUBLE)
 #include <immintrin.h>
@@ -57,6 +58,15 @@ inline Wide wide_sqrt(Wide x) {
   for (int l = 0; l < kLanes; ++l) x[l] = std::sqrt(x[l]);
   return x;
 #endif
+}
+
+// Whether any lane of the mask is set: one OR over its words, not a branch per lane.
+inline bool any_lane(WideMask m) {
+  uint64_t words[sizeof(WideMask) / sizeof(uint64_t)];
+  std::memcpy(words, &m, sizeof(m));
+  uint64_t any = 0;
+  for (const uint64_t w : words) any |= w;
+  return any != 0;
 }
 
 inline Wide dot(const WideVec3& a, const WideVec3& b) {
