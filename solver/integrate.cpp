@@ -6,47 +6,6 @@
 
 namespace elan::detail {
 
-namespace {
-
-// cos x and sin(x)/x as series in y = x^2, Taylor to y^4, for a Real or the Wide lanes. For
-// x <= 1/2 the first term left out is y^5 / 10! < 3e-10, far below float rounding.
-constexpr Real kSeriesLimit = Real(0.25);
-template <class T>
-T cos_series(T y) {
-  return 1 -
-         y * (Real(1.0 / 2) - y * (Real(1.0 / 24) - y * (Real(1.0 / 720) - y * Real(1.0 / 40320))));
-}
-template <class T>
-T sinc_series(T y) {
-  return 1 - y * (Real(1.0 / 6) -
-                  y * (Real(1.0 / 120) - y * (Real(1.0 / 5040) - y * Real(1.0 / 362880))));
-}
-
-// The same for turns beyond the series' range, through libm: c = cos x, k = (h/2) sin(x)/x.
-void libm_coefficients(Real y, Real h, Real& c, Real& k) {
-  const Real x = std::sqrt(y);
-  c = std::cos(x);
-  k = std::sin(x) / x * Real(0.5) * h;
-}
-
-}  // namespace
-
-Quat rotation_from_angular_velocity(const Vec3& w, Real h) {
-  // q = (cos x, sin(x)/x * (h/2) w) with x = |w| h / 2. Both cos and sin(x)/x are even, so
-  // they are series in y = x^2 = |w|^2 h^2 / 4: no square root, no division, no libm, and the
-  // same bits on every platform (libm's sin and cos are not). Faster turns (|w| > 1/h rad/s:
-  // 240 rad/s at 4 substeps of 60 Hz) take the libm route.
-  const Real y = Real(0.25) * h * h * w.squaredNorm();
-  Real c, k;
-  if (y <= kSeriesLimit) {
-    c = cos_series(y);
-    k = Real(0.5) * h * sinc_series(y);
-  } else {
-    libm_coefficients(y, h, c, k);
-  }
-  return Quat(c, k * w.x(), k * w.y(), k * w.z());
-}
-
 void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
                           Real h, uint32_t begin, uint32_t end) {
   for (uint32_t i = begin; i < end; ++i) {
@@ -99,20 +58,28 @@ bool all_of(WideMask m, int count) {
   return true;
 }
 
-// rotation_from_angular_velocity() lane by lane: the polynomial where it holds, libm in the
-// lanes that turn faster.
+// The rotation by angle |w| h about w, lane by lane: q = (cos x, sin(x)/x (h/2) w) with
+// x = |w| h / 2. Both cos and sin(x)/x are even, so they are series in y = x^2 = |w|^2 h^2 / 4,
+// here Taylor to y^4: for x <= 1/2 the first term left out is y^5 / 10! < 3e-10, far below float
+// rounding. No square root, no division, no libm, and the same bits on every platform (libm's sin
+// and cos are not). Lanes that turn faster (|w| > 1/h: 240 rad/s at 4 substeps of 60 Hz) take
+// libm.
 WideQuat exp_map(const WideVec3& w, Real h) {
   const Wide y = Real(0.25) * h * h * dot(w, w);
-  WideQuat q{cos_series(y), Wide{}, Wide{}, Wide{}};
-  Wide k = Real(0.5) * h * sinc_series(y);
-  const WideMask fast = y > kSeriesLimit;
+  const Wide cos_x = 1 - y * (Real(1.0 / 2) -
+                              y * (Real(1.0 / 24) - y * (Real(1.0 / 720) - y * Real(1.0 / 40320))));
+  const Wide sinc_x =
+      1 -
+      y * (Real(1.0 / 6) - y * (Real(1.0 / 120) - y * (Real(1.0 / 5040) - y * Real(1.0 / 362880))));
+  WideQuat q{cos_x, Wide{}, Wide{}, Wide{}};
+  Wide k = Real(0.5) * h * sinc_x;
+  const WideMask fast = y > Real(0.25);
   if (any_lane(fast)) {
     for (int l = 0; l < kLanes; ++l) {
       if (!fast[l]) continue;
-      Real c, k_lane;
-      libm_coefficients(y[l], h, c, k_lane);
-      q.w[l] = c;
-      k[l] = k_lane;
+      const Real x = std::sqrt(y[l]);
+      q.w[l] = std::cos(x);
+      k[l] = std::sin(x) / x * Real(0.5) * h;
     }
   }
   q.x = k * w.x;
@@ -147,6 +114,12 @@ Quat lane(const WideQuat& q, int l) {
 }
 
 }  // namespace
+
+Quat rotation_from_angular_velocity(const Vec3& w, Real h) {
+  WideVec3 lanes;
+  set_lane(lanes, 0, w);
+  return lane(exp_map(lanes, h), 0);
+}
 
 // perf: kLanes packets at once. The scalar loop was a tenth of pile4k's step (the gyroscopic
 // update is two exponentials, six rotations and an inertia per body and substep).
