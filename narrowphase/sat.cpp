@@ -114,6 +114,14 @@ void edge_separations(const Vec3& a, const Vec3& b, const Vec3& bxa, const Vec3&
   }
 }
 
+// Row i of three columns from a vector.
+template <class Column>
+void put(Column& x, Column& y, Column& z, int i, const Vec3& v) {
+  x[i] = v.x();
+  y[i] = v.y();
+  z[i] = v.z();
+}
+
 EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b) {
   EdgeArcs arcs;
   arcs.padded_count = (b.edge_count + kArcBlock - 1) / kArcBlock * kArcBlock;
@@ -121,24 +129,13 @@ EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b) {
     const bool real = eb < b.edge_count;
     const Vec3 c = real ? Vec3(-b.normals[b.edge_faces[eb][0]]) : Vec3::Zero();
     const Vec3 d = real ? Vec3(-b.normals[b.edge_faces[eb][1]]) : Vec3::Zero();
-    const Vec3 dxc = d.cross(c);
-    arcs.cx[eb] = c.x();
-    arcs.cy[eb] = c.y();
-    arcs.cz[eb] = c.z();
-    arcs.dx[eb] = d.x();
-    arcs.dy[eb] = d.y();
-    arcs.dz[eb] = d.z();
-    arcs.nx[eb] = dxc.x();
-    arcs.ny[eb] = dxc.y();
-    arcs.nz[eb] = dxc.z();
+    put(arcs.cx, arcs.cy, arcs.cz, eb, c);
+    put(arcs.dx, arcs.dy, arcs.dz, eb, d);
+    put(arcs.nx, arcs.ny, arcs.nz, eb, d.cross(c));
     const Vec3 pb = real ? b.vertices[b.edges[eb][0]] : Vec3::Zero();
     const Vec3 ub = real ? Vec3(b.vertices[b.edges[eb][1]] - pb) : Vec3::Zero();
-    arcs.px[eb] = pb.x();
-    arcs.py[eb] = pb.y();
-    arcs.pz[eb] = pb.z();
-    arcs.ux[eb] = ub.x();
-    arcs.uy[eb] = ub.y();
-    arcs.uz[eb] = ub.z();
+    put(arcs.px, arcs.py, arcs.pz, eb, pb);
+    put(arcs.ux, arcs.uy, arcs.uz, eb, ub);
     arcs.u_len2[eb] = ub.squaredNorm();
   }
   alignas(64) std::array<Real, kMaxPolyEdges + kArcBlock> separation;

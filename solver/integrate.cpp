@@ -51,6 +51,11 @@ WideVec3 cwise_quotient(const WideVec3& a, const WideVec3& b) {
   return {a.x / b.x, a.y / b.y, a.z / b.z};
 }
 
+// Per lane: a where the mask is set, else b.
+WideQuat select(WideMask m, const WideQuat& a, const WideQuat& b) {
+  return {m ? a.w : b.w, m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
+}
+
 bool all_of(WideMask m, int count) {
   for (int l = 0; l < count; ++l) {
     if (!m[l]) return false;
@@ -162,8 +167,7 @@ void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyPara
       const WideQuat turned = normalized(exp_map(w_mid, h) * dq);
       const WideQuat after = turned * q0;
       const WideVec3 w_after = rotate(after, cwise_quotient(rotate(after, l_world, -1), d));
-      next = {gyro ? turned.w : next.w, gyro ? turned.x : next.x, gyro ? turned.y : next.y,
-              gyro ? turned.z : next.z};
+      next = select(gyro, turned, next);
       w = select(gyro, w_after, w);
       // Impulses from here on change w through the inertia of the current orientation, so
       // that the L read back above next substep grows by exactly r x P.
