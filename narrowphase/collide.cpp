@@ -7,6 +7,7 @@
 
 #include "narrowphase/general.hpp"
 #include "narrowphase/gjk.hpp"
+#include "narrowphase/minkowski.hpp"
 #include "narrowphase/round_pairs.hpp"
 #include "narrowphase/sat.hpp"
 
@@ -41,21 +42,28 @@ bool collide_sat(const Shape& a, const Transform& xa, const Shape& b, const Tran
 
 bool collide_capsule_poly(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                           Real speculative_distance, Manifold& out, Separation* separation) {
-  Polyhedron pb;
-  make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
   const Vec3 axis = xa.rotation * Vec3(0, a.half_height, 0);
+  const Vec3 offset = xb.position - xa.position;  // B's centre in the working frame
   // SAT measures the depth of an overlapping segment exactly; a segment apart from the box
-  // (only the radius overlaps) needs the true closest points, which GJK gives.
-  const GjkResult g = gjk_distance(a, xa, b, xb, false);
-  if (!g.overlap && g.distance > Real(1e-6) * (a.half_height + a.radius)) {
-    if (g.distance - a.radius > speculative_distance) {
-      report_separation(separation, Separation::Kind::Distance, g.lower_bound - a.radius);
-      return false;
-    }
-    const Vec3 normal = (g.point_b - g.point_a) / g.distance;
-    return collide_segment_polyhedron_separated(-axis, axis, a.radius, pb, normal,
-                                                g.point_a - xa.position, g.point_b - xa.position,
-                                                speculative_distance, out);
+  // (only the radius overlaps) needs the true closest points, which GJK gives. GJK runs in B's
+  // frame, and B's polyhedron is built only for a pair within reach.
+  const Quat to_b = xb.rotation.conjugate();
+  const Vec3 centre = to_b * Vec3(-offset), half = to_b * axis;
+  const Vec3 ends[2] = {centre - half, centre + half};
+  Simplex simplex;
+  const GjkResult g = gjk_core_in_frame_of_b(ends, b, simplex);
+  const bool apart = !g.overlap && g.distance > Real(1e-6) * (a.half_height + a.radius);
+  if (apart && g.distance - a.radius > speculative_distance) {
+    report_separation(separation, Separation::Kind::Distance, g.lower_bound - a.radius);
+    return false;
+  }
+  Polyhedron pb;
+  make_polyhedron(b, xb.rotation, offset, pb);
+  if (apart) {
+    const Vec3 normal = xb.rotation * ((g.point_b - g.point_a) / g.distance);
+    return collide_segment_polyhedron_separated(
+        -axis, axis, a.radius, pb, normal, xb.rotation * g.point_a + offset,
+        xb.rotation * g.point_b + offset, speculative_distance, out);
   }
   return collide_segment_polyhedron(-axis, axis, a.radius, pb, speculative_distance, out);
 }

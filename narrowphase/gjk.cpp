@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "narrowphase/minkowski.hpp"
 
@@ -174,39 +175,40 @@ Real core_radius(const Shape& s) {
   return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ? s.radius : Real(0);
 }
 
-Vec3 support_world(const PlacedShape& p, const Vec3& d) {
-  const Shape& s = *p.shape;
-  const Vec3 dl = p.rotation.transpose() * d;
-  Vec3 local;
+Vec3 core_support(const Shape& s, const Vec3& d) {
   switch (s.type) {
     case ShapeType::Sphere:
-      local = Vec3::Zero();
-      break;
+      return Vec3::Zero();
     case ShapeType::Capsule:
-      local = Vec3(0, dl.y() >= 0 ? s.half_height : -s.half_height, 0);
-      break;
+      return Vec3(0, d.y() >= 0 ? s.half_height : -s.half_height, 0);
     default:
-      return p.rotation * support(s, dl) + p.position;
+      return support(s, d);
   }
-  Vec3 out = p.rotation * local + p.position;
+}
+
+Vec3 support_world(const PlacedShape& p, const Vec3& d) {
+  const Shape& s = *p.shape;
+  Vec3 out = p.rotation * core_support(s, p.rotation.transpose() * d) + p.position;
   // A rounded shape is its core swept by a sphere: the sphere's support adds r d/|d|.
-  if (p.include_radius) {
+  if (p.include_radius && core_radius(s) > 0) {
     const Real len = d.norm();
     if (len > 0) out += d * (s.radius / len);
   }
   return out;
 }
 
-GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
-                     Simplex& s) {
+namespace {
+
+// GJK over any support of the Minkowski difference: support(d) is the SimplexVertex of A's
+// support along d and B's along -d. `d` points from A towards B: v is the current closest point
+// of the simplex to the origin and GJK searches along -v, which for separated shapes is about
+// the direction from A to B (v ~ a - b), so d seeds the search.
+template <class Support>
+GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s) {
   GjkResult result;
-  // v is the current closest point of the simplex to the origin; GJK searches along -v. A
-  // direction from A to B is -v for separated shapes (v ~ a - b), so it seeds the search.
-  Vec3 d = initial_direction;
-  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
-  if (!(d.squaredNorm() > 0)) d = Vec3::UnitY();
+  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = Vec3::UnitY();
   s.count = 1;
-  s.v[0] = support_minkowski(a, b, d);
+  s.v[0] = support(d);
   s.lambda[0] = 1;
   Vec3 v = s.v[0].w;
   Real vv = v.squaredNorm();
@@ -221,7 +223,7 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
       result.overlap = true;
       break;
     }
-    const SimplexVertex w = support_minkowski(a, b, -v);
+    const SimplexVertex w = support(Vec3(-v));
     searched_vw = v.dot(w.w);
     searched_vv = vv;
     if (vv - searched_vw <= kRelTol * vv) break;
@@ -251,6 +253,28 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
     result.lower_bound = std::min(result.distance, searched_vw / std::sqrt(searched_vv));
   }
   return result;
+}
+
+}  // namespace
+
+GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
+                     Simplex& s) {
+  Vec3 d = initial_direction;
+  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
+  return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s);
+}
+
+GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Simplex& s) {
+  const Vec3 end = core[core.size() - 1] - core[0];
+  auto support_core = [&](const Vec3& d) {
+    SimplexVertex v;
+    v.a = d.dot(end) > 0 ? core[core.size() - 1] : core[0];
+    v.b = core_support(b, -d);
+    v.w = v.a - v.b;
+    return v;
+  };
+  // From the core's middle towards B's centre.
+  return run_gjk(support_core, Vec3(Real(-0.5) * (core[0] + core[core.size() - 1])), s);
 }
 
 GjkResult gjk_distance(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,

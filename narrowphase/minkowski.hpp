@@ -2,6 +2,8 @@
 // full), the simplex GJK hands to EPA, and the core-based penetration query.
 #pragma once
 
+#include <span>
+
 #include "core/base/shape.hpp"
 #include "narrowphase/gjk.hpp"
 
@@ -19,6 +21,10 @@ PlacedShape place(const Shape& s, const Transform& x, bool include_radius);
 
 // Radius that rounds the core (sphere: point, capsule: segment); 0 for other shapes.
 Real core_radius(const Shape& s);
+
+// Support of the shape's core in its principal frame: a sphere's centre, a capsule's segment, any
+// other shape itself.
+Vec3 core_support(const Shape& s, const Vec3& d);
 
 // World support point of the placed shape in world direction d (need not be unit).
 Vec3 support_world(const PlacedShape& p, const Vec3& d);
@@ -46,6 +52,12 @@ inline SimplexVertex support_minkowski(const PlacedShape& a, const PlacedShape& 
 // GJK on two placed shapes; leaves the terminating simplex in `out_simplex`.
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                      Simplex& out_simplex);
+
+// GJK between a point or a segment (`core`: one point, or the two ends) and the core of `b`, all
+// in B's principal frame, as are the result's points. perf: B's support then needs no rotation
+// and the segment's is a choice of end; the sphere and capsule pairs with hulls and boxes spent
+// half their GJK time rotating directions and points.
+GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Simplex& s);
 
 // EPA on the placed shapes from GJK's terminating simplex (origin in or on it).
 EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& simplex);

@@ -229,10 +229,11 @@ bool collide_sphere_box(const Shape& a, const Transform& xa, const Shape& b, con
 // added to the core result (exact for rounded shapes).
 bool collide_sphere_convex(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                            Real speculative_distance, Manifold& out, Separation* separation) {
-  const PlacedShape pa = place(a, xa, false), pb = place(b, xb, false);
+  // In B's frame (see gjk_core_in_frame_of_b); the results are turned back to the world.
+  const Vec3 centre = xb.rotation.conjugate() * (xa.position - xb.position);
   const Real radii = a.radius + core_radius(b);
   Simplex s;
-  const GjkResult g = gjk_placed(pa, pb, xb.position - xa.position, s);
+  const GjkResult g = gjk_core_in_frame_of_b(std::span<const Vec3>(&centre, 1), b, s);
   begin(out, Vec3::UnitY());
   Vec3 n, point_b;
   Real sep;
@@ -245,13 +246,17 @@ bool collide_sphere_convex(const Shape& a, const Transform& xa, const Shape& b, 
     n = (g.point_b - g.point_a) / g.distance;
     point_b = g.point_b;
   } else {
-    const EpaResult e = epa_placed(pa, pb, s);
+    const Transform in_b{Vec3::Zero(), Quat::Identity()};
+    const EpaResult e =
+        epa_placed(place(a, {centre, Quat::Identity()}, false), place(b, in_b, false), s);
     n = e.normal;
     sep = -e.depth - radii;
     point_b = e.point_b;
   }
+  n = xb.rotation * n;
   out.normal = n;
-  add_point(out, xa.position + a.radius * n, point_b - core_radius(b) * n, sep, 0, xa.position,
+  add_point(out, xa.position + a.radius * n,
+            xb.rotation * point_b + xb.position - core_radius(b) * n, sep, 0, xa.position,
             xb.position);
   return true;
 }

@@ -1,11 +1,13 @@
 // GJK distance and closest points against closed forms and an exact polytope oracle.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
 
 #include "narrowphase/gjk.hpp"
+#include "narrowphase/minkowski.hpp"
 #include "narrowphase_oracle.hpp"
 #include "narrowphase_test_shapes.hpp"
 
@@ -130,6 +132,57 @@ TEST(Gjk, MatchesExactDistanceOnRandomHulls) {
   }
   EXPECT_GT(disjoint, 100);
   EXPECT_GT(overlapping, 50);
+}
+
+// The sphere and capsule pairs with boxes and hulls run GJK on the cores in B's frame
+// (gjk_core_in_frame_of_b). Moved back to the world, its answer must be the world-frame GJK's,
+// which the tests above hold to closed forms and the exact polytope distance.
+TEST(Gjk, CoreInFrameOfBMatchesTheWorldFrame) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int apart = 0, overlapping = 0;
+  for (int i = 0; i < 400; ++i) {
+    const bool segment = i % 2 == 0;
+    const Shape a = segment ? capsule(0.2, Real(0.2 + 0.4 * (u(rng) + 1))) : sphere(0.3);
+    const Shape b = i % 3 == 0 ? box(0.5, 0.3, 0.8) : oracle::random_hull(rng, 8 + i % 24, 0.8);
+    const double reach = i % 3 == 1 ? 0.3 : 1.6;  // a third close enough to overlap
+    const Transform xa = at(Real(reach * u(rng)), Real(reach * u(rng)), Real(reach * u(rng)),
+                            oracle::random_rotation(rng));
+    const Transform xb = at(Real(0.2 * u(rng)), Real(0.2 * u(rng)), Real(0.2 * u(rng)),
+                            oracle::random_rotation(rng));
+    const GjkResult ref = gjk_distance(a, xa, b, xb, false);
+    const Quat to_b = xb.rotation.conjugate();
+    const Vec3 centre = to_b * (xa.position - xb.position);
+    const Vec3 half = to_b * (xa.rotation * Vec3(0, a.half_height, 0));
+    const Vec3 ends[2] = {centre - half, centre + half};
+    Simplex simplex;
+    const GjkResult g = gjk_core_in_frame_of_b(
+        segment ? std::span<const Vec3>(ends, 2) : std::span<const Vec3>(&centre, 1), b, simplex);
+    expect_finite(g);
+    if (ref.distance > 1e-3) {
+      ++apart;
+      ASSERT_FALSE(g.overlap) << i;
+      EXPECT_NEAR(g.distance, ref.distance, 1e-4 * ref.distance + 1e-6) << i;
+      EXPECT_LE(g.lower_bound, g.distance) << i;
+      // As tight as the distance, to the float rounding of dot products of points a metre or two
+      // from the origin (a few 1e-7 m each, summed over GJK's last search).
+      EXPECT_GE(g.lower_bound, ref.distance * (1 - 1e-4) - 3e-5) << i;
+      // The witness on A lies on its core, the one on B at the distance from it.
+      const Vec3 on_a = xb.rotation * g.point_a + xb.position;
+      const Vec3 on_b = xb.rotation * g.point_b + xb.position;
+      const Vec3 axis = xa.rotation * Vec3(0, a.half_height, 0);
+      const Real t = segment ? std::clamp((on_a - xa.position).dot(axis) / axis.squaredNorm(),
+                                          Real(-1), Real(1))
+                             : Real(0);
+      EXPECT_LT((on_a - (xa.position + t * axis)).norm(), 1e-4) << i;
+      EXPECT_NEAR((on_b - on_a).norm(), ref.distance, 1e-4 * ref.distance + 1e-6) << i;
+    } else if (ref.overlap) {
+      ++overlapping;
+      EXPECT_TRUE(g.overlap || g.distance < 1e-4) << i;
+    }
+  }
+  EXPECT_GT(apart, 100);
+  EXPECT_GT(overlapping, 40);
 }
 
 TEST(Gjk, WarmStartGivesTheSameDistance) {
