@@ -438,19 +438,40 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
   return face_contact(a, fa.face, b, true, speculative_distance, b.centre, out);
 }
 
+SegmentFaceQuery query_segment_faces(const Vec3& s0, const Vec3& s1, const Polyhedron& b) {
+  SegmentFaceQuery q;
+  for (int f = 0; f < b.face_count; ++f) {
+    const Vec3& n = b.normals[f];
+    const Real h0 = n.dot(s0), h1 = n.dot(s1);
+    const Real s = std::min(h0, h1) - b.offsets[f];
+    if (s > q.separation) {
+      q.separation = s;
+      q.face = f;
+      q.nearest = h0 <= h1 ? s0 : s1;
+    }
+  }
+  if (q.face < 0) return q;
+  // The foot of `nearest` is on the face when it is inside every side plane; the loop is
+  // counter-clockwise seen along -n, so (v1 - v0) x n points out of the face.
+  const Vec3& n = b.normals[q.face];
+  const uint32_t first = b.face_first[q.face], count = b.face_count_of[q.face];
+  q.foot_on_face = true;
+  for (uint32_t k = 0; k < count && q.foot_on_face; ++k) {
+    const Vec3& v0 = b.vertices[b.face_vertices[first + k]];
+    const Vec3& v1 = b.vertices[b.face_vertices[first + (k + 1) % count]];
+    q.foot_on_face = (v1 - v0).cross(n).dot(q.nearest - v0) <= 0;
+  }
+  return q;
+}
+
 bool collide_segment_polyhedron(const Vec3& s0, const Vec3& s1, Real radius, const Polyhedron& b,
                                 Real speculative_distance, Manifold& out) {
   out.point_count = 0;
   const Vec3 u = s1 - s0;
+  const SegmentFaceQuery sq = query_segment_faces(s0, s1, b);
   FaceQuery fq;
-  for (int f = 0; f < b.face_count; ++f) {
-    const Vec3& n = b.normals[f];
-    const Real s = std::min(n.dot(s0), n.dot(s1)) - b.offsets[f] - radius;
-    if (s > fq.separation) {
-      fq.separation = s;
-      fq.face = f;
-    }
-  }
+  fq.face = sq.face;
+  fq.separation = sq.separation - radius;
   if (fq.separation > speculative_distance) return false;
 
   // The segment's Gauss map is the great circle normal to u; it crosses the arc of B's edge

@@ -3,6 +3,8 @@
 // "Robust Contact Creation for Physics Simulations", GDC 2015).
 #pragma once
 
+#include <limits>
+
 #include "core/base/contact.hpp"
 #include "narrowphase/polyhedron.hpp"
 #include "narrowphase/separation.hpp"
@@ -21,6 +23,18 @@ inline constexpr uint32_t kFeatureSegment = 3u << 30;  // capsule segment or gen
 // A rejection on a face of A or of B reports that face's gap to `separation` (collide.hpp).
 bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculative_distance,
                        Manifold& out, Separation* separation = nullptr);
+
+// B's face of largest separation from the segment s0-s1 (the height of its nearer end above the
+// face's plane) and whether the foot of that end lies on the face. When it does and the
+// separation is positive, the separation is the segment's distance to B, `nearest` and its foot
+// the closest points: B lies behind the face's plane, so nothing of B is nearer.
+struct SegmentFaceQuery {
+  int face = -1;
+  Real separation = std::numeric_limits<Real>::lowest();
+  Vec3 nearest = Vec3::Zero();  // the segment's end nearer the face's plane
+  bool foot_on_face = false;
+};
+SegmentFaceQuery query_segment_faces(const Vec3& s0, const Vec3& s1, const Polyhedron& b);
 
 // Capsule A (segment s0-s1 in the working frame, origin at its centre, `radius`) against
 // polyhedron B; same output conventions.

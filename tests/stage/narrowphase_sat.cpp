@@ -2,6 +2,10 @@
 // for face, edge and vertex contacts; hulls must agree with the boxes they equal.
 #include <gtest/gtest.h>
 
+#include <random>
+
+#include "narrowphase/gjk.hpp"
+#include "narrowphase/sat.hpp"
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
@@ -190,6 +194,39 @@ TEST(SatPolyhedra, DegenerateInputStaysFinite) {
     test::expect_sane(m, c.xa, c.xb);
     EXPECT_GE(m.point_count, 1);
   }
+}
+
+// Over one of the box's faces (the foot of its nearer end on the face), a segment is exactly as
+// far from the box as that end is above the face, and the capsule pairs take that distance
+// without GJK; beside the faces, the best face's separation is only a lower bound of it. Both
+// against GJK's distance of the capsule's core, for 600 random segments around a box.
+TEST(SatSegment, FaceQueryGivesTheDistanceOverAFaceAndABoundBesideIt) {
+  const Shape box = test::box(1, Real(0.5), Real(0.75));
+  const Quat turn = axis_angle(Real(0.4), Vec3(1, 2, 3));
+  Polyhedron poly;
+  make_polyhedron(box, turn, Vec3::Zero(), poly);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  int over = 0, beside = 0;
+  for (int i = 0; i < 600; ++i) {
+    const Vec3 centre = turn * Vec3(2 * u(rng), Real(1.1) + Real(0.5) * u(rng), Real(1.5) * u(rng));
+    const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
+    const Real half = Real(0.35) + Real(0.25) * u(rng);
+    const SegmentFaceQuery q = query_segment_faces(centre - half * dir, centre + half * dir, poly);
+    const Shape core = test::capsule(Real(0.1), half);
+    const Transform xc{centre, Quat::FromTwoVectors(Vec3::UnitY(), dir)};
+    const GjkResult g = gjk_distance(core, xc, box, Transform{Vec3::Zero(), turn}, false);
+    if (g.overlap) continue;
+    if (q.foot_on_face && q.separation > 0) {
+      ++over;
+      EXPECT_NEAR(q.separation, g.distance, kDepthTol) << i;
+    } else {
+      ++beside;
+      EXPECT_LE(q.separation, g.distance + kDepthTol) << i;
+    }
+  }
+  EXPECT_GT(over, 100);
+  EXPECT_GT(beside, 100);
 }
 
 }  // namespace
