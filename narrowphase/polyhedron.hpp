@@ -33,6 +33,20 @@ struct Polyhedron {
   Vec3 centre = Vec3::Zero();  // the centre of mass, inside the solid
 };
 
+// Whether the foot of p on the plane of a face (unit outward normal n, vertex loop `loop` of
+// `count` indices into `vertices`, counter-clockwise seen from outside) lies on the face: inside
+// every side plane, as (v1 - v0) x n points out of the face.
+template <class Vertices>
+bool foot_on_face(const Vertices& vertices, const uint32_t* loop, uint32_t count, const Vec3& n,
+                  const Vec3& p) {
+  for (uint32_t k = 0; k < count; ++k) {
+    const Vec3& v0 = vertices[loop[k]];
+    const Vec3& v1 = vertices[loop[(k + 1) % count]];
+    if ((v1 - v0).cross(n).dot(p - v0) > 0) return false;
+  }
+  return true;
+}
+
 // True when `shape` is a box or a hull that fits the buffers above.
 bool is_sat_polyhedron(const Shape& shape);
 

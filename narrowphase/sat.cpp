@@ -450,16 +450,9 @@ SegmentFaceQuery query_segment_faces(const Vec3& s0, const Vec3& s1, const Polyh
       q.nearest = h0 <= h1 ? s0 : s1;
     }
   }
-  if (q.face < 0) return q;
-  // The foot of `nearest` is on the face when it is inside every side plane; the loop is
-  // counter-clockwise seen along -n, so (v1 - v0) x n points out of the face.
-  const Vec3& n = b.normals[q.face];
-  const uint32_t first = b.face_first[q.face], count = b.face_count_of[q.face];
-  q.foot_on_face = true;
-  for (uint32_t k = 0; k < count && q.foot_on_face; ++k) {
-    const Vec3& v0 = b.vertices[b.face_vertices[first + k]];
-    const Vec3& v1 = b.vertices[b.face_vertices[first + (k + 1) % count]];
-    q.foot_on_face = (v1 - v0).cross(n).dot(q.nearest - v0) <= 0;
+  if (q.face >= 0) {
+    q.foot_on_face = foot_on_face(b.vertices, b.face_vertices + b.face_first[q.face],
+                                  b.face_count_of[q.face], b.normals[q.face], q.nearest);
   }
   return q;
 }

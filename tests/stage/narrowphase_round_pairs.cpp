@@ -1,8 +1,10 @@
 // Closed-form round-shape and plane manifolds: depth, normal, points, feature ids, degeneracies.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "narrowphase/manifold_reduce.hpp"
@@ -175,6 +177,31 @@ TEST(RoundPairs, SphereConvexMatchesSphereBox) {
     EXPECT_NEAR(m.points[0].separation, ref.points[0].separation, 1e-4);
     EXPECT_TRUE(m.normal.isApprox(ref.normal, Real(1e-3)));
   }
+  // Everywhere around and inside the cube (over a face: the face's distance; beside the faces:
+  // GJK; inside: the nearest face's depth), against the closed form. The normals are compared
+  // away from the cube's diagonal planes, where two faces are equally near and either is right.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<Real> u(Real(-1.6), Real(1.6));
+  int over = 0, beside = 0, inside = 0;
+  for (int i = 0; i < 600; ++i) {
+    const Vec3 local(u(rng), u(rng), u(rng));
+    Transform xa;
+    xa.position = xb.apply(local);
+    ASSERT_TRUE(collide_sphere_convex(sphere(0.35), xa, hull, xb, 10, m)) << i;
+    ASSERT_TRUE(collide_sphere_box(sphere(0.35), xa, cube, xb, 10, ref)) << i;
+    EXPECT_NEAR(m.points[0].separation, ref.points[0].separation, 1e-4) << i;
+    const Vec3 a = local.cwiseAbs();
+    const int outside = (a.array() > 1).count();
+    outside == 0 ? ++inside : outside == 1 ? ++over : ++beside;
+    Real sorted[3] = {a.x(), a.y(), a.z()};
+    std::sort(sorted, sorted + 3);
+    if (outside > 0 || sorted[2] - sorted[1] > Real(1e-3)) {
+      EXPECT_TRUE(m.normal.isApprox(ref.normal, Real(1e-3))) << i;
+    }
+  }
+  EXPECT_GT(over, 100);
+  EXPECT_GT(beside, 100);
+  EXPECT_GT(inside, 20);
   // Against a cylinder side: the gap is the radial distance minus both radii.
   ASSERT_TRUE(collide_sphere_convex(sphere(0.2), at(0.65, 0.1, 0), cylinder(0.5, 1), at(0, 0, 0),
                                     kSpec, m));
