@@ -11,10 +11,10 @@ namespace {
 // from outside; edges with the two faces that share them.
 constexpr uint32_t kBoxLoops[24] = {1, 3, 7, 5, 0, 4, 6, 2, 2, 6, 7, 3,
                                     0, 1, 5, 4, 4, 5, 7, 6, 0, 2, 3, 1};
-constexpr uint32_t kBoxEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
-                                       {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-constexpr uint32_t kBoxEdgeFaces[12][2] = {{3, 5}, {2, 5}, {3, 4}, {2, 4}, {1, 5}, {0, 5},
-                                           {1, 4}, {0, 4}, {1, 3}, {0, 3}, {1, 2}, {0, 2}};
+constexpr std::array<uint32_t, 2> kBoxEdges[12] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                                   {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+constexpr std::array<uint32_t, 2> kBoxEdgeFaces[12] = {
+    {3, 5}, {2, 5}, {3, 4}, {2, 4}, {1, 5}, {0, 5}, {1, 4}, {0, 4}, {1, 3}, {0, 3}, {1, 2}, {0, 2}};
 
 void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& out) {
   const Vec3& h = box.half_extents;
@@ -39,10 +39,8 @@ void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& o
     out.face_count_of[f] = 4;
   }
   out.face_vertices = kBoxLoops;
-  for (int e = 0; e < 12; ++e) {
-    out.edges[e] = {kBoxEdges[e][0], kBoxEdges[e][1]};
-    out.edge_faces[e] = {kBoxEdgeFaces[e][0], kBoxEdgeFaces[e][1]};
-  }
+  out.edges = kBoxEdges;
+  out.edge_faces = kBoxEdgeFaces;
   out.centre = centre;
 }
 
@@ -63,10 +61,8 @@ void make_hull(const ConvexHull& hull, const Mat3& r, const Vec3& centre, Polyhe
     out.face_first[f] = face.first;
     out.face_count_of[f] = face.count;
   }
-  for (int e = 0; e < out.edge_count; ++e) {
-    out.edges[e] = hull.edges[e];
-    out.edge_faces[e] = hull.edge_faces[e];
-  }
+  out.edges = hull.edges.data();
+  out.edge_faces = hull.edge_faces.data();
   out.centre = centre;
 }
 

@@ -28,8 +28,9 @@ struct Polyhedron {
   std::array<uint32_t, kMaxPolyFaces> face_first;
   std::array<uint32_t, kMaxPolyFaces> face_count_of;
   const uint32_t* face_vertices = nullptr;  // loops, counter-clockwise seen from outside
-  std::array<std::array<uint32_t, 2>, kMaxPolyEdges> edges;
-  std::array<std::array<uint32_t, 2>, kMaxPolyEdges> edge_faces;
+  // Topology, the shape's own (a hull's, or the unit box's): not copied per placement.
+  const std::array<uint32_t, 2>* edges = nullptr;
+  const std::array<uint32_t, 2>* edge_faces = nullptr;
   Vec3 centre = Vec3::Zero();  // the centre of mass, inside the solid
 };
 
