@@ -42,6 +42,10 @@ void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& o
   out.edges = kBoxEdges;
   out.edge_faces = kBoxEdgeFaces;
   out.centre = centre;
+  out.half_axes[0] = ax;
+  out.half_axes[1] = ay;
+  out.half_axes[2] = az;
+  out.is_box = true;
 }
 
 // The hull placed in the world; its edge-to-face adjacency was built once with the hull.
@@ -64,6 +68,7 @@ void make_hull(const ConvexHull& hull, const Mat3& r, const Vec3& centre, Polyhe
   out.edges = hull.edges.data();
   out.edge_faces = hull.edge_faces.data();
   out.centre = centre;
+  out.is_box = false;
 }
 
 }  // namespace

@@ -32,6 +32,9 @@ struct Polyhedron {
   const std::array<uint32_t, 2>* edges = nullptr;
   const std::array<uint32_t, 2>* edge_faces = nullptr;
   Vec3 centre = Vec3::Zero();  // the centre of mass, inside the solid
+  // A box's half axes (rotation columns times half extents); zero for a hull.
+  Vec3 half_axes[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  bool is_box = false;
 };
 
 // Whether the foot of p on the plane of a face (unit outward normal n, vertex loop `loop` of

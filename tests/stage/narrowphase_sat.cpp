@@ -196,6 +196,47 @@ TEST(SatPolyhedra, DegenerateInputStaysFinite) {
   }
 }
 
+// Two boxes take their edge axes in closed form (nine direction pairs); the same boxes as hulls
+// take the Gauss-map query over all edge pairs. Over random poses near contact the two must
+// agree: the same kind of contact, normal, points and depths.
+TEST(SatPolyhedra, BoxEdgeAxesMatchTheGaussMapQuery) {
+  const Shape a = test::box(Real(0.6), Real(0.3), Real(0.45));
+  const Shape b = test::box(Real(0.4), Real(0.5), Real(0.2));
+  const Shape ha = test::box_hull(Real(0.6), Real(0.3), Real(0.45));
+  const Shape hb = test::box_hull(Real(0.4), Real(0.5), Real(0.2));
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  int edge_contacts = 0, compared = 0;
+  for (int i = 0; i < 800; ++i) {
+    const Quat qa = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+    const Quat qb = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+    const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
+    // Centres a little nearer than the boxes reach along dir (their supports along it touch).
+    Real reach = 0;
+    for (int k = 0; k < 3; ++k) {
+      reach += std::abs(dir.dot(qa * (Vec3::Unit(k) * a.half_extents[k])));
+      reach += std::abs(dir.dot(qb * (Vec3::Unit(k) * b.half_extents[k])));
+    }
+    const Transform xa = pose(Vec3(1, 2, 3), qa);
+    const Transform xb = pose(Vec3(1, 2, 3) + (reach - Real(0.08) + Real(0.06) * u(rng)) * dir, qb);
+    Manifold box_m, hull_m;
+    const bool box_hit = collide(a, xa, b, xb, Real(0.02), box_m);
+    const bool hull_hit = collide(ha, xa, hb, xb, Real(0.02), hull_m);
+    ASSERT_EQ(box_hit, hull_hit) << i;
+    if (!box_hit) continue;
+    ++compared;
+    edge_contacts += (box_m.points[0].feature_id >> 30) == (kFeatureEdges >> 30);
+    ASSERT_EQ(box_m.point_count, hull_m.point_count) << i;
+    EXPECT_LT((box_m.normal - hull_m.normal).norm(), 1e-4) << i;
+    for (int k = 0; k < box_m.point_count; ++k) {
+      EXPECT_NEAR(box_m.points[k].separation, hull_m.points[k].separation, kDepthTol) << i;
+      EXPECT_LT((box_m.points[k].anchor_a - hull_m.points[k].anchor_a).norm(), 1e-4) << i;
+    }
+  }
+  EXPECT_GT(compared, 250);
+  EXPECT_GT(edge_contacts, 50) << compared;
+}
+
 // Over one of the box's faces (the foot of its nearer end on the face), a segment is exactly as
 // far from the box as that end is above the face, and the capsule pairs take that distance
 // without GJK; beside the faces, the best face's separation is only a lower bound of it. Both
