@@ -226,8 +226,9 @@ bool collide_sphere_box(const Shape& a, const Transform& xa, const Shape& b, con
   return true;
 }
 
-// GJK between the sphere's centre and B's core; EPA when the centre is inside B. Radii are
-// added to the core result (exact for rounded shapes).
+// The sphere's centre against B's core: a hull's face when the centre stands over it or is
+// inside the hull, otherwise GJK, and EPA when the centre is inside another shape (a cylinder).
+// Radii are added to the core result (exact for rounded shapes).
 bool collide_sphere_convex(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                            Real speculative_distance, Manifold& out, Separation* separation) {
   // In B's frame (see gjk_core_in_frame_of_b); the results are turned back to the world.
