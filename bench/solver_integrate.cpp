@@ -20,6 +20,7 @@ struct Bodies {
   BodyStore store;
   std::vector<SolverBody> packets;
   std::vector<SolverBodyParams> params;
+  std::vector<SolverBodyMass> masses;
 };
 
 // N tumbling boxes (half extents 0.1/0.3/0.6 when `anisotropic`, else cubes), packets 1..N.
@@ -29,6 +30,7 @@ Bodies make_bodies(std::size_t n, bool anisotropic) {
   std::uniform_real_distribution<float> u(-1, 1);
   b.packets.resize(n + 1);
   b.params.resize(n + 1);
+  b.masses.resize(n + 1);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t k = b.store.push_back();
     Quat q(1, u(rng), u(rng), u(rng));
@@ -36,7 +38,7 @@ Bodies make_bodies(std::size_t n, bool anisotropic) {
     b.store.set_orientation(k, q);
     SolverBodyParams& p = b.params[k + 1];
     p.body = uint32_t(k);
-    p.inv_mass = 1;
+    b.masses[k + 1].inv_mass = 1;
     p.delta_v_per_s = Vec3(0, Real(-9.81), 0);
     p.inertia = anisotropic ? Vec3(Real(0.15), Real(0.12), Real(0.03)) : Vec3::Constant(Real(0.1));
     p.gyroscopic = anisotropic;
@@ -55,8 +57,9 @@ void integrate(benchmark::State& state, bool anisotropic) {
   for (auto _ : state) {
     arena.execute([&] {
       for_blocks(n, kGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
-        integrate_velocities(b.packets, b.params, h, uint32_t(begin + 1), uint32_t(end + 1));
-        integrate_positions(b.packets, b.params, b.store, h, uint32_t(begin + 1),
+        integrate_velocities(b.packets, b.params, b.masses, h, uint32_t(begin + 1),
+                             uint32_t(end + 1));
+        integrate_positions(b.packets, b.params, b.masses, b.store, h, uint32_t(begin + 1),
                             uint32_t(end + 1));
       });
     });

@@ -1,7 +1,8 @@
 // Loads and stores of the bodies on one side of a contact bundle: lane l of the wide values is
-// the solver body packets[l]. gather_velocity reads v and w, gather_pose dp and dtheta, and
-// scatter_velocity writes v and w back to the lanes flagged `write` only (static, kinematic and
-// unused sides are read-only). The packets of a bundle are scattered in memory.
+// the solver body packets[l]. gather_velocity reads v and w, gather_pose dp and dtheta,
+// gather_mass the inverse mass and inertia, and scatter_velocity writes v and w back to the
+// lanes flagged `write` only (static, kinematic and unused sides are read-only). The packets of a
+// bundle are scattered in memory.
 #pragma once
 
 #include <cstddef>
@@ -22,6 +23,12 @@ struct WideBody {
   WideVec3 v, w;
 };
 
+// Inverse masses and world inverse inertias of the kLanes bodies on one side of a bundle.
+struct WideMass {
+  Wide inv_mass{};
+  WideSym3 inv_inertia;
+};
+
 #if defined(ELAN_TRANSPOSED_LANES)
 // perf: inserting the 6 velocity components lane by lane was a quarter of solve_contacts on
 // jolt_pyramid. A body's v and w are its first six floats, so each lane loads them (and two
@@ -33,6 +40,10 @@ static_assert(kLanes == 16 && sizeof(SolverBody) == 64);
 static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(Real) &&
               offsetof(SolverBody, dtheta) == offsetof(SolverBody, dp) + 3 * sizeof(Real) &&
               offsetof(SolverBody, dp) + 8 * sizeof(Real) <= sizeof(SolverBody));
+static_assert(sizeof(SolverBodyMass) == 8 * sizeof(Real) &&
+              offsetof(SolverBodyMass, inv_mass) == 0 &&
+              offsetof(SolverBodyMass, inv_inertia) == sizeof(Real) &&
+              sizeof(SymMat3) == 6 * sizeof(Real));
 
 inline void transpose_8x8_halves(const __m512 in[8], __m512 out[8]) {
   __m512 t[8], u[8];
@@ -85,6 +96,18 @@ inline void gather_pose(const SolverBody* bodies, const uint32_t* packets, WideV
   gather_two<&SolverBody::dp>(bodies, packets, dp, dtheta);
 }
 
+// A packet's mass is one 8-float row: inv_mass, then xx, yy, zz, xy, xz, yz.
+inline void gather_mass(const SolverBodyMass* masses, const uint32_t* packets, WideMass& out) {
+  __m512 rows[8], cols[8];
+  for (int l = 0; l < 8; ++l) {
+    rows[l] = two_rows(&masses[packets[l]].inv_mass, &masses[packets[l + 8]].inv_mass);
+  }
+  transpose_8x8_halves(rows, cols);
+  out.inv_mass = Wide(cols[0]);
+  out.inv_inertia = {Wide(cols[1]), Wide(cols[2]), Wide(cols[3]),
+                     Wide(cols[4]), Wide(cols[5]), Wide(cols[6])};
+}
+
 inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
                              const WideBody& in) {
   const __m512 cols[8] = {__m512(in.v.x), __m512(in.v.y), __m512(in.v.z),      __m512(in.w.x),
@@ -114,6 +137,14 @@ inline void gather_pose(const SolverBody* bodies, const uint32_t* packets, WideV
     const SolverBody& b = bodies[packets[l]];
     set_lane(dp, l, b.dp);
     set_lane(dtheta, l, b.dtheta);
+  }
+}
+
+inline void gather_mass(const SolverBodyMass* masses, const uint32_t* packets, WideMass& out) {
+  for (int l = 0; l < kLanes; ++l) {
+    const SolverBodyMass& m = masses[packets[l]];
+    out.inv_mass[l] = m.inv_mass;
+    set_lane(out.inv_inertia, l, m.inv_inertia);
   }
 }
 

@@ -56,46 +56,48 @@ inline Wide row_velocity(const WideBody& a, const WideBody& b, const WideVec3& d
 
 // Applies impulse `lambda` along a non-penetration row: linear part along n, angular parts
 // I^-1 (r x n). A side that is not written has zero inverse mass and inertia.
-inline void apply_row(const ContactBundle& c, WideBody& a, WideBody& b, const WideContactPoint& p,
-                      Wide lambda) {
-  const WideVec3 ia_ra_n = c.inv_inertia_a * p.ra_n;
-  const WideVec3 ib_rb_n = c.inv_inertia_b * p.rb_n;
-  a.v = a.v - (c.inv_mass_a * lambda) * c.normal;
+inline void apply_row(const ContactBundle& c, const WideMass& ma, const WideMass& mb, WideBody& a,
+                      WideBody& b, const WideContactPoint& p, Wide lambda) {
+  const WideVec3 ia_ra_n = ma.inv_inertia * p.ra_n;
+  const WideVec3 ib_rb_n = mb.inv_inertia * p.rb_n;
+  a.v = a.v - (ma.inv_mass * lambda) * c.normal;
   a.w = a.w - lambda * ia_ra_n;
-  b.v = b.v + (c.inv_mass_b * lambda) * c.normal;
+  b.v = b.v + (mb.inv_mass * lambda) * c.normal;
   b.w = b.w + lambda * ib_rb_n;
 }
 
 // The tangent impulse (t0, t1) at the centre, applied as one impulse p there: the angular
 // parts are I^-1 (r x p), one product per side instead of one per tangent.
-inline void apply_friction(const ContactBundle& c, const WideVec3& t1, WideBody& a, WideBody& b,
-                           Wide lambda0, Wide lambda1) {
+inline void apply_friction(const ContactBundle& c, const WideVec3& t1, const WideMass& ma,
+                           const WideMass& mb, WideBody& a, WideBody& b, Wide lambda0,
+                           Wide lambda1) {
   const WideVec3 p = lambda0 * c.tangent + lambda1 * t1;
-  a.v = a.v - c.inv_mass_a * p;
-  a.w = a.w - c.inv_inertia_a * cross(c.center_ra, p);
-  b.v = b.v + c.inv_mass_b * p;
-  b.w = b.w + c.inv_inertia_b * cross(c.center_rb, p);
+  a.v = a.v - ma.inv_mass * p;
+  a.w = a.w - ma.inv_inertia * cross(c.center_ra, p);
+  b.v = b.v + mb.inv_mass * p;
+  b.w = b.w + mb.inv_inertia * cross(c.center_rb, p);
 }
 
-inline void apply_twist(const ContactBundle& c, WideBody& a, WideBody& b, Wide twist) {
+inline void apply_twist(const ContactBundle& c, const WideMass& ma, const WideMass& mb, WideBody& a,
+                        WideBody& b, Wide twist) {
   const WideVec3 l = twist * c.normal;
-  a.w = a.w - c.inv_inertia_a * l;
-  b.w = b.w + c.inv_inertia_b * l;
+  a.w = a.w - ma.inv_inertia * l;
+  b.w = b.w + mb.inv_inertia * l;
 }
 
 // The inverse of the 2x2 mass matrix K = J M^-1 J^T of the friction rows at the manifold
-// centre, in closed form, from the bundle's centre arms and inverse inertias.
-void set_friction_mass(ContactBundle& c) {
+// centre, in closed form, from the bundle's centre arms and the two sides' masses.
+void set_friction_mass(ContactBundle& c, const WideMass& ma, const WideMass& mb) {
   const Wide zero{};
   const WideVec3 tangent[2] = {c.tangent, cross(c.normal, c.tangent)};
   WideVec3 ra_t[2], rb_t[2], ia_ra_t[2], ib_rb_t[2];
   for (int t = 0; t < 2; ++t) {
     ra_t[t] = cross(c.center_ra, tangent[t]);
     rb_t[t] = cross(c.center_rb, tangent[t]);
-    ia_ra_t[t] = c.inv_inertia_a * ra_t[t];
-    ib_rb_t[t] = c.inv_inertia_b * rb_t[t];
+    ia_ra_t[t] = ma.inv_inertia * ra_t[t];
+    ib_rb_t[t] = mb.inv_inertia * rb_t[t];
   }
-  const Wide m_sum = c.inv_mass_a + c.inv_mass_b;
+  const Wide m_sum = ma.inv_mass + mb.inv_mass;
   const Wide k00 = m_sum + dot(ra_t[0], ia_ra_t[0]) + dot(rb_t[0], ib_rb_t[0]);
   const Wide k01 = dot(ra_t[0], ia_ra_t[1]) + dot(rb_t[0], ib_rb_t[1]);
   const Wide k11 = m_sum + dot(ra_t[1], ia_ra_t[1]) + dot(rb_t[1], ib_rb_t[1]);
@@ -118,11 +120,11 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   c.lanes = lane_count;
   // Lane by lane: the inputs, scattered over manifolds, bodies and packets, into lanes.
   // Unused lanes stay zero (packet 0, no mass), so every product below is zero there.
-  c.inv_mass_a = c.inv_mass_b = c.friction = bounce.restitution = Wide{};
-  c.inv_inertia_a = c.inv_inertia_b = WideSym3{};
+  c.friction = bounce.restitution = Wide{};
   c.normal = c.tangent = WideVec3{};
   c.tangent_impulse[0] = c.tangent_impulse[1] = c.twist_impulse = Wide{};
   WideBody va, vb;
+  WideMass ma, mb;  // zero in unused lanes
   Wide point_count{};
   for (int l = 0; l < kLanes; ++l) {
     if (l >= lane_count) {
@@ -139,12 +141,12 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     c.manifold[l] = lanes[l];
     c.write_a[l] = write_a;
     c.write_b[l] = write_b;
-    const SolverBodyParams& pa = ctx.params[packet_a];
-    const SolverBodyParams& pb = ctx.params[packet_b];
-    c.inv_mass_a[l] = write_a ? pa.inv_mass : 0;
-    c.inv_mass_b[l] = write_b ? pb.inv_mass : 0;
-    if (write_a) set_lane(c.inv_inertia_a, l, pa.inv_inertia);
-    if (write_b) set_lane(c.inv_inertia_b, l, pb.inv_inertia);
+    const SolverBodyMass& mass_a = ctx.masses[packet_a];
+    const SolverBodyMass& mass_b = ctx.masses[packet_b];
+    ma.inv_mass[l] = mass_a.inv_mass;
+    mb.inv_mass[l] = mass_b.inv_mass;
+    set_lane(ma.inv_inertia, l, mass_a.inv_inertia);
+    set_lane(mb.inv_inertia, l, mass_b.inv_inertia);
     c.friction[l] = std::sqrt(bodies.friction[a] * bodies.friction[b]);
     bounce.restitution[l] = std::max(bodies.restitution[a], bodies.restitution[b]);
     set_lane(c.normal, l, m.normal);
@@ -165,7 +167,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   const Wide zero{};
   const Wide one = splat(1);
   const WideVec3& n = c.normal;
-  const Wide m_sum = c.inv_mass_a + c.inv_mass_b;
+  const Wide m_sum = ma.inv_mass + mb.inv_mass;
   WideVec3 ra[kMaxManifoldPoints], center_ra, center_rb;
   for (int k = 0; k < c.max_count; ++k) {
     WideContactPoint& p = rows[k];
@@ -185,7 +187,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     p.ra_n = cross(ra[k], n);
     p.rb_n = cross(rb, n);
     const Wide k_n =
-        m_sum + dot(p.ra_n, c.inv_inertia_a * p.ra_n) + dot(p.rb_n, c.inv_inertia_b * p.rb_n);
+        m_sum + dot(p.ra_n, ma.inv_inertia * p.ra_n) + dot(p.rb_n, mb.inv_inertia * p.rb_n);
     p.normal_mass = (used & (k_n > zero)) ? one / (k_n > zero ? k_n : one) : zero;
     p.max_normal_impulse = zero;
     p.current_separation = p.separation;
@@ -206,8 +208,8 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   }
   c.center_ra = center_ra;
   c.center_rb = center_rb;
-  set_friction_mass(c);
-  const Wide k_twist = dot(n, c.inv_inertia_a * n) + dot(n, c.inv_inertia_b * n);
+  set_friction_mass(c, ma, mb);
+  const Wide k_twist = dot(n, ma.inv_inertia * n) + dot(n, mb.inv_inertia * n);
   c.twist_mass = k_twist > zero ? one / (k_twist > zero ? k_twist : one) : zero;
 }
 
@@ -235,22 +237,21 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     // since the step began; their arms are then the step's own, within 0.1 mm, and re-deriving
     // them buys nothing.
     const WideVec3 slid = dp_b - dp_a;
-    const auto refresh = (c.inv_mass_a > zero) & (c.inv_mass_b > zero) &
+    WideMass ma, mb;
+    gather_mass(ctx.masses.data(), c.packet_a, ma);
+    gather_mass(ctx.masses.data(), c.packet_b, mb);
+    const auto refresh = (ma.inv_mass > zero) & (mb.inv_mass > zero) &
                          ((dot(slid, slid) >= splat(kRefreshDistance * kRefreshDistance)) |
                           (dot(dtheta_a, dtheta_a) + dot(dtheta_b, dtheta_b) >=
                            splat(kRefreshAngle * kRefreshAngle)));
     if (!any_lane(refresh)) continue;
-    // Lane by lane, for the lanes refreshed only: the inertia of the current orientation
-    // (integrate_positions turns it for gyroscopic bodies: the integrator keeps L = I w with
-    // it, so impulses must change w through it too), B's centre from A's at the step's start,
-    // the point count and the contact points of the step's start.
+    // Lane by lane, for the lanes refreshed only: B's centre from A's at the step's start, the
+    // point count and the contact points of the step's start.
     WideVec3 start_b, anchor_a[kMaxManifoldPoints], anchor_b[kMaxManifoldPoints];
     Wide count{};
     for (int l = 0; l < c.lanes; ++l) {
       if (!refresh[l]) continue;
       const Manifold& m = manifolds[c.manifold[l]];
-      set_lane(c.inv_inertia_a, l, ctx.params[c.packet_a[l]].inv_inertia);
-      set_lane(c.inv_inertia_b, l, ctx.params[c.packet_b[l]].inv_inertia);
       set_lane(start_b, l, bodies.position(m.body_b) - bodies.position(m.body_a));
       count[l] = Real(m.point_count);
       for (int k = 0; k < m.point_count; ++k) {
@@ -262,7 +263,10 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     const WideVec3& xa = dp_a;
     const WideVec3 xb = start_b + dp_b;
     const WideVec3 mean_dp = half * (dp_a + dp_b);
-    const Wide m_sum = c.inv_mass_a + c.inv_mass_b;
+    // The inertias are those of the current orientation (integrate_positions turns them for
+    // gyroscopic bodies: the integrator keeps L = I w with them, so impulses must change w
+    // through them too).
+    const Wide m_sum = ma.inv_mass + mb.inv_mass;
     WideVec3 center_ra, center_rb;
     for (int k = 0; k < c.max_count; ++k) {
       WideContactPoint& p = rows[k];
@@ -272,8 +276,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
       const WideVec3 shared = half * (anchor_a[k] + start_b + anchor_b[k]) + mean_dp;
       const WideVec3 ra = shared - xa, rb = shared - xb;
       const WideVec3 ra_n = cross(ra, n), rb_n = cross(rb, n);
-      const Wide k_n =
-          m_sum + dot(ra_n, c.inv_inertia_a * ra_n) + dot(rb_n, c.inv_inertia_b * rb_n);
+      const Wide k_n = m_sum + dot(ra_n, ma.inv_inertia * ra_n) + dot(rb_n, mb.inv_inertia * rb_n);
       // The same current separation, expressed with the new arms.
       const Wide s0 = p.current_separation - (dp_n + dot(rb_n, dtheta_b) - dot(ra_n, dtheta_a));
       p.ra_n = select(used, ra_n, p.ra_n);
@@ -286,8 +289,8 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     const Wide inv_count = one / (refresh ? count : one);
     c.center_ra = select(refresh, inv_count * center_ra, c.center_ra);
     c.center_rb = select(refresh, inv_count * center_rb, c.center_rb);
-    // Lanes that were not refreshed get the same values again.
-    set_friction_mass(c);
+    // Lanes that were not refreshed get the current inertias' friction mass too.
+    set_friction_mass(c, ma, mb);
   }
 }
 
@@ -297,8 +300,11 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
     const ContactBundle& c = ctx.bundles[i];
     const WideContactPoint* rows = ctx.rows.data() + c.first_row;
     WideBody a, b;
+    WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
     gather_velocity(bodies, c.packet_b, b);
+    gather_mass(ctx.masses.data(), c.packet_a, ma);
+    gather_mass(ctx.masses.data(), c.packet_b, mb);
     // The points' impulses summed first: one angular response per side instead of one per point.
     Wide total{};
     WideVec3 ra_n_sum, rb_n_sum;
@@ -308,12 +314,13 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
       ra_n_sum = ra_n_sum + p.normal_impulse * p.ra_n;
       rb_n_sum = rb_n_sum + p.normal_impulse * p.rb_n;
     }
-    a.v = a.v - (c.inv_mass_a * total) * c.normal;
-    a.w = a.w - c.inv_inertia_a * ra_n_sum;
-    b.v = b.v + (c.inv_mass_b * total) * c.normal;
-    b.w = b.w + c.inv_inertia_b * rb_n_sum;
-    apply_friction(c, cross(c.normal, c.tangent), a, b, c.tangent_impulse[0], c.tangent_impulse[1]);
-    apply_twist(c, a, b, c.twist_impulse);
+    a.v = a.v - (ma.inv_mass * total) * c.normal;
+    a.w = a.w - ma.inv_inertia * ra_n_sum;
+    b.v = b.v + (mb.inv_mass * total) * c.normal;
+    b.w = b.w + mb.inv_inertia * rb_n_sum;
+    apply_friction(c, cross(c.normal, c.tangent), ma, mb, a, b, c.tangent_impulse[0],
+                   c.tangent_impulse[1]);
+    apply_twist(c, ma, mb, a, b, c.twist_impulse);
     scatter_velocity(bodies, c.packet_a, c.write_a, a);
     scatter_velocity(bodies, c.packet_b, c.write_b, b);
   }
@@ -330,8 +337,11 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     ContactBundle& c = ctx.bundles[i];
     WideContactPoint* rows = ctx.rows.data() + c.first_row;
     WideBody a, b;
+    WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
     gather_velocity(bodies, c.packet_b, b);
+    gather_mass(ctx.masses.data(), c.packet_a, ma);
+    gather_mass(ctx.masses.data(), c.packet_b, mb);
     const WideVec3& n = c.normal;
     {
       // Friction first, so the non-penetration rows, which carry the load, have the last word.
@@ -359,7 +369,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
         f0 *= scale;
         f1 *= scale;
       }
-      apply_friction(c, t1, a, b, f0 - c.tangent_impulse[0], f1 - c.tangent_impulse[1]);
+      apply_friction(c, t1, ma, mb, a, b, f0 - c.tangent_impulse[0], f1 - c.tangent_impulse[1]);
       c.tangent_impulse[0] = f0;
       c.tangent_impulse[1] = f1;
 
@@ -367,12 +377,12 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       const Wide max_twist = c.friction * wide_max(twist_limit, kTorsionPatch * total_normal);
       const Wide twist =
           wide_min(wide_max(c.twist_impulse - c.twist_mass * spin, -max_twist), max_twist);
-      apply_twist(c, a, b, twist - c.twist_impulse);
+      apply_twist(c, ma, mb, a, b, twist - c.twist_impulse);
       c.twist_impulse = twist;
     }
     const Wide inv_h = splat(ctx.inv_h);
     const Wide max_push = splat(-ctx.max_push_velocity);
-    const auto fixed_b = c.inv_mass_b == zero;
+    const auto fixed_b = mb.inv_mass == zero;
     const Wide bias_rate = fixed_b ? splat(fix.bias_rate) : splat(dyn.bias_rate);
     const Wide soft_mass = fixed_b ? splat(fix.mass_scale) : splat(dyn.mass_scale);
     const Wide soft_impulse = fixed_b ? splat(fix.impulse_scale) : splat(dyn.impulse_scale);
@@ -394,7 +404,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       impulse = updated - p.normal_impulse;
       p.normal_impulse = updated;
       p.max_normal_impulse = wide_max(p.max_normal_impulse, impulse);
-      apply_row(c, a, b, p, impulse);
+      apply_row(c, ma, mb, a, b, p, impulse);
     }
     scatter_velocity(bodies, c.packet_a, c.write_a, a);
     scatter_velocity(bodies, c.packet_b, c.write_b, b);
@@ -411,8 +421,11 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
     const ContactBundle& c = ctx.bundles[i];
     WideContactPoint* rows = ctx.rows.data() + c.first_row;
     WideBody a, b;
+    WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
     gather_velocity(bodies, c.packet_b, b);
+    gather_mass(ctx.masses.data(), c.packet_a, ma);
+    gather_mass(ctx.masses.data(), c.packet_b, mb);
     for (int k = 0; k < c.max_count; ++k) {
       WideContactPoint& p = rows[k];
       const Wide approach = bounce.relative_velocity[k];
@@ -426,7 +439,7 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
       impulse = updated - p.normal_impulse;
       p.normal_impulse = updated;
       p.max_normal_impulse = wide_max(p.max_normal_impulse, impulse);
-      apply_row(c, a, b, p, impulse);
+      apply_row(c, ma, mb, a, b, p, impulse);
     }
     scatter_velocity(bodies, c.packet_a, c.write_a, a);
     scatter_velocity(bodies, c.packet_b, c.write_b, b);

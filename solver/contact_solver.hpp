@@ -6,7 +6,7 @@
 // of one colour, so they touch distinct dynamic bodies and can be gathered, solved and scattered
 // together. The overflow colour has one lane per bundle.
 //
-// Reads: manifolds, body packets and parameters. Writes: constraint impulses and the packets of
+// Reads: manifolds, body packets and masses. Writes: constraint impulses and the packets of
 // the dynamic bodies a constraint touches. Threading: the functions take a range of bundles; a
 // caller runs ranges of one colour in parallel (no two constraints of a colour share a dynamic
 // body), colours and the overflow one after another.
@@ -23,7 +23,7 @@ namespace elan::detail {
 
 struct ContactSolverContext {
   std::span<SolverBody> bodies;  // packets (0 = static dummy)
-  std::span<const SolverBodyParams> params;
+  std::span<const SolverBodyMass> masses;
   std::span<ContactBundle> bundles;          // grouped by colour
   std::span<WideContactPoint> rows;          // the bundles' point rows (ContactBundle::first_row)
   std::span<BundleRestitution> restitution;  // per bundle

@@ -7,10 +7,11 @@
 namespace elan::detail {
 
 void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
-                          Real h, uint32_t begin, uint32_t end) {
+                          std::span<const SolverBodyMass> masses, Real h, uint32_t begin,
+                          uint32_t end) {
   for (uint32_t i = begin; i < end; ++i) {
     const SolverBodyParams& p = params[i];
-    if (p.inv_mass == 0) continue;  // kinematic: moves with its given velocities
+    if (masses[i].inv_mass == 0) continue;  // kinematic: moves with its given velocities
     SolverBody& b = packets[i];
     b.v = (b.v + h * p.delta_v_per_s) / (1 + h * p.linear_damping);
     b.w = (b.w + h * p.delta_w_per_s) / (1 + h * p.angular_damping);
@@ -128,8 +129,9 @@ Quat rotation_from_angular_velocity(const Vec3& w, Real h) {
 
 // perf: kLanes packets at once. The scalar loop was a tenth of pile4k's step (the gyroscopic
 // update is two exponentials, six rotations and an inertia per body and substep).
-void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyParams> params,
-                         const BodyStore& bodies, Real h, uint32_t begin, uint32_t end) {
+void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
+                         std::span<SolverBodyMass> masses, const BodyStore& bodies, Real h,
+                         uint32_t begin, uint32_t end) {
   for (uint32_t first = begin; first < end; first += kLanes) {
     const int count = int(std::min<uint32_t>(kLanes, end - first));
     // Unused lanes hold a body at rest with unit inertia.
@@ -174,7 +176,7 @@ void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyPara
       const WideSym3 inv_inertia = rotate_diagonal(after, {1 / d.x, 1 / d.y, 1 / d.z});
       for (int l = 0; l < count; ++l) {
         if (!gyro[l]) continue;
-        SymMat3& m = params[first + l].inv_inertia;
+        SymMat3& m = masses[first + l].inv_inertia;
         m = {inv_inertia.xx[l], inv_inertia.yy[l], inv_inertia.zz[l],
              inv_inertia.xy[l], inv_inertia.xz[l], inv_inertia.yz[l]};
       }

@@ -14,15 +14,17 @@ namespace elan::detail {
 
 // v += h (g + F/m), w += h I^-1 tau, then implicit damping v /= (1 + h d) (dv/dt = -d v).
 void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
-                          Real h, uint32_t begin, uint32_t end);
+                          std::span<const SolverBodyMass> masses, Real h, uint32_t begin,
+                          uint32_t end);
 
 // dp += h v; dq advanced by the exact rotation of w over h. For anisotropic dynamic bodies the
 // angular velocity is then re-derived from the conserved world angular momentum,
 // w' = I(q')^-1 I(q) w (the body spins "from momentum": L is unchanged by the rotation update,
 // so a torque-free body conserves L and shows the intermediate-axis flip). Gyroscopic bodies'
-// params[i].inv_inertia is updated to the new orientation.
-void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyParams> params,
-                         const BodyStore& bodies, Real h, uint32_t begin, uint32_t end);
+// masses[i].inv_inertia is updated to the new orientation.
+void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
+                         std::span<SolverBodyMass> masses, const BodyStore& bodies, Real h,
+                         uint32_t begin, uint32_t end);
 
 // Rotation by angle |w| h about w, as a unit quaternion (the exponential map): one body through
 // the map integrate_positions applies to its lanes, to within float rounding of the closed form.

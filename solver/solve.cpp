@@ -37,7 +37,7 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 ContactSolverContext make_context(const SolveSettings& settings, SolverState& state) {
   ContactSolverContext ctx;
   ctx.bodies = state.packets;
-  ctx.params = state.params;
+  ctx.masses = state.masses;
   ctx.bundles = state.bundles;
   ctx.rows = state.rows;
   ctx.restitution = state.restitution;
@@ -75,8 +75,10 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   }
   st.packets.resize(count);
   st.params.resize(count);
+  st.masses.resize(count);
   st.packets[0] = SolverBody{};
   st.params[0] = SolverBodyParams{};
+  st.masses[0] = SolverBodyMass{};
   stats.awake = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const uint32_t p = st.packet_of[i];
@@ -96,14 +98,15 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
       b.dtheta.setZero();
       b.dq = Quat::Identity();
       const bool dynamic = bodies.is_dynamic(i);
-      prm.inv_mass = dynamic ? bodies.inv_mass[i] : 0;
+      SolverBodyMass& mass = st.masses[k];
+      mass.inv_mass = dynamic ? bodies.inv_mass[i] : 0;
       const Vec3 inv_i(bodies.inv_ix[i], bodies.inv_iy[i], bodies.inv_iz[i]);
       const Quat q = bodies.orientation(i);
-      prm.inv_inertia = dynamic ? rotate_diagonal(q, inv_i) : SymMat3{};
+      mass.inv_inertia = dynamic ? rotate_diagonal(q, inv_i) : SymMat3{};
       const Vec3 force(bodies.fx[i], bodies.fy[i], bodies.fz[i]);
       const Vec3 torque(bodies.tx[i], bodies.ty[i], bodies.tz[i]);
-      prm.delta_v_per_s = dynamic ? Vec3(settings.gravity + prm.inv_mass * force) : Vec3::Zero();
-      prm.delta_w_per_s = dynamic ? Vec3(prm.inv_inertia * torque) : Vec3::Zero();
+      prm.delta_v_per_s = dynamic ? Vec3(settings.gravity + mass.inv_mass * force) : Vec3::Zero();
+      prm.delta_w_per_s = dynamic ? Vec3(mass.inv_inertia * torque) : Vec3::Zero();
       prm.linear_damping = bodies.linear_damping[i];
       prm.angular_damping = bodies.angular_damping[i];
       prm.inertia = inv_i.cwiseInverse();
@@ -257,9 +260,9 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
       const uint32_t begin = 1 + block * kBodyBlock;
       const uint32_t end = std::min(packet_count + 1, begin + kBodyBlock);
       if (stage.kind == kIntegrateVelocities) {
-        integrate_velocities(st.packets, st.params, h, begin, end);
+        integrate_velocities(st.packets, st.params, st.masses, h, begin, end);
       } else {
-        integrate_positions(st.packets, st.params, bodies, h, begin, end);
+        integrate_positions(st.packets, st.params, st.masses, bodies, h, begin, end);
       }
       return;
     }

@@ -47,6 +47,7 @@ struct SolverState {
   std::vector<uint32_t> packet_of;  // per body: its packet, 0 when not simulated
   std::vector<SolverBody> packets;  // 0 = static dummy
   std::vector<SolverBodyParams> params;
+  std::vector<SolverBodyMass> masses;
   std::vector<uint32_t> candidates;  // contact indices that take part in the solve
   std::vector<ColorInput> color_input;
   std::vector<uint32_t> order, color_start;

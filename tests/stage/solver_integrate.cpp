@@ -80,6 +80,7 @@ struct Bodies {
   BodyStore store;
   std::vector<SolverBody> packets;
   std::vector<SolverBodyParams> params;
+  std::vector<SolverBodyMass> masses;
 };
 
 // Packet 0 is the static dummy, as in the solver; packets 1..n are a mix of spheres (isotropic),
@@ -89,6 +90,7 @@ Bodies make_bodies(std::size_t n, std::mt19937& rng) {
   Bodies s;
   s.packets.resize(n + 1);
   s.params.resize(n + 1);
+  s.masses.resize(n + 1);
   for (std::size_t k = 1; k <= n; ++k) {
     const std::size_t i = s.store.push_back();
     s.store.set_orientation(i, Quat(u(rng), u(rng), u(rng), u(rng)).normalized());
@@ -102,8 +104,8 @@ Bodies make_bodies(std::size_t n, std::mt19937& rng) {
     b.dtheta = Vec3(u(rng), u(rng), u(rng));
     b.dq = Quat(1, Real(0.1) * u(rng), Real(0.1) * u(rng), Real(0.1) * u(rng)).normalized();
     p.body = uint32_t(i);
-    p.inv_mass = k % 5 == 0 ? 0 : 1;
-    p.gyroscopic = k % 3 != 0 && p.inv_mass != 0;
+    s.masses[k].inv_mass = k % 5 == 0 ? 0 : 1;
+    p.gyroscopic = k % 3 != 0 && s.masses[k].inv_mass != 0;
     p.inertia = p.gyroscopic ? Vec3(1 + u(rng) * Real(0.5), 2, 3 + u(rng)) : Vec3::Ones();
   }
   return s;
@@ -114,7 +116,7 @@ TEST(IntegratePositions, LanesFollowTheMidpointRuleInDouble) {
   Bodies s = make_bodies(101, rng);
   const std::vector<SolverBody> start = s.packets;
   const Real h = Real(1.0 / 240);
-  integrate_positions(s.packets, s.params, s.store, h, 1, uint32_t(s.packets.size()));
+  integrate_positions(s.packets, s.params, s.masses, s.store, h, 1, uint32_t(s.packets.size()));
   for (std::size_t k = 1; k < s.packets.size(); ++k) {
     const SolverBody& b0 = start[k];
     const SolverBody& b = s.packets[k];
@@ -130,7 +132,7 @@ TEST(IntegratePositions, LanesFollowTheMidpointRuleInDouble) {
       EXPECT_EQ(b.w, b0.w) << k;
       continue;
     }
-    const SymMat3& m = p.inv_inertia;
+    const SymMat3& m = s.masses[k].inv_inertia;
     Eigen::Matrix3d got;
     got << m.xx, m.xy, m.xz, m.xy, m.yy, m.yz, m.xz, m.yz, m.zz;
     EXPECT_LE((got - r.inv_inertia).cwiseAbs().maxCoeff(), 32 * kEps) << k;
@@ -144,11 +146,11 @@ TEST(IntegratePositions, ABodyGetsTheSameBitsInAnyLaneAndBlock) {
   const Bodies s = make_bodies(77, rng);
   const Real h = Real(1.0 / 240);
   Bodies whole = s;
-  integrate_positions(whole.packets, whole.params, whole.store, h, 1, 78);
+  integrate_positions(whole.packets, whole.params, whole.masses, whole.store, h, 1, 78);
   for (uint32_t chunk : {1u, 3u, 5u, 17u, 40u}) {
     Bodies parts = s;
     for (uint32_t begin = 1; begin < 78; begin += chunk) {
-      integrate_positions(parts.packets, parts.params, parts.store, h, begin,
+      integrate_positions(parts.packets, parts.params, parts.masses, parts.store, h, begin,
                           std::min<uint32_t>(78, begin + chunk));
     }
     EXPECT_EQ(std::memcmp(parts.packets.data(), whole.packets.data(),
@@ -156,8 +158,8 @@ TEST(IntegratePositions, ABodyGetsTheSameBitsInAnyLaneAndBlock) {
               0)
         << "chunk " << chunk;
     for (std::size_t k = 1; k < 78; ++k) {
-      const SymMat3& a = parts.params[k].inv_inertia;
-      const SymMat3& b = whole.params[k].inv_inertia;
+      const SymMat3& a = parts.masses[k].inv_inertia;
+      const SymMat3& b = whole.masses[k].inv_inertia;
       EXPECT_EQ(std::memcmp(&a, &b, sizeof(SymMat3)), 0) << "chunk " << chunk << " packet " << k;
     }
   }
