@@ -134,6 +134,30 @@ TEST(Contact, SphereRollsWithoutSlippingAtFiveSeventhsGSin) {
   EXPECT_LT(w.z(), 0);
 }
 
+// A sphere spinning about the vertical on the ground touches it at one point, which has no lever
+// for torsional friction; the solver gives every contact a patch of radius r_p = 5 mm, so the
+// friction torque is mu r_p m g and the spin slows at alpha = mu r_p m g / I = mu r_p g / (0.4 R^2)
+// (0.245 rad/s^2 here). Regression: without it, spheres pinched in a pile spun for ever and kept
+// its island awake.
+TEST(Contact, SpinningSphereSlowsAtTorsionalFrictionRate) {
+  const Real r = Real(0.5), mu = Real(0.5), patch = Real(0.005), w0 = 2;
+  World world = gravity_world(Vec3(0, -kG, 0), false);
+  add_ground(world, mu);
+  BodyDef d = at(Vec3(0, r, 0));
+  d.friction = mu;
+  d.angular_velocity = Vec3(0, w0, 0);
+  const BodyId ball = add_body(world, test::sphere_shape(r), d);
+  Real wa = 0;
+  for (int n = 1; n <= 150; ++n) {
+    world.step(kDt);
+    if (n == 30) wa = world.angular_velocity(ball).y();
+  }
+  const Real wb = world.angular_velocity(ball).y();
+  const Real expected = mu * patch * kG / (Real(0.4) * r * r);
+  EXPECT_NEAR((wa - wb) / 2, expected, Real(0.1) * expected) << "spin deceleration";
+  EXPECT_LT(world.linear_velocity(ball).norm(), Real(1e-3)) << "a spin about the normal drifts";
+}
+
 struct Momenta {
   Vec3 p0, l0;
   double worst_p = 0, worst_l = 0;
