@@ -1,16 +1,16 @@
 // Greedy constraint colouring with per-colour body bitsets.
 #include "solver/coloring.hpp"
 
+#include <algorithm>
+
 namespace elan::detail {
 
 void build_colors(std::span<const ColorInput> constraints, std::size_t packet_count,
-                  ColorScratch& s, std::vector<uint32_t>& order,
-                  std::vector<uint32_t>& color_start) {
+                  ColorScratch& s, std::span<uint32_t> order, std::span<uint32_t> start) {
   const std::size_t words = (packet_count + 63) / 64;
   s.bits.assign(words * kColorCount, 0);
   s.color_of.resize(constraints.size());
-  std::vector<uint32_t>& start = color_start;
-  start.assign(kColorCount + 2, 0);
+  std::fill(start.begin(), start.end(), 0);
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     const ColorInput& c = constraints[i];
     uint32_t chosen = kColorCount;  // overflow
@@ -33,7 +33,6 @@ void build_colors(std::span<const ColorInput> constraints, std::size_t packet_co
     ++start[chosen + 1];
   }
   for (uint32_t c = 1; c < kColorCount + 2; ++c) start[c] += start[c - 1];
-  order.resize(constraints.size());
   s.cursor.assign(start.begin(), start.end() - 1);
   for (std::size_t i = 0; i < constraints.size(); ++i)
     order[s.cursor[s.color_of[i]]++] = uint32_t(i);

@@ -3,7 +3,9 @@
 //
 // Reads: for each candidate constraint its two packets and whether each side is dynamic.
 // Writes: an order of the candidates grouped by colour, and each colour's start.
-// Serial, in key order: the colouring depends on the scene alone (determinism rule 5).
+// Serial over one list in key order: the colouring depends on the scene alone (determinism rule
+// 5). The solver colours each of its groups (partition.hpp) apart, so that the colours only keep
+// the SIMD lanes of a bundle apart: one thread solves a group's colours one after another.
 #pragma once
 
 #include <cstdint>
@@ -26,10 +28,12 @@ struct ColorScratch {
   std::vector<uint32_t> cursor;
 };
 
-// `color_start` gets kColorCount + 2 entries: colour c is order[color_start[c], color_start[c+1]),
-// the overflow is the last range. Within a colour, candidates keep their input order.
+// `order` (one entry per constraint) gets the constraints' positions in `constraints`, grouped by
+// colour; `color_start` (kColorCount + 2 entries) the ranges: colour c is
+// order[color_start[c], color_start[c+1]), the overflow the last range. Within a colour,
+// constraints keep their input order. Packets of dynamic sides are below `packet_count`.
 void build_colors(std::span<const ColorInput> constraints, std::size_t packet_count,
-                  ColorScratch& scratch, std::vector<uint32_t>& order,
-                  std::vector<uint32_t>& color_start);
+                  ColorScratch& scratch, std::span<uint32_t> order,
+                  std::span<uint32_t> color_start);
 
 }  // namespace elan::detail

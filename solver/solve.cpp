@@ -8,24 +8,19 @@
 #include "core/base/parallel.hpp"
 #include "elan/profile.hpp"
 #include "solver/integrate.hpp"
+#include "solver/partition.hpp"
 
 namespace elan::detail {
 
 namespace {
 
-// perf: blocks of bundles small enough to balance two threads within a colour, large enough
-// that claiming a block costs little next to solving it (4 bundles = 64 constraints with
-// AVX-512; 2 measured the same).
-constexpr uint32_t kBundleBlock = 4;
 // Preparing visits every bundle once: larger blocks.
 constexpr uint32_t kSweepBlock = 16;
 constexpr uint32_t kBodyBlock = 128;
 
 enum StageKind : uint32_t {
-  kIntegrateVelocities,
   kWarmStart,
   kSolve,
-  kIntegratePositions,
   kRelax,
   kRestitution,
 };
@@ -63,16 +58,24 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   stats.islands_ms = ms_since(t0);
   t0 = std::chrono::steady_clock::now();
 
-  // Packets: awake dynamic and all kinematic bodies, in index order (packet 0 is the dummy).
+  // Packets: awake dynamic and all kinematic bodies, half 0 and then half 1 (partition.hpp), each
+  // in index order (packet 0 is the dummy), so that each half is one range of packets.
   const std::size_t n = bodies.size();
-  st.packet_of.assign(n, 0);
-  std::size_t count = 1;
+  st.simulated.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const bool simulated =
         (bodies.is_dynamic(i) && bodies.is_awake(i) && !(bodies.flags[i] & kFrozen)) ||
         bodies.motion[i] == uint8_t(MotionType::Kinematic);
-    if (simulated) st.packet_of[i] = uint32_t(count++);
+    if (simulated) st.simulated.push_back(uint32_t(i));
   }
+  const std::size_t count = st.simulated.size() + 1;
+  st.side.resize(count - 1);
+  split_in_halves(bodies, st.simulated, st.split_keys, st.side);
+  const uint32_t in_half_0 = uint32_t(std::count(st.side.begin(), st.side.end(), uint8_t(0)));
+  st.half_start[0] = 1;
+  st.half_start[1] = 1 + in_half_0;
+  st.half_start[2] = uint32_t(count);
+  st.packet_of.assign(n, 0);
   st.packets.resize(count);
   st.params.resize(count);
   st.masses.resize(count);
@@ -80,11 +83,12 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   st.params[0] = SolverBodyParams{};
   st.masses[0] = SolverBodyMass{};
   stats.awake = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const uint32_t p = st.packet_of[i];
-    if (p == 0) continue;
-    SolverBodyParams& prm = st.params[p];
-    prm.body = uint32_t(i);
+  uint32_t next_packet[kHalves] = {st.half_start[0], st.half_start[1]};
+  for (std::size_t k = 0; k + 1 < count; ++k) {
+    const uint32_t i = st.simulated[k];
+    const uint32_t p = next_packet[st.side[k]]++;
+    st.packet_of[i] = p;
+    st.params[p].body = i;
     if (bodies.is_dynamic(i)) ++stats.awake;
   }
   for_blocks(count - 1, kBodyBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -115,50 +119,83 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     }
   });
 
-  // Candidates: touching contacts with at least one simulated dynamic body.
-  st.candidates.clear();
-  st.color_input.clear();
-  for (std::size_t m = 0; m < contacts.size(); ++m) {
-    const Manifold& mf = contacts[m];
-    if (mf.point_count == 0) continue;
+  // Candidates: touching contacts with at least one simulated dynamic body, group by group (a
+  // half's own, then the cut's), in key order within each. A half's colouring sees its packets
+  // from the half's first, so its bitsets cover that half only.
+  auto half_of = [&](uint32_t packet) { return packet >= st.half_start[1] ? 1u : 0u; };
+  auto group_of = [&](const Manifold& mf, ColorInput& in) {
     const uint32_t pa = st.packet_of[mf.body_a], pb = st.packet_of[mf.body_b];
-    const bool da = pa != 0 && bodies.is_dynamic(mf.body_a);
-    const bool db = pb != 0 && bodies.is_dynamic(mf.body_b);
-    if (!da && !db) continue;
-    st.candidates.push_back(uint32_t(m));
-    st.color_input.push_back({pa, pb, da, db});
+    in = {pa, pb, pa != 0 && bodies.is_dynamic(mf.body_a), pb != 0 && bodies.is_dynamic(mf.body_b)};
+    if (mf.point_count == 0 || !(in.dynamic_a || in.dynamic_b)) return kGroups;
+    if (in.dynamic_a && in.dynamic_b && half_of(pa) != half_of(pb)) return kCutGroup;
+    return half_of(in.dynamic_a ? pa : pb);
+  };
+  uint32_t group_size[kGroups + 1] = {};
+  for (const Manifold& mf : contacts) {
+    ColorInput in;
+    ++group_size[group_of(mf, in)];
   }
-  build_colors(st.color_input, count, st.color_scratch, st.order, st.color_start);
+  st.group_start[0] = 0;
+  for (uint32_t g = 0; g < kGroups; ++g) st.group_start[g + 1] = st.group_start[g] + group_size[g];
+  const uint32_t candidate_count = st.group_start[kGroups];
+  st.candidates.resize(candidate_count);
+  st.color_input.resize(candidate_count);
+  uint32_t cursor[kGroups + 1] = {st.group_start[0], st.group_start[1], st.group_start[2], 0};
+  for (std::size_t m = 0; m < contacts.size(); ++m) {
+    ColorInput in;
+    const uint32_t g = group_of(contacts[m], in);
+    if (g == kGroups) continue;
+    if (g < kHalves) {
+      in.packet_a = in.dynamic_a ? in.packet_a - st.half_start[g] : 0;
+      in.packet_b = in.dynamic_b ? in.packet_b - st.half_start[g] : 0;
+    }
+    st.candidates[cursor[g]] = uint32_t(m);
+    st.color_input[cursor[g]++] = in;
+  }
+  st.order.resize(candidate_count);
+  st.segment_start.resize(kSegments + 1);
+  for_blocks(kGroups, 1, [&](std::size_t g, std::size_t, std::size_t) {
+    const uint32_t first = st.group_start[g], size = st.group_start[g + 1] - first;
+    const std::size_t packets = g < kHalves ? st.half_start[g + 1] - st.half_start[g] : count;
+    uint32_t start[kColorCount + 2];
+    build_colors(std::span(st.color_input).subspan(first, size), packets, st.color_scratch[g],
+                 std::span(st.order).subspan(first, size), start);
+    for (uint32_t k = first; k < first + size; ++k) st.order[k] += first;
+    for (uint32_t c = 0; c <= kColorCount; ++c) {
+      st.segment_start[g * kSegmentsPerGroup + c] = first + start[c];
+    }
+  });
+  st.segment_start[kSegments] = candidate_count;
+  auto is_overflow = [](std::size_t segment) { return segment % kSegmentsPerGroup == kColorCount; };
   stats.colors = 0;
-  for (uint32_t c = 0; c < kColorCount; ++c) {
-    if (st.color_start[c + 1] > st.color_start[c]) ++stats.colors;
+  stats.overflow = 0;
+  for (uint32_t g = 0; g < kGroups; ++g) {
+    std::size_t used = 0;
+    for (uint32_t c = 0; c < kColorCount; ++c) {
+      const uint32_t s = g * kSegmentsPerGroup + c;
+      if (st.segment_start[s + 1] > st.segment_start[s]) ++used;
+    }
+    const uint32_t s = g * kSegmentsPerGroup + kColorCount;
+    stats.colors = std::max(stats.colors, used);
+    stats.overflow += st.segment_start[s + 1] - st.segment_start[s];
   }
-  stats.overflow = st.color_start[kColorCount + 1] - st.color_start[kColorCount];
 
   // perf: within a colour the order is free (its constraints share no dynamic body, so any order
   // gives the same bits). Grouped by point count, manifolds of one or two points (spheres,
   // capsules) share bundles, which then skip the empty point rows that a single four-point lane
-  // would make the whole bundle read: on pile10k, 1.4 points per manifold on average. The
-  // grouping is done within each of kOrderChunks consecutive parts of the colour, which keep the
-  // key order between them: the solver's participants start at fixed fractions of every colour,
-  // so each then solves about the same range of bodies in every colour and their packets stay
-  // in its cache instead of moving between cores.
-  constexpr uint32_t kOrderChunks = 8;
+  // would make the whole bundle read: on pile10k, 1.4 points per manifold on average.
   st.order_scratch.resize(st.order.size());
-  for_blocks(kColorCount * kOrderChunks, 1, [&](std::size_t task, std::size_t, std::size_t) {
-    const uint32_t c = uint32_t(task / kOrderChunks), q = uint32_t(task % kOrderChunks);
-    const uint32_t size = st.color_start[c + 1] - st.color_start[c];
-    const uint32_t first = st.color_start[c] + uint32_t(uint64_t(size) * q / kOrderChunks);
-    const uint32_t last = st.color_start[c] + uint32_t(uint64_t(size) * (q + 1) / kOrderChunks);
+  for_blocks(kSegments, 1, [&](std::size_t segment, std::size_t, std::size_t) {
+    const uint32_t first = st.segment_start[segment], last = st.segment_start[segment + 1];
     uint32_t start[kMaxManifoldPoints + 1] = {};
     for (uint32_t k = first; k < last; ++k) {
       ++start[kMaxManifoldPoints - contacts[st.candidates[st.order[k]]].point_count];
     }
     uint32_t running = first;
     for (uint32_t& s : start) {
-      const uint32_t n = s;
+      const uint32_t size = s;
       s = running;
-      running += n;
+      running += size;
     }
     for (uint32_t k = first; k < last; ++k) {
       const uint32_t i = st.order[k];
@@ -168,26 +205,27 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
               st.order.begin() + first);
   });
 
-  // Bundles: each colour's constraints kLanes at a time in colour order; the overflow one per
+  // Bundles: each colour's constraints kLanes at a time in colour order; an overflow one per
   // bundle (its constraints may share bodies, so they cannot be lanes of one bundle).
-  st.bundle_start.assign(kColorCount + 2, 0);
-  for (uint32_t c = 0; c <= kColorCount; ++c) {
-    const uint32_t n = st.color_start[c + 1] - st.color_start[c];
-    const uint32_t bundles = c == kColorCount ? n : uint32_t(block_count(n, kLanes));
-    st.bundle_start[c + 1] = st.bundle_start[c] + bundles;
+  st.bundle_start.resize(kSegments + 1);
+  st.bundle_start[0] = 0;
+  for (uint32_t s = 0; s < kSegments; ++s) {
+    const uint32_t size = st.segment_start[s + 1] - st.segment_start[s];
+    const uint32_t bundles = is_overflow(s) ? size : uint32_t(block_count(size, kLanes));
+    st.bundle_start[s + 1] = st.bundle_start[s] + bundles;
   }
   // Calls f(j, first, last) for every bundle j in parallel blocks, where [first, last) of
   // `order` are its lanes' constraints.
-  const std::size_t bundle_count = st.bundle_start[kColorCount + 1];
+  const std::size_t bundle_count = st.bundle_start[kSegments];
   auto for_each_bundle = [&](const auto& f) {
     for_blocks(bundle_count, kSweepBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
-      uint32_t color = 0;
+      uint32_t segment = 0;
       for (std::size_t j = begin; j < end; ++j) {
-        while (st.bundle_start[color + 1] <= j) ++color;
-        const uint32_t per_bundle = color == kColorCount ? 1 : kLanes;
+        while (st.bundle_start[segment + 1] <= j) ++segment;
+        const uint32_t per_bundle = is_overflow(segment) ? 1 : kLanes;
         const uint32_t first =
-            st.color_start[color] + (uint32_t(j) - st.bundle_start[color]) * per_bundle;
-        f(j, first, std::min(st.color_start[color + 1], first + per_bundle));
+            st.segment_start[segment] + (uint32_t(j) - st.bundle_start[segment]) * per_bundle;
+        f(j, first, std::min(st.segment_start[segment + 1], first + per_bundle));
       }
     });
   };
@@ -227,62 +265,51 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
 void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
            SolverState& st) {
   ContactSolverContext ctx = make_context(settings, st);
-  const uint32_t packet_count = uint32_t(st.packets.size() - 1);
-  const uint32_t body_blocks = uint32_t(block_count(packet_count, kBodyBlock));
 
-  // The schedule: one stage per colour for each constraint pass, the overflow as one block.
+  // The schedule: every pass is a stage of the two halves (block h solves half h) and then, if
+  // any contact crosses the cut, a stage of one block for those (partition.hpp): two syncs a
+  // pass. The halves integrate their own packets in the stage before the pass that needs it.
   std::vector<StageSpec>& stages = st.stages;
   stages.clear();
-  auto add_constraint_pass = [&](StageKind kind) {
-    for (uint32_t c = 0; c < kColorCount; ++c) {
-      const uint32_t n = st.bundle_start[c + 1] - st.bundle_start[c];
-      if (n) stages.push_back({uint32_t(block_count(n, kBundleBlock)), kind, c});
-    }
-    if (st.bundle_start[kColorCount + 1] > st.bundle_start[kColorCount]) {
-      stages.push_back({1, kind, kColorCount});
-    }
+  const bool cut = st.bundle_start[kSegments] > st.bundle_start[kCutGroup * kSegmentsPerGroup];
+  auto add_pass = [&](StageKind kind) {
+    stages.push_back({kHalves, kind, 0});
+    if (cut) stages.push_back({1, kind, kCutGroup});
   };
   for (int s = 0; s < settings.substeps; ++s) {
-    stages.push_back({body_blocks, kIntegrateVelocities, 0});
-    add_constraint_pass(kWarmStart);
-    for (int it = 0; it < settings.iterations; ++it) add_constraint_pass(kSolve);
-    stages.push_back({body_blocks, kIntegratePositions, 0});
-    // The bodies just moved: the relax pass first refreshes each bundle's arms and separations.
-    add_constraint_pass(kRelax);
+    add_pass(kWarmStart);  // halves: integrate velocities first
+    for (int it = 0; it < settings.iterations; ++it) add_pass(kSolve);
+    // The bodies move; the relax pass first refreshes each bundle's arms and separations.
+    add_pass(kRelax);  // halves: integrate positions first
   }
   // Restitution, then each bundle's impulses are final and stored.
-  add_constraint_pass(kRestitution);
+  add_pass(kRestitution);
 
   const Real h = ctx.h;
   auto work = [&](const StageSpec& stage, uint32_t block) {
-    if (stage.kind == kIntegrateVelocities || stage.kind == kIntegratePositions) {
-      // Packets are 1..packet_count; block b covers [1 + b*kBodyBlock, ...).
-      const uint32_t begin = 1 + block * kBodyBlock;
-      const uint32_t end = std::min(packet_count + 1, begin + kBodyBlock);
-      if (stage.kind == kIntegrateVelocities) {
-        integrate_velocities(st.packets, st.params, st.masses, h, begin, end);
-      } else {
-        integrate_positions(st.packets, st.params, st.masses, bodies, h, begin, end);
-      }
-      return;
-    }
-    const uint32_t color_begin = st.bundle_start[stage.arg];
-    const uint32_t color_end = st.bundle_start[stage.arg + 1];
-    const bool overflow = stage.arg == kColorCount;
-    const uint32_t begin = overflow ? color_begin : color_begin + block * kBundleBlock;
-    const uint32_t end = overflow ? color_end : std::min(color_end, begin + kBundleBlock);
+    const uint32_t group = stage.arg == kCutGroup ? kCutGroup : block;
+    const uint32_t begin = st.bundle_start[group * kSegmentsPerGroup];
+    const uint32_t end = st.bundle_start[(group + 1) * kSegmentsPerGroup];
+    const bool half = group < kHalves;
     switch (stage.kind) {
       case kWarmStart:
+        if (half) {
+          integrate_velocities(st.packets, st.params, st.masses, h, st.half_start[group],
+                               st.half_start[group + 1]);
+        }
         warm_start_contacts(ctx, begin, end);
         break;
       case kSolve:
         solve_contacts(ctx, begin, end, true);
         break;
       case kRelax:
+        if (half) {
+          integrate_positions(st.packets, st.params, st.masses, bodies, h, st.half_start[group],
+                              st.half_start[group + 1]);
+        }
         // perf: refreshing a bundle reads only the poses, which no constraint pass changes, and
-        // writes only the bundle, so it is done here, per colour, rather than as a pass of its
-        // own over all bundles: one sweep of the bundles' memory and one sync fewer a substep,
-        // and each participant refreshes the bundles whose bodies it is about to solve.
+        // writes only the bundle, so it is done in the relax pass rather than as a pass of its
+        // own: one sweep of the bundles' memory and one sync fewer a substep.
         refresh_contacts(ctx, bodies, contacts, begin, end);
         solve_contacts(ctx, begin, end, false);
         break;
@@ -294,7 +321,7 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
         break;
     }
   };
-  st.executor.run(stages, settings.participants, work);
+  st.executor.run(stages, std::min(settings.participants, int(kHalves)), work);
 }
 
 uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
@@ -333,9 +360,11 @@ uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
   if (settings.allow_sleep) {
     update_sleep_timers(bodies, shapes, settings.dt, settings.sleep_threshold);
   }
-  if (st.color_start.size() == kColorCount + 2 &&
-      st.color_start[kColorCount + 1] > st.color_start[kColorCount]) {
-    status |= kStepColorOverflow;
+  if (st.segment_start.size() == kSegments + 1) {
+    for (uint32_t g = 0; g < kGroups; ++g) {
+      const uint32_t s = g * kSegmentsPerGroup + kColorCount;
+      if (st.segment_start[s + 1] > st.segment_start[s]) status |= kStepColorOverflow;
+    }
   }
   return status;
 }

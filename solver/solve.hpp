@@ -40,24 +40,40 @@ struct SolveSettings {
   Real restitution_threshold = 1;     // m/s
   Real sleep_threshold = Real(0.05);  // m/s
   Real time_to_sleep = Real(0.5);     // s
-  int participants = 1;               // threads that may take part in the solve
+  int participants = 1;  // threads that may take part in the solve (at most kHalves are used)
 };
+
+// The solver's groups of contact constraints: those within half 0, within half 1 (both bodies
+// on one side of the cut of partition.hpp, or one side static or kinematic), and across the cut.
+// One thread solves a group; the two halves at once, the cut after both.
+inline constexpr uint32_t kHalves = 2;
+inline constexpr uint32_t kGroups = kHalves + 1;
+inline constexpr uint32_t kCutGroup = kHalves;
+// A group's colours and then its overflow are its segments: segment g * kSegmentsPerGroup + c.
+inline constexpr uint32_t kSegmentsPerGroup = kColorCount + 1;
+inline constexpr uint32_t kSegments = kGroups * kSegmentsPerGroup;
 
 struct SolverState {
   std::vector<uint32_t> packet_of;  // per body: its packet, 0 when not simulated
-  std::vector<SolverBody> packets;  // 0 = static dummy
+  std::vector<uint32_t> simulated;  // the bodies with a packet, ascending
+  std::vector<uint8_t> side;        // per simulated body: its half
+  std::vector<uint64_t> split_keys;
+  uint32_t half_start[kHalves + 1] = {1, 1, 1};  // half h: packets [half_start[h], [h + 1])
+  std::vector<SolverBody> packets;               // 0 = static dummy; half 0, then half 1
   std::vector<SolverBodyParams> params;
   std::vector<SolverBodyMass> masses;
-  std::vector<uint32_t> candidates;  // contact indices that take part in the solve
-  std::vector<ColorInput> color_input;
-  std::vector<uint32_t> order, color_start;
+  std::vector<uint32_t> candidates;        // contact indices that take part, group by group
+  std::vector<ColorInput> color_input;     // per candidate, packets as its group's colouring sees
+  uint32_t group_start[kGroups + 1] = {};  // group g: candidates [group_start[g], [g + 1])
+  std::vector<uint32_t> order;             // candidate positions, segment by segment
+  std::vector<uint32_t> segment_start;     // segment s is order[segment_start[s], [s + 1])
   std::vector<uint32_t> order_scratch;
-  std::vector<ContactBundle> bundles;  // grouped by colour
+  std::vector<ContactBundle> bundles;  // segment by segment
   std::vector<uint32_t> row_start;     // bundle j's point rows are [row_start[j], row_start[j+1])
   std::vector<WideContactPoint> rows;
   std::vector<BundleRestitution> restitution;  // per bundle
-  std::vector<uint32_t> bundle_start;  // colour c is bundles[bundle_start[c], bundle_start[c+1])
-  ColorScratch color_scratch;
+  std::vector<uint32_t> bundle_start;  // segment s is bundles[bundle_start[s], bundle_start[s+1])
+  ColorScratch color_scratch[kGroups];
   IslandScratch island_scratch;
   StageExecutor executor;
   std::vector<StageSpec> stages;
