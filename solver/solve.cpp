@@ -19,8 +19,10 @@ constexpr uint32_t kSweepBlock = 16;
 constexpr uint32_t kBodyBlock = 128;
 
 enum StageKind : uint32_t {
+  kKinematicVelocities,
   kWarmStart,
   kSolve,
+  kKinematicPositions,
   kRelax,
   kRestitution,
 };
@@ -58,23 +60,28 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   stats.islands_ms = ms_since(t0);
   t0 = std::chrono::steady_clock::now();
 
-  // Packets: awake dynamic and all kinematic bodies, half 0 and then half 1 (partition.hpp), each
-  // in index order (packet 0 is the dummy), so that each half is one range of packets.
+  // Packets: the awake dynamic bodies of half 0, then of half 1 (partition.hpp), then every
+  // kinematic body, each in index order (packet 0 is the dummy), so that each is one range of
+  // packets. Kinematic bodies are apart: contacts of both halves read them, so they move in stages
+  // of their own (solve()).
   const std::size_t n = bodies.size();
   st.simulated.clear();
+  uint32_t kinematic = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const bool simulated =
-        (bodies.is_dynamic(i) && bodies.is_awake(i) && !(bodies.flags[i] & kFrozen)) ||
-        bodies.motion[i] == uint8_t(MotionType::Kinematic);
-    if (simulated) st.simulated.push_back(uint32_t(i));
+    if (bodies.is_dynamic(i) && bodies.is_awake(i) && !(bodies.flags[i] & kFrozen)) {
+      st.simulated.push_back(uint32_t(i));
+    } else if (bodies.motion[i] == uint8_t(MotionType::Kinematic)) {
+      ++kinematic;
+    }
   }
-  const std::size_t count = st.simulated.size() + 1;
-  st.side.resize(count - 1);
+  const uint32_t dynamic = uint32_t(st.simulated.size());
+  const std::size_t count = 1 + std::size_t(dynamic) + kinematic;
+  st.side.resize(dynamic);
   split_in_halves(bodies, st.simulated, st.split_keys, st.side);
   const uint32_t in_half_0 = uint32_t(std::count(st.side.begin(), st.side.end(), uint8_t(0)));
   st.half_start[0] = 1;
   st.half_start[1] = 1 + in_half_0;
-  st.half_start[2] = uint32_t(count);
+  st.half_start[2] = 1 + dynamic;
   st.packet_of.assign(n, 0);
   st.packets.resize(count);
   st.params.resize(count);
@@ -82,17 +89,22 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   st.packets[0] = SolverBody{};
   st.params[0] = SolverBodyParams{};
   st.masses[0] = SolverBodyMass{};
-  stats.awake = 0;
+  stats.awake = dynamic;
   uint32_t next_packet[kHalves] = {st.half_start[0], st.half_start[1]};
-  for (std::size_t k = 0; k + 1 < count; ++k) {
+  for (uint32_t k = 0; k < dynamic; ++k) {
     const uint32_t i = st.simulated[k];
     const uint32_t p = next_packet[st.side[k]]++;
     st.packet_of[i] = p;
     st.params[p].body = i;
-    if (bodies.is_dynamic(i)) ++stats.awake;
   }
-  for_blocks(count - 1, kBodyBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t k = begin + 1; k < end + 1; ++k) {
+  for (uint32_t i = 0, p = st.half_start[kHalves]; kinematic > 0 && i < n; ++i) {
+    if (bodies.motion[i] != uint8_t(MotionType::Kinematic)) continue;
+    st.packet_of[i] = p;
+    st.params[p++].body = i;
+  }
+  // The packets' step constants: velocities, world inverse inertias, forces as velocity rates.
+  auto fill_packets = [&](uint32_t begin, uint32_t end) {
+    for (uint32_t k = begin; k < end; ++k) {
       SolverBodyParams& prm = st.params[k];
       const uint32_t i = prm.body;
       SolverBody& b = st.packets[k];
@@ -117,7 +129,7 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
       // Bodies with equal principal moments (spheres, cubes) have no gyroscopic term.
       prm.gyroscopic = dynamic && !(inv_i.x() == inv_i.y() && inv_i.y() == inv_i.z());
     }
-  });
+  };
 
   // Candidates: touching contacts with at least one simulated dynamic body, group by group (a
   // half's own, then the cut's), in key order within each. A half's colouring sees its packets
@@ -153,8 +165,19 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     st.color_input[cursor[g]++] = in;
   }
   st.order.resize(candidate_count);
+  st.order_scratch.resize(candidate_count);
   st.segment_start.resize(kSegments + 1);
-  for_blocks(kGroups, 1, [&](std::size_t g, std::size_t, std::size_t) {
+  st.segment_start[kSegments] = candidate_count;
+  st.bundle_start.resize(kSegments + 1);
+  auto is_overflow = [](std::size_t segment) { return segment % kSegmentsPerGroup == kColorCount; };
+  auto point_count = [&](uint32_t k) { return contacts[st.candidates[st.order[k]]].point_count; };
+
+  // Colours group g, then orders each of its segments by point count, most first. perf: within
+  // a colour the order is free (its constraints share no dynamic body, so any order gives the
+  // same bits). Grouped by point count, manifolds of one or two points (spheres, capsules) share
+  // bundles, which then skip the empty point rows that a single four-point lane would make the
+  // whole bundle read: on pile10k, 1.4 points per manifold on average.
+  auto color_group = [&](uint32_t g) {
     const uint32_t first = st.group_start[g], size = st.group_start[g + 1] - first;
     const std::size_t packets = g < kHalves ? st.half_start[g + 1] - st.half_start[g] : count;
     uint32_t start[kColorCount + 2];
@@ -164,9 +187,95 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     for (uint32_t c = 0; c <= kColorCount; ++c) {
       st.segment_start[g * kSegmentsPerGroup + c] = first + start[c];
     }
-  });
-  st.segment_start[kSegments] = candidate_count;
-  auto is_overflow = [](std::size_t segment) { return segment % kSegmentsPerGroup == kColorCount; };
+    for (uint32_t c = 0; c <= kColorCount; ++c) {
+      const uint32_t begin = first + start[c], end = first + start[c + 1];
+      uint32_t at[kMaxManifoldPoints + 1] = {};
+      for (uint32_t k = begin; k < end; ++k) ++at[kMaxManifoldPoints - point_count(k)];
+      uint32_t running = begin;
+      for (uint32_t& a : at) {
+        const uint32_t n = a;
+        a = running;
+        running += n;
+      }
+      for (uint32_t k = begin; k < end; ++k) {
+        st.order_scratch[at[kMaxManifoldPoints - point_count(k)]++] = st.order[k];
+      }
+      std::copy(st.order_scratch.begin() + begin, st.order_scratch.begin() + end,
+                st.order.begin() + begin);
+    }
+  };
+
+  // Bundles: each colour's constraints kLanes at a time in colour order; an overflow one per
+  // bundle (its constraints may share bodies, so they cannot be lanes of one bundle). Each bundle
+  // gets as many point rows as its first lane has points, the most of its lanes.
+  auto lay_out_bundles = [&]() {
+    st.bundle_start[0] = 0;
+    for (uint32_t s = 0; s < kSegments; ++s) {
+      const uint32_t size = st.segment_start[s + 1] - st.segment_start[s];
+      const uint32_t bundles = is_overflow(s) ? size : uint32_t(block_count(size, kLanes));
+      st.bundle_start[s + 1] = st.bundle_start[s] + bundles;
+    }
+    const std::size_t bundle_count = st.bundle_start[kSegments];
+    st.row_start.resize(bundle_count + 1);
+    st.row_start[0] = 0;
+    for (uint32_t s = 0; s < kSegments; ++s) {
+      const uint32_t per_bundle = is_overflow(s) ? 1 : kLanes;
+      for (uint32_t j = st.bundle_start[s]; j < st.bundle_start[s + 1]; ++j) {
+        const uint32_t first = st.segment_start[s] + (j - st.bundle_start[s]) * per_bundle;
+        st.row_start[j + 1] = st.row_start[j] + uint32_t(point_count(first));
+      }
+    }
+    // Rebuilt every step, these keep their capacity for good: growing by a quarter, not
+    // doubling, leaves less of it unused (pile10k: the solver's part 1300 -> 976 B/body).
+    auto grow = [](auto& v, std::size_t n) {
+      if (n > v.capacity()) v.reserve(n + n / 4);
+      v.resize(n);
+    };
+    grow(st.bundles, bundle_count);
+    grow(st.rows, st.row_start[bundle_count]);
+    grow(st.restitution, bundle_count);
+  };
+
+  auto prepare_group = [&](uint32_t g) {
+    const ContactSolverContext ctx = make_context(settings, st);
+    for (uint32_t s = g * kSegmentsPerGroup; s < (g + 1) * kSegmentsPerGroup; ++s) {
+      const uint32_t per_bundle = is_overflow(s) ? 1 : kLanes;
+      for (uint32_t j = st.bundle_start[s]; j < st.bundle_start[s + 1]; ++j) {
+        const uint32_t first = st.segment_start[s] + (j - st.bundle_start[s]) * per_bundle;
+        const uint32_t last = std::min(st.segment_start[s + 1], first + per_bundle);
+        ContactBundle& bundle = st.bundles[j];
+        bundle.first_row = st.row_start[j];
+        bundle.max_count = int(st.row_start[j + 1] - st.row_start[j]);
+        uint32_t lanes[kLanes];
+        for (uint32_t k = first; k < last; ++k) lanes[k - first] = st.candidates[st.order[k]];
+        prepare_bundle(ctx, bodies, contacts, st.packet_of, j,
+                       std::span<const uint32_t>(lanes, last - first));
+      }
+    }
+  };
+
+  // perf: three stages of the executor, so the workers are woken once and each sync is a spin
+  // (a TBB loop per part cost a wake-up each: on pile10k this stage took as long at 2 threads
+  // as at 1). A half fills its packets and colours its group; one block fills the kinematic
+  // packets, colours the cut and lays out the bundles (it allocates); then each group prepares
+  // its bundles.
+  enum : uint32_t { kHalfPackets, kCutAndLayout, kGroupBundles };
+  std::vector<StageSpec>& stages = st.stages;
+  stages.assign({{kHalves, kHalfPackets, 0}, {1, kCutAndLayout, 0}, {kGroups, kGroupBundles, 0}});
+  st.executor.run(stages, std::min(settings.participants, int(kHalves)),
+                  [&](const StageSpec& stage, uint32_t block) {
+                    if (stage.kind == kHalfPackets) {
+                      fill_packets(st.half_start[block], st.half_start[block + 1]);
+                      color_group(block);
+                    } else if (stage.kind == kCutAndLayout) {
+                      fill_packets(st.half_start[kHalves], uint32_t(count));
+                      color_group(kCutGroup);
+                      lay_out_bundles();
+                    } else {
+                      prepare_group(block);
+                    }
+                  });
+
   stats.colors = 0;
   stats.overflow = 0;
   for (uint32_t g = 0; g < kGroups; ++g) {
@@ -179,86 +288,6 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     stats.colors = std::max(stats.colors, used);
     stats.overflow += st.segment_start[s + 1] - st.segment_start[s];
   }
-
-  // perf: within a colour the order is free (its constraints share no dynamic body, so any order
-  // gives the same bits). Grouped by point count, manifolds of one or two points (spheres,
-  // capsules) share bundles, which then skip the empty point rows that a single four-point lane
-  // would make the whole bundle read: on pile10k, 1.4 points per manifold on average.
-  st.order_scratch.resize(st.order.size());
-  for_blocks(kSegments, 1, [&](std::size_t segment, std::size_t, std::size_t) {
-    const uint32_t first = st.segment_start[segment], last = st.segment_start[segment + 1];
-    uint32_t start[kMaxManifoldPoints + 1] = {};
-    for (uint32_t k = first; k < last; ++k) {
-      ++start[kMaxManifoldPoints - contacts[st.candidates[st.order[k]]].point_count];
-    }
-    uint32_t running = first;
-    for (uint32_t& s : start) {
-      const uint32_t size = s;
-      s = running;
-      running += size;
-    }
-    for (uint32_t k = first; k < last; ++k) {
-      const uint32_t i = st.order[k];
-      st.order_scratch[start[kMaxManifoldPoints - contacts[st.candidates[i]].point_count]++] = i;
-    }
-    std::copy(st.order_scratch.begin() + first, st.order_scratch.begin() + last,
-              st.order.begin() + first);
-  });
-
-  // Bundles: each colour's constraints kLanes at a time in colour order; an overflow one per
-  // bundle (its constraints may share bodies, so they cannot be lanes of one bundle).
-  st.bundle_start.resize(kSegments + 1);
-  st.bundle_start[0] = 0;
-  for (uint32_t s = 0; s < kSegments; ++s) {
-    const uint32_t size = st.segment_start[s + 1] - st.segment_start[s];
-    const uint32_t bundles = is_overflow(s) ? size : uint32_t(block_count(size, kLanes));
-    st.bundle_start[s + 1] = st.bundle_start[s] + bundles;
-  }
-  // Calls f(j, first, last) for every bundle j in parallel blocks, where [first, last) of
-  // `order` are its lanes' constraints.
-  const std::size_t bundle_count = st.bundle_start[kSegments];
-  auto for_each_bundle = [&](const auto& f) {
-    for_blocks(bundle_count, kSweepBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
-      uint32_t segment = 0;
-      for (std::size_t j = begin; j < end; ++j) {
-        while (st.bundle_start[segment + 1] <= j) ++segment;
-        const uint32_t per_bundle = is_overflow(segment) ? 1 : kLanes;
-        const uint32_t first =
-            st.segment_start[segment] + (uint32_t(j) - st.bundle_start[segment]) * per_bundle;
-        f(j, first, std::min(st.segment_start[segment + 1], first + per_bundle));
-      }
-    });
-  };
-  // Each bundle gets as many point rows as its lanes' largest point count.
-  st.row_start.resize(bundle_count + 1);
-  st.row_start[0] = 0;
-  for_each_bundle([&](std::size_t j, uint32_t first, uint32_t last) {
-    int rows = 0;
-    for (uint32_t k = first; k < last; ++k) {
-      rows = std::max(rows, contacts[st.candidates[st.order[k]]].point_count);
-    }
-    st.row_start[j + 1] = uint32_t(rows);
-  });
-  for (std::size_t j = 0; j < bundle_count; ++j) st.row_start[j + 1] += st.row_start[j];
-  // Rebuilt every step, these keep their capacity for good: growing by a quarter, not doubling,
-  // leaves less of it unused (pile10k: the solver's part 1300 -> 976 B/body).
-  auto grow = [](auto& v, std::size_t n) {
-    if (n > v.capacity()) v.reserve(n + n / 4);
-    v.resize(n);
-  };
-  grow(st.bundles, bundle_count);
-  grow(st.rows, st.row_start[bundle_count]);
-  grow(st.restitution, bundle_count);
-  const ContactSolverContext ctx = make_context(settings, st);
-  for_each_bundle([&](std::size_t j, uint32_t first, uint32_t last) {
-    ContactBundle& bundle = st.bundles[j];
-    bundle.first_row = st.row_start[j];
-    bundle.max_count = int(st.row_start[j + 1] - st.row_start[j]);
-    uint32_t lanes[kLanes];
-    for (uint32_t k = first; k < last; ++k) lanes[k - first] = st.candidates[st.order[k]];
-    prepare_bundle(ctx, bodies, contacts, st.packet_of, uint32_t(j),
-                   std::span<const uint32_t>(lanes, last - first));
-  });
   stats.color_ms = ms_since(t0);
 }
 
@@ -272,14 +301,23 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
   std::vector<StageSpec>& stages = st.stages;
   stages.clear();
   const bool cut = st.bundle_start[kSegments] > st.bundle_start[kCutGroup * kSegmentsPerGroup];
+  const uint32_t packet_count = uint32_t(st.packets.size());
+  const bool kinematic = packet_count > st.half_start[kHalves];
   auto add_pass = [&](StageKind kind) {
     stages.push_back({kHalves, kind, 0});
     if (cut) stages.push_back({1, kind, kCutGroup});
   };
+  // Kinematic packets are read by the contacts of both halves, so they move in a stage of one
+  // block between passes, never while a pass runs.
+  auto add_kinematic = [&](StageKind kind) {
+    if (kinematic) stages.push_back({1, kind, 0});
+  };
   for (int s = 0; s < settings.substeps; ++s) {
+    add_kinematic(kKinematicVelocities);
     add_pass(kWarmStart);  // halves: integrate velocities first
     for (int it = 0; it < settings.iterations; ++it) add_pass(kSolve);
     // The bodies move; the relax pass first refreshes each bundle's arms and separations.
+    add_kinematic(kKinematicPositions);
     add_pass(kRelax);  // halves: integrate positions first
   }
   // Restitution, then each bundle's impulses are final and stored.
@@ -287,6 +325,16 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
 
   const Real h = ctx.h;
   auto work = [&](const StageSpec& stage, uint32_t block) {
+    if (stage.kind == kKinematicVelocities) {
+      integrate_velocities(st.packets, st.params, st.masses, h, st.half_start[kHalves],
+                           packet_count);
+      return;
+    }
+    if (stage.kind == kKinematicPositions) {
+      integrate_positions(st.packets, st.params, st.masses, bodies, h, st.half_start[kHalves],
+                          packet_count);
+      return;
+    }
     const uint32_t group = stage.arg == kCutGroup ? kCutGroup : block;
     const uint32_t begin = st.bundle_start[group * kSegmentsPerGroup];
     const uint32_t end = st.bundle_start[(group + 1) * kSegmentsPerGroup];

@@ -55,11 +55,12 @@ inline constexpr uint32_t kSegments = kGroups * kSegmentsPerGroup;
 
 struct SolverState {
   std::vector<uint32_t> packet_of;  // per body: its packet, 0 when not simulated
-  std::vector<uint32_t> simulated;  // the bodies with a packet, ascending
-  std::vector<uint8_t> side;        // per simulated body: its half
+  std::vector<uint32_t> simulated;  // the awake dynamic bodies, ascending
+  std::vector<uint8_t> side;        // per awake dynamic body: its half
   std::vector<uint64_t> split_keys;
-  uint32_t half_start[kHalves + 1] = {1, 1, 1};  // half h: packets [half_start[h], [h + 1])
-  std::vector<SolverBody> packets;               // 0 = static dummy; half 0, then half 1
+  // Half h: packets [half_start[h], half_start[h + 1]); the kinematic bodies' follow.
+  uint32_t half_start[kHalves + 1] = {1, 1, 1};
+  std::vector<SolverBody> packets;  // 0 = static dummy; half 0, half 1, kinematic
   std::vector<SolverBodyParams> params;
   std::vector<SolverBodyMass> masses;
   std::vector<uint32_t> candidates;        // contact indices that take part, group by group
