@@ -374,15 +374,18 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
 
 uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
                          const SolveSettings& settings, SolverState& st) {
-  const std::size_t count = st.packets.size() - 1;
-  // determinism: indexed writes per packet; the non-finite flag is a per-block OR, combined in
-  // block order below.
+  const std::size_t n = bodies.size();
+  // determinism: indexed writes per body; the non-finite flag is a per-block OR, combined in
+  // block order below. perf: blocks of bodies, not of packets: the packets of a half are bodies
+  // from all over the index range, so blocks of packets had both threads writing the same cache
+  // lines of the body columns (pile4k at 2 threads: this stage 0.09 -> 1.56 ms).
   std::vector<uint8_t>& frozen_any = st.block_flags;
-  frozen_any.assign(block_count(count, kBodyBlock) + 1, 0);
-  for_blocks(count, kBodyBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
-    for (std::size_t k = begin + 1; k < end + 1; ++k) {
+  frozen_any.assign(block_count(n, kBodyBlock) + 1, 0);
+  for_blocks(n, kBodyBlock, [&](std::size_t begin, std::size_t end, std::size_t block) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const uint32_t k = st.packet_of[i];
+      if (k == 0) continue;
       const SolverBody& b = st.packets[k];
-      const uint32_t i = st.params[k].body;
       const Vec3 p = bodies.position(i) + b.dp;
       const Quat q = (b.dq * bodies.orientation(i)).normalized();
       const bool finite =
