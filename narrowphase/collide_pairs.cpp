@@ -1,10 +1,13 @@
 // Stage 3, collide_pairs(): manifolds for every broadphase pair in parallel over fixed blocks,
 // warm-start impulses matched by key and feature id, touching manifolds compacted in key order;
 // pairs found apart skip their exact test while their motion cannot have closed the gap.
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <span>
 
@@ -202,7 +205,21 @@ void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts) {
   auto place = [&](std::size_t p) {
     const std::size_t from = u.start[p], to = u.start[p + 1];
     const auto& run = u.added_run[p];
-    if (at[p] == from && u.live[p] == to - from && run.count == 0) return;
+    const bool unchanged = u.live[p] == to - from && run.count == 0;
+    if (unchanged && at[p] == from) return;
+    // perf: a part that only shifts (most of them: an entry added or ended early in the list
+    // moves all after it) is copied once, in the direction that reads each entry before it is
+    // overwritten, not through `bounce`: on pile10k the join took 1.3 ms a step, serially.
+    if (unchanged) {
+      const auto first = list.begin() + std::ptrdiff_t(from),
+                 last = list.begin() + std::ptrdiff_t(to);
+      if (at[p] < from) {
+        std::copy(first, last, list.begin() + std::ptrdiff_t(at[p]));
+      } else {
+        std::copy_backward(first, last, list.begin() + std::ptrdiff_t(at[p + 1]));
+      }
+      return;
+    }
     const std::span<const T> added(u.added[run.thread].data() + run.first, run.count);
     place_part(list, from, to, added, u.bounce, at[p]);
   };
@@ -385,8 +402,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     su.live[part] = su.start[part + 1] - su.start[part] - dead_apart;
     su.added_run[part] = {uint32_t(slot), first_apart, added_apart.size() - first_apart};
   });
-  join(mu, contacts, parts);
-  join(su, separated, parts);
+  // determinism: the two lists are joined apart (disjoint data), each in part order.
+  tbb::parallel_invoke([&] { join(mu, contacts, parts); }, [&] { join(su, separated, parts); });
 }
 
 }  // namespace elan::detail
