@@ -26,8 +26,8 @@ struct StepStats {
   std::size_t manifolds = 0;  ///< touching or near pairs
   std::size_t contacts = 0;   ///< contact points in all manifolds (speculative included)
   std::size_t awake = 0;      ///< awake dynamic bodies
-  std::size_t colors = 0;     ///< constraint colours used (overflow not counted)
-  std::size_t overflow = 0;   ///< manifolds solved serially in the overflow
+  std::size_t colors = 0;     ///< most colours used by one solver group (overflow not counted)
+  std::size_t overflow = 0;   ///< manifolds in the groups' overflows (one per SIMD bundle)
   uint32_t status = kStepOk;  ///< StepStatus flags
   StepProfile profile;
 };
