@@ -92,7 +92,7 @@ struct CollideScratch {
 // distance settings.speculative_distance plus the pair's approach over the step (|relative
 // velocity of the centres| * dt, so fast bodies get speculative points before they reach each
 // other). Each new point takes the impulses of last step's point of the same key and feature id
-// (warm start). A pair whose relative pose moved less than 0.2 mm and 0.5 degrees since its
+// (warm start). A pair whose relative pose moved less than 1 mm and 2 degrees since its
 // points were computed reuses them, carried with the bodies (the body pair cache of Jolt),
 // without running collide(). On return `contacts` holds the touching manifolds and the carried
 // ones, in key order.

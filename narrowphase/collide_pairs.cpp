@@ -58,12 +58,14 @@ void warm_start(const Manifold& old, Manifold& m) {
   }
 }
 
-// Body pair cache (Jolt's): while B's pose relative to A stays within 0.2 mm and 0.5 degrees of
-// the pose of the last exact test, the manifold is carried along with the bodies instead of
-// running the exact test again. Each step carries it from the poses of the step before; the
-// tolerance is measured against the exact test, so a string of reuses cannot drift from it.
-constexpr Real kCacheDistance = Real(2e-4);            // m
-constexpr Real kCacheCosHalfAngle = Real(0.99999048);  // cos(0.25 degree): 0.5 degree
+// Body pair cache (Jolt's): while B's pose relative to A stays within 1 mm and 2 degrees of the
+// pose of the last exact test, the manifold is carried along with the bodies instead of running
+// the exact test again. Each step carries it from the poses of the step before; the tolerance is
+// measured against the exact test, so a string of reuses cannot drift from it. The tolerances
+// are Jolt's defaults (PhysicsSettings::mBodyPairCacheMaxDeltaPositionSq and
+// mBodyPairCacheCosMaxDeltaRotationDiv2).
+constexpr Real kCacheDistance = Real(1e-3);            // m
+constexpr Real kCacheCosHalfAngle = Real(0.99984770);  // cos(1 degree): 2 degrees
 
 // A round body's contact point does not travel with its material as it turns (a rolling
 // sphere touches the ground under its centre). Carried with the body, a cached point would

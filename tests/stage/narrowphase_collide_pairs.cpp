@@ -131,7 +131,7 @@ TEST(CollidePairs, CarriedManifoldsAgreeWithTheExactTest) {
   std::vector<SeparatedPair> apart;
   std::vector<Manifold> carried, exact;
   collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, carried, apart);
-  // 0.047 mm per move for every other body: four moves stay inside the cache's 0.2 mm.
+  // 0.047 mm per move for every other body: four moves stay inside the cache's 1 mm.
   const Vec3 move(Real(3e-5), Real(-3e-5), Real(2e-5));
   for (int k = 0; k < 4; ++k) {
     for (uint32_t b = 1; b < p.bodies.size(); b += 2) {
