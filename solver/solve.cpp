@@ -14,8 +14,7 @@ namespace elan::detail {
 
 namespace {
 
-// Preparing visits every bundle once: larger blocks.
-constexpr uint32_t kSweepBlock = 16;
+// Blocks of bodies for writing the results back.
 constexpr uint32_t kBodyBlock = 128;
 
 enum StageKind : uint32_t {
