@@ -6,8 +6,9 @@
 // passes, about 400 syncs a step on a pile), and on a 2-core VM a sync costs a cross-core round
 // trip or more; the packets of each colour also move between the cores' caches. Solved as two
 // halves plus the contacts that join them, a pass needs two syncs, and each core keeps its half's
-// packets. This is domain decomposition in its simplest form (the partitioned Gauss-Seidel of
-// Jolt's and PhysX's island splitting, here cut by space rather than by island).
+// packets. This is domain decomposition in its simplest form, a cut through space; Box2D v3's
+// constraint graph and Jolt's large-island splitter divide the constraints by colour instead,
+// and pay a sync for each colour.
 //
 // determinism: the cut depends on the scene alone (positions and indices), never on the thread
 // count: one thread solves half 0, half 1 and the cut in that order, two solve the halves at once
