@@ -119,8 +119,8 @@ bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transfo
     return f(a, xa, b, xb, speculative_distance, out, separation);
   }
   if (a.type == ShapeType::Plane && b.type == ShapeType::Plane) return false;
-  // Only the (B, A) routine exists: run it, then flip the normal and swap the anchors (and the
-  // frame of a face the rejection measured along).
+  // Only the (B, A) routine exists: run it, then flip the normal, measure the points from A's
+  // centre instead of B's (and swap the frame of a face the rejection measured along).
   PairFn g = pick(b, a);
   if (!g || !g(b, xb, a, xa, speculative_distance, out, separation)) {
     out.point_count = 0;
@@ -128,8 +128,8 @@ bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transfo
     return false;
   }
   out.normal = -out.normal;
-  for (int k = 0; k < out.point_count; ++k)
-    std::swap(out.points[k].anchor_a, out.points[k].anchor_b);
+  const Vec3 b_from_a = xb.position - xa.position;
+  for (int k = 0; k < out.point_count; ++k) out.points[k].anchor_a += b_from_a;
   return true;
 }
 

@@ -14,9 +14,9 @@
 namespace elan::detail {
 
 // One pair. `xa`, `xb` are the principal-frame poses (centre of mass, principal axes) of the two
-// shapes. Fills out.normal (unit, A to B), out.point_count (0..4) and each point's anchors
-// (world offsets from xa.position / xb.position), separation and feature id; leaves out.key,
-// body_a, body_b and the impulses alone. Points farther apart than `speculative_distance` are
+// shapes. Fills out.normal (unit, A to B), out.point_count (0..4) and each point's anchor_a
+// (world offset from xa.position), separation and feature id; leaves the bodies, the impulses
+// and the cache poses alone. Points farther apart than `speculative_distance` are
 // not reported. Returns out.point_count > 0. Never produces NaN: degenerate input (touching,
 // coincident centres, identical shapes at one pose) still gives a finite unit normal.
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,

@@ -94,18 +94,15 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
     ContactPoint& p = m.points[k];
     const ContactPoint& q = old.points[k];
     const Vec3 on_a = turn_a * q.anchor_a;  // the material points, from each centre now
-    const Vec3 on_b = turn_b * q.anchor_b;
+    const Vec3 on_b = turn_b * old.anchor_b(k);
     // Seen from A, the two material points' gap along A's normal changed by as much as their
-    // separation vector did.
-    const Vec3 gap_then =
-        old.relative_position + old.orientation_a.conjugate() * (q.anchor_b - q.anchor_a);
+    // separation vector did; it was zero: they were one point.
     const Vec3 gap_now = relative + xa.rotation.conjugate() * (on_b - on_a);
-    p.separation = q.separation + normal_in_a.dot(gap_now - gap_then);
+    p.separation = q.separation + normal_in_a.dot(gap_now);
     // Both arms reach one world point, midway between the material points: once the bodies
     // have slid or turned they part (a 1 m cube turned 0.5 degree moves its corner 4 mm), and
     // the two halves of an impulse acting at different points would form a couple.
     p.anchor_a = Real(0.5) * (on_a + centres + on_b);
-    p.anchor_b = p.anchor_a - centres;
     p.max_normal_impulse = 0;
   }
   m.orientation_a = xa.rotation;
@@ -140,6 +137,13 @@ Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& 
   return s.kind == Separation::Kind::FaceOfB ? in_b : std::min(in_a, in_b);
 }
 
+uint64_t list_key(const Manifold& m) {
+  return m.key();
+}
+uint64_t list_key(const SeparatedPair& s) {
+  return s.key;
+}
+
 bool ended(const Manifold& m) {
   return m.point_count == 0;
 }
@@ -160,9 +164,10 @@ void begin_update(ListUpdate<T>& u, const std::vector<T>& list, std::span<const 
   u.start[0] = 0;
   u.start[parts] = list.size();
   for (std::size_t part = 1; part < parts; ++part) {
-    u.start[part] = std::size_t(std::lower_bound(list.begin(), list.end(), pairs[part * kPairGrain],
-                                                 [](const T& x, uint64_t k) { return x.key < k; }) -
-                                list.begin());
+    u.start[part] =
+        std::size_t(std::lower_bound(list.begin(), list.end(), pairs[part * kPairGrain],
+                                     [](const T& x, uint64_t k) { return list_key(x) < k; }) -
+                    list.begin());
   }
 }
 
@@ -175,7 +180,7 @@ void place_part(std::vector<T>& list, std::size_t from, std::size_t to, std::spa
   auto next_added = added.begin();
   for (std::size_t i = from; i < to; ++i) {
     if (ended(list[i])) continue;
-    for (; next_added != added.end() && next_added->key < list[i].key; ++next_added) {
+    for (; next_added != added.end() && list_key(*next_added) < list_key(list[i]); ++next_added) {
       bounce.push_back(*next_added);
     }
     bounce.push_back(list[i]);
@@ -319,12 +324,11 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     Separation separation;
     for (std::size_t i = begin; i < end; ++i) {
       const uint64_t key = pairs[i];
-      for (; prev_it != prev_end && prev_it->key < key; ++prev_it) keep_if_carried(*prev_it);
+      for (; prev_it != prev_end && prev_it->key() < key; ++prev_it) keep_if_carried(*prev_it);
       for (; apart_it != apart_end && apart_it->key < key; ++apart_it) end_apart(*apart_it);
       uint32_t a = pair_first(key), b = pair_second(key);
       // The static or kinematic body, if any, is B (architecture rule 4).
       if (!bodies.is_dynamic(a) && bodies.is_dynamic(b)) std::swap(a, b);
-      m.key = key;
       m.body_a = a;
       m.body_b = b;
       m.point_count = 0;
@@ -333,7 +337,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       const Transform xa{bodies.position(a), bodies.orientation(a)};
       const Transform xb{bodies.position(b), bodies.orientation(b)};
       const Vec3 relative = xa.rotation.conjugate() * (xb.position - xa.position);
-      Manifold* same_key = (prev_it != prev_end && prev_it->key == key) ? prev_it++ : nullptr;
+      Manifold* same_key = (prev_it != prev_end && prev_it->key() == key) ? prev_it++ : nullptr;
       const Manifold* old = (same_key != nullptr && same_key->body_a == a) ? same_key : nullptr;
       SeparatedPair* apart = (apart_it != apart_end && apart_it->key == key) ? apart_it++ : nullptr;
       const bool cacheable = !rolls(shape_a) && !rolls(shape_b);

@@ -242,7 +242,6 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
     ids[0] = base | 0x3FFFu;
     count = 1;
   }
-  const Vec3 b_rel = xb.position - origin;
   int keep[kMaxManifoldPoints];
   int n_keep = count;
   if (count > kMaxManifoldPoints) {
@@ -254,7 +253,6 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
   for (int k = 0; k < n_keep; ++k) {
     ContactPoint& c = out.points[k];
     c.anchor_a = points[keep[k]];
-    c.anchor_b = points[keep[k]] - b_rel;
     c.separation = seps[keep[k]];
     c.feature_id = ids[keep[k]];
   }

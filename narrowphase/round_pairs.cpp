@@ -39,11 +39,10 @@ void begin(Manifold& m, const Vec3& normal) {
 
 // Contact at the midpoint of the two surface points; impulses stay for the warm-start merge.
 void add_point(Manifold& m, const Vec3& surface_a, const Vec3& surface_b, Real separation,
-               uint32_t id, const Vec3& ca, const Vec3& cb) {
+               uint32_t id, const Vec3& ca) {
   ContactPoint& c = m.points[m.point_count++];
   const Vec3 p = Real(0.5) * (surface_a + surface_b);
   c.anchor_a = p - ca;
-  c.anchor_b = p - cb;
   c.separation = separation;
   c.feature_id = id;
 }
@@ -60,11 +59,11 @@ Vec3 closest_on_segment(const Vec3& c, const Vec3& h, const Vec3& p) {
   return c + t * h;
 }
 
-// Two balls (centre, radius) with ball B's body centre `cb_body`: the sphere-sphere closed form,
+// Two balls (centre, radius) with ball A's body centre `ca_body`: the sphere-sphere closed form,
 // normal along the centre line (fallback when the centres coincide).
 bool collide_balls(const Vec3& ca, Real ra, const Vec3& ca_body, const Vec3& cb, Real rb,
-                   const Vec3& cb_body, const Vec3& fallback, Real speculative, uint32_t id,
-                   Manifold& out, Separation* separation) {
+                   const Vec3& fallback, Real speculative, uint32_t id, Manifold& out,
+                   Separation* separation) {
   const Vec3 d = cb - ca;
   const Real dist = d.norm();
   const Real sep = dist - ra - rb;
@@ -75,7 +74,7 @@ bool collide_balls(const Vec3& ca, Real ra, const Vec3& ca_body, const Vec3& cb,
   }
   const Vec3 n = direction_or(d, ra + rb + dist, fallback);
   out.normal = n;
-  add_point(out, ca + ra * n, cb - rb * n, sep, id, ca_body, cb_body);
+  add_point(out, ca + ra * n, cb - rb * n, sep, id, ca_body);
   return true;
 }
 
@@ -122,8 +121,8 @@ void push_candidate(Candidate* c, int& count, const Candidate& x) {
 // |cb - ca| - ra - rb along the centre line.
 bool collide_sphere_sphere(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                            Real speculative_distance, Manifold& out, Separation* separation) {
-  return collide_balls(xa.position, a.radius, xa.position, xb.position, b.radius, xb.position,
-                       Vec3::UnitY(), speculative_distance, 0, out, separation);
+  return collide_balls(xa.position, a.radius, xa.position, xb.position, b.radius, Vec3::UnitY(),
+                       speculative_distance, 0, out, separation);
 }
 
 // Sphere against the ball at the closest point of the capsule's segment.
@@ -133,7 +132,7 @@ bool collide_sphere_capsule(const Shape& a, const Transform& xa, const Shape& b,
   const Vec3 h = capsule_axis(b, xb);
   const Vec3 q = closest_on_segment(xb.position, h, xa.position);
   const Vec3 fallback = h.squaredNorm() > 0 ? any_perpendicular(h) : Vec3::UnitY();
-  return collide_balls(xa.position, a.radius, xa.position, q, b.radius, xb.position, fallback,
+  return collide_balls(xa.position, a.radius, xa.position, q, b.radius, fallback,
                        speculative_distance, 0, out, separation);
 }
 
@@ -168,8 +167,7 @@ bool collide_capsule_capsule(const Shape& a, const Transform& xa, const Shape& b
       for (int k = 0; k < 2; ++k) {
         const Real sep = n.dot(pb[k] - pa[k]) - radii;
         if (sep > speculative_distance) continue;
-        add_point(out, pa[k] + a.radius * n, pb[k] - b.radius * n, sep, ids[k], xa.position,
-                  xb.position);
+        add_point(out, pa[k] + a.radius * n, pb[k] - b.radius * n, sep, ids[k], xa.position);
       }
       return out.point_count > 0;
     }
@@ -181,8 +179,8 @@ bool collide_capsule_capsule(const Shape& a, const Transform& xa, const Shape& b
   fallback = fallback.squaredNorm() > 0 ? Vec3(fallback.normalized())
              : len1 > 0                 ? any_perpendicular(d1)
                                         : Vec3::UnitY();
-  return collide_balls(ca, a.radius, xa.position, cb, b.radius, xb.position, fallback,
-                       speculative_distance, 4, out, separation);
+  return collide_balls(ca, a.radius, xa.position, cb, b.radius, fallback, speculative_distance, 4,
+                       out, separation);
 }
 
 // Closest point on the box (clamp the centre in box coordinates); a centre inside the box is
@@ -206,8 +204,7 @@ bool collide_sphere_box(const Shape& a, const Transform& xa, const Shape& b, con
     uint32_t region = 0;
     for (int i = 2; i >= 0; --i) region = region * 3 + (c[i] < -he[i] ? 0 : c[i] > he[i] ? 2 : 1);
     out.normal = n;
-    add_point(out, xa.position + a.radius * n, xb.position + rb * q, sep, region, xa.position,
-              xb.position);
+    add_point(out, xa.position + a.radius * n, xb.position + rb * q, sep, region, xa.position);
     return true;
   }
   int axis = 0;
@@ -222,7 +219,7 @@ bool collide_sphere_box(const Shape& a, const Transform& xa, const Shape& b, con
   const Vec3 n = -sign * rb.col(axis);
   out.normal = n;
   add_point(out, xa.position + a.radius * n, xb.position + rb * surface, -pen - a.radius,
-            27 + 2 * axis + (sign < 0 ? 1 : 0), xa.position, xb.position);
+            27 + 2 * axis + (sign < 0 ? 1 : 0), xa.position);
   return true;
 }
 
@@ -287,8 +284,7 @@ bool collide_sphere_convex(const Shape& a, const Transform& xa, const Shape& b, 
   n = xb.rotation * n;
   out.normal = n;
   add_point(out, xa.position + a.radius * n,
-            xb.rotation * point_b + xb.position - core_radius(b) * n, sep, 0, xa.position,
-            xb.position);
+            xb.rotation * point_b + xb.position - core_radius(b) * n, sep, 0, xa.position);
   return true;
 }
 
@@ -362,8 +358,7 @@ bool collide_convex_plane(const Shape& a, const Transform& xa, const Shape& b, c
       reduce_to_four(std::span<const Vec3>(pos, count), std::span<const Real>(sep, count), n, keep);
   for (int i = 0; i < kept; ++i) {
     const Candidate& c = cand[keep[i]];
-    add_point(out, c.point, c.point - c.separation * n, c.separation, c.id, xa.position,
-              xb.position);
+    add_point(out, c.point, c.point - c.separation * n, c.separation, c.id, xa.position);
   }
   return out.point_count > 0;
 }

@@ -285,20 +285,18 @@ void closest_points_segments(const Vec3& p1, const Vec3& d1, const Vec3& p2, con
   c2 = p2 + t * d2;
 }
 
-void set_point(Manifold& out, int k, const Vec3& p, const Vec3& b_centre, Real separation,
-               uint32_t id) {
+void set_point(Manifold& out, int k, const Vec3& p, Real separation, uint32_t id) {
   ContactPoint& c = out.points[k];
   c.anchor_a = p;
-  c.anchor_b = p - b_centre;
   c.separation = separation;
   c.feature_id = id;
 }
 
 // Stores the candidates (midpoints between the surfaces), reduced to four.
 bool emit_points(const Vec3* points, const Real* separations, const uint32_t* ids, int count,
-                 const Vec3& normal, const Vec3& b_centre, Manifold& out) {
+                 const Vec3& normal, Manifold& out) {
   if (count <= kMaxManifoldPoints) {
-    for (int k = 0; k < count; ++k) set_point(out, k, points[k], b_centre, separations[k], ids[k]);
+    for (int k = 0; k < count; ++k) set_point(out, k, points[k], separations[k], ids[k]);
     out.point_count = count;
   } else {
     int keep[kMaxManifoldPoints];
@@ -306,7 +304,7 @@ bool emit_points(const Vec3* points, const Real* separations, const uint32_t* id
         reduce_to_four(std::span<const Vec3>(points, std::size_t(count)),
                        std::span<const Real>(separations, std::size_t(count)), normal, keep);
     for (int k = 0; k < n; ++k) {
-      set_point(out, k, points[keep[k]], b_centre, separations[keep[k]], ids[keep[k]]);
+      set_point(out, k, points[keep[k]], separations[keep[k]], ids[keep[k]]);
     }
     out.point_count = n;
   }
@@ -316,7 +314,7 @@ bool emit_points(const Vec3* points, const Real* separations, const uint32_t* id
 // Clips the incident face of `inc` (the face most anti-parallel to the reference normal) against
 // the side planes of `ref`'s face `rf`. `ref_is_a` orients the normal and tags the ids.
 bool face_contact(const Polyhedron& ref, int rf, const Polyhedron& inc, bool ref_is_a,
-                  Real speculative_distance, const Vec3& b_centre, Manifold& out) {
+                  Real speculative_distance, Manifold& out) {
   const Vec3 n = ref.normals[rf];
   int inf = 0;
   Real most = std::numeric_limits<Real>::max();
@@ -386,7 +384,7 @@ bool face_contact(const Polyhedron& ref, int rf, const Polyhedron& inc, bool ref
     ids[0] = base | 0x3FFFu;
     count = 1;
   }
-  return emit_points(points, seps, ids, count, normal, b_centre, out);
+  return emit_points(points, seps, ids, count, normal, out);
 }
 
 // Capsule core (segment) against face f of b: the segment clipped to the face's side planes,
@@ -446,7 +444,7 @@ bool segment_face_contact(const Vec3& s0, const Vec3& s1, Real radius, const Pol
     ids[count] = base | (ls[k] & 0xFFF);
     ++count;
   }
-  return emit_points(points, seps, ids, count, normal, b.centre, out);
+  return emit_points(points, seps, ids, count, normal, out);
 }
 
 }  // namespace
@@ -477,13 +475,13 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
                             b.vertices[b.edges[ee.edge_b][1]] - pb, ca, cb);
     out.normal = ee.normal;
     set_point(
-        out, 0, Real(0.5) * (ca + cb), b.centre, ee.separation,
+        out, 0, Real(0.5) * (ca + cb), ee.separation,
         kFeatureEdges | ((uint32_t(ee.edge_a) & 0x7FFF) << 15) | (uint32_t(ee.edge_b) & 0x7FFF));
     out.point_count = 1;
     return true;
   }
-  if (use_b) return face_contact(b, fb.face, a, false, speculative_distance, b.centre, out);
-  return face_contact(a, fa.face, b, true, speculative_distance, b.centre, out);
+  if (use_b) return face_contact(b, fb.face, a, false, speculative_distance, out);
+  return face_contact(a, fa.face, b, true, speculative_distance, out);
 }
 
 SegmentFaceQuery query_segment_faces(const Vec3& s0, const Vec3& s1, const Polyhedron& b) {
@@ -545,7 +543,7 @@ bool collide_segment_polyhedron(const Vec3& s0, const Vec3& s1, Real radius, con
     closest_points_segments(s0, u, pb, b.vertices[b.edges[eq.edge_a][1]] - pb, ca, cb);
     out.normal = eq.normal;
     // Midpoint between the capsule surface (ca + radius n) and the edge point.
-    set_point(out, 0, Real(0.5) * (ca + eq.normal * radius + cb), b.centre, eq.separation,
+    set_point(out, 0, Real(0.5) * (ca + eq.normal * radius + cb), eq.separation,
               kFeatureSegment | (1u << 29) | (uint32_t(eq.edge_a) & 0xFFFF));
     out.point_count = 1;
     return true;
@@ -574,7 +572,7 @@ bool collide_segment_polyhedron_separated(const Vec3& s0, const Vec3& s1, Real r
   const Real sep = normal.dot(point_b - point_a) - radius;
   if (sep > speculative_distance) return false;
   out.normal = normal;
-  set_point(out, 0, Real(0.5) * (point_a + normal * radius + point_b), b.centre, sep,
+  set_point(out, 0, Real(0.5) * (point_a + normal * radius + point_b), sep,
             kFeatureSegment | (1u << 28) | (uint32_t(face) & 0xFFFF));
   out.point_count = 1;
   return true;

@@ -19,7 +19,7 @@ inline constexpr uint32_t kFeatureSegment = 3u << 30;  // capsule segment or gen
 
 // A and B in one working frame (positions relative to A's centre of mass). Writes out.normal
 // (A to B, working = world rotation), point_count, and each point's anchor_a (offset from A's
-// centre, which is the frame origin), anchor_b = anchor_a - b.centre, separation and feature id.
+// centre, which is the frame origin), separation and feature id.
 // A rejection on a face of A or of B reports that face's gap to `separation` (collide.hpp).
 bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculative_distance,
                        Manifold& out, Separation* separation = nullptr);

@@ -177,8 +177,10 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     for (int l = 0; l < lane_count; ++l) {
       const Manifold& m = manifolds[lanes[l]];
       if (k >= m.point_count) continue;
+      // The bodies are where the collide stage left them: B's arm reaches the same point.
+      const Vec3 b_from_a = bodies.position(m.body_b) - bodies.position(m.body_a);
       set_lane(ra[k], l, m.points[k].anchor_a);
-      set_lane(rb, l, m.points[k].anchor_b);
+      set_lane(rb, l, m.points[k].anchor_a - b_from_a);
       p.separation[l] = m.points[k].separation;
       p.normal_impulse[l] = m.points[k].normal_impulse;
     }
@@ -247,7 +249,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     if (!any_lane(refresh)) continue;
     // Lane by lane, for the lanes refreshed only: B's centre from A's at the step's start, the
     // point count and the contact points of the step's start.
-    WideVec3 start_b, anchor_a[kMaxManifoldPoints], anchor_b[kMaxManifoldPoints];
+    WideVec3 start_b, anchor_a[kMaxManifoldPoints];
     Wide count{};
     for (int l = 0; l < c.lanes; ++l) {
       if (!refresh[l]) continue;
@@ -256,7 +258,6 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
       count[l] = Real(m.point_count);
       for (int k = 0; k < m.point_count; ++k) {
         set_lane(anchor_a[k], l, m.points[k].anchor_a);
-        set_lane(anchor_b[k], l, m.points[k].anchor_b);
       }
     }
     // Centres now, relative to A's centre at the step's start (keeps the numbers small).
@@ -273,7 +274,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
       const auto used = refresh & (count > splat(Real(k)));
       // The contact point of the step's start, carried by the mean translation of the two
       // bodies (not their rotation: a rolling sphere's contact stays under its centre).
-      const WideVec3 shared = half * (anchor_a[k] + start_b + anchor_b[k]) + mean_dp;
+      const WideVec3 shared = anchor_a[k] + mean_dp;
       const WideVec3 ra = shared - xa, rb = shared - xb;
       const WideVec3 ra_n = cross(ra, n), rb_n = cross(rb, n);
       const Wide k_n = m_sum + dot(ra_n, ma.inv_inertia * ra_n) + dot(rb_n, mb.inv_inertia * rb_n);

@@ -67,12 +67,12 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
   toi.assign(pairs.size(), 1);
   for_blocks(pairs.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
     auto contact = std::lower_bound(contacts.begin(), contacts.end(), pairs[begin],
-                                    [](const Manifold& m, uint64_t key) { return m.key < key; });
+                                    [](const Manifold& m, uint64_t key) { return m.key() < key; });
     for (std::size_t n = begin; n < end; ++n) {
-      while (contact != contacts.end() && contact->key < pairs[n]) ++contact;
+      while (contact != contacts.end() && contact->key() < pairs[n]) ++contact;
       // A pair with a manifold had its (speculative) contact in the solve, placed along the
       // motion predicted at the step's start: the contact solver has it in hand.
-      if (contact != contacts.end() && contact->key == pairs[n]) continue;
+      if (contact != contacts.end() && contact->key() == pairs[n]) continue;
       const uint32_t a = pair_first(pairs[n]), b = pair_second(pairs[n]);
       const uint32_t pa = st.packet_of[a], pb = st.packet_of[b];
       const bool fast_a = fast[pa] != 0, fast_b = fast[pb] != 0;  // packet 0 is never fast

@@ -5,23 +5,39 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/base/pair_key.hpp"
 #include "elan/math.hpp"
 
 namespace elan::detail {
 
 inline constexpr int kMaxManifoldPoints = 4;
 
+// B's arm is not stored: every manifold's points are one world point seen from both centres
+// (the exact tests report them so, and the body pair cache carries them so), so B's arm is
+// anchor_a minus B's centre relative to A's, at the poses the points were made at.
+// B's arm is not stored: a manifold's points are each one world point seen from both centres
+// (the exact tests report them so and the body pair cache carries them so), so B's arm is A's
+// minus B's centre relative to A's at the poses the points were made at (Manifold::anchor_b).
 struct ContactPoint {
   Vec3 anchor_a = Vec3::Zero();  // m, world: contact point minus A's centre of mass
-  Vec3 anchor_b = Vec3::Zero();  // m, world: contact point minus B's centre of mass
   Real separation = 0;           // m: negative = penetration, positive = speculative gap
   uint32_t feature_id = 0;       // same while the same pair of features touches
   Real normal_impulse = 0;       // N s, accumulated; carried to the next step (warm start)
   Real max_normal_impulse = 0;   // N s, largest applied during the step (events, sleep)
 };
 
+// 224 bytes in float. A pile keeps about 2.7 manifolds a body and the collide stage rewrites each
+// every step, so what can be derived is: the pair key from the bodies, B's arms from A's.
 struct Manifold {
-  uint64_t key = 0;     // make_pair_key(body_a, body_b)
+  // Jolt's body pair cache: the poses when the points were last updated (by the exact test or
+  // by carrying them along), the reference of the next update; and B's pose relative to A at
+  // the exact test, the reference of the tolerance, so that reuses cannot drift away from it.
+  Quat orientation_a = Quat::Identity();  // A's principal frame to world at that time
+  Quat orientation_b = Quat::Identity();
+  Quat exact_rotation = Quat::Identity();  // A's frame to B's (A^-1 B) at the exact test
+  Vec3 relative_position = Vec3::Zero();   // m: B's centre of mass minus A's, in A's frame
+  Vec3 exact_position = Vec3::Zero();      // m: relative_position at the exact test
+
   uint32_t body_a = 0;  // dense index; the static body, if any, is always B
   uint32_t body_b = 0;
   Vec3 normal = Vec3::UnitY();  // unit, world, from A towards B
@@ -32,15 +48,14 @@ struct Manifold {
   // normal, carried to the next step like the normal impulses.
   Real tangent_impulse[2] = {0, 0};  // N s, along the solver's tangent basis of `normal`
   Real twist_impulse = 0;            // N m s, about `normal`
-  // Jolt's body pair cache: the poses when the points were last updated (by the exact test or
-  // by carrying them along), the reference of the next update; and B's pose relative to A at
-  // the exact test, the reference of the tolerance, so that reuses cannot drift away from it.
-  Quat orientation_a = Quat::Identity();  // A's principal frame to world at that time
-  Quat orientation_b = Quat::Identity();
-  Vec3 relative_position = Vec3::Zero();   // m: B's centre of mass minus A's, in A's frame
-  Quat exact_rotation = Quat::Identity();  // A's frame to B's (A^-1 B) at the exact test
-  Vec3 exact_position = Vec3::Zero();      // m: relative_position at the exact test
+
+  // The list's sort key.
+  uint64_t key() const { return make_pair_key(body_a, body_b); }
+  // B's arm of point k (world, from B's centre of mass) at the poses of the last update. The
+  // solver, which runs at those poses, takes B's centre from the body store instead.
+  Vec3 anchor_b(int k) const { return points[k].anchor_a - orientation_a * relative_position; }
 };
+static_assert(sizeof(Real) != 4 || sizeof(Manifold) == 224, "Manifold: 224 bytes in float");
 
 // Deterministic tangent basis from the normal (pick the axis least aligned with n, as Box2D's
 // b2ComputeBasis does): the same normal always gives the same basis. Manifold::tangent_impulse

@@ -49,7 +49,7 @@ void filter_pairs(WorldState& w) {
 void remember_touching(WorldState& w) {
   w.previous_touching.clear();
   for (const Manifold& m : w.contacts) {
-    if (m.point_count > 0) w.previous_touching.push_back({m.key, m.body_a, m.body_b});
+    if (m.point_count > 0) w.previous_touching.push_back({m.body_a, m.body_b});
   }
 }
 
@@ -64,9 +64,9 @@ void compute_contact_events(WorldState& w) {
   std::size_t i = 0, j = 0;
   while (i < old_list.size() || j < new_list.size()) {
     const bool take_old =
-        j == new_list.size() || (i < old_list.size() && old_list[i].key <= new_list[j].key);
+        j == new_list.size() || (i < old_list.size() && old_list[i].key() <= new_list[j].key());
     const bool take_new =
-        i == old_list.size() || (j < new_list.size() && new_list[j].key <= old_list[i].key);
+        i == old_list.size() || (j < new_list.size() && new_list[j].key() <= old_list[i].key());
     const bool is = take_new && new_list[j].point_count > 0;
     if (is && !take_old) begins.push_back(begin_event(w, new_list[j]));
     if (take_old && !is) {

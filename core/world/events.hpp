@@ -16,8 +16,8 @@ inline BodyId body_id_at(const WorldState& w, uint32_t i) {
 // without a filter.
 void filter_pairs(WorldState& w);
 
-// Keeps the key and bodies of each touching manifold of w.contacts in w.previous_touching. Call
-// before the collide stage rewrites the list.
+// Keeps the bodies (hence the key) of each touching manifold of w.contacts in w.previous_touching.
+// Call before the collide stage rewrites the list.
 void remember_touching(WorldState& w);
 
 // Fills w.api.begin_events / end_events (cleared first) by merging last step's touching pairs

@@ -27,7 +27,7 @@ namespace {
 constexpr uint8_t kSnapshotMagic[8] = {0x89, 'E', 'L', 'A', 'N', 'S', 'N', 'P'};
 constexpr uint8_t kRollbackMagic[8] = {0x89, 'E', 'L', 'A', 'N', 'R', 'B', 'K'};
 constexpr std::size_t kHeaderBytes = 16;  // magic, version, sizeof(Real)
-constexpr std::size_t kPointReals = 9;    // anchors 6, separation, impulses 2; plus a u32 id
+constexpr std::size_t kPointReals = 6;    // A's anchor 3, separation, impulses 2; plus a u32 id
 // Per non-static body in a rollback state: 20 Reals and the flags byte.
 constexpr std::size_t kRollbackBodyBytes = 20 * sizeof(Real) + 1;
 
@@ -210,7 +210,6 @@ T read_value(ByteReader& r) {
 
 void write_point(ByteWriter& w, const ContactPoint& p) {
   w.vec3(p.anchor_a);
-  w.vec3(p.anchor_b);
   w.real(p.separation);
   w.u32(p.feature_id);
   w.real(p.normal_impulse);
@@ -220,7 +219,6 @@ void write_point(ByteWriter& w, const ContactPoint& p) {
 ContactPoint read_point(ByteReader& r) {
   ContactPoint p;
   p.anchor_a = r.vec3();
-  p.anchor_b = r.vec3();
   p.separation = r.real();
   p.feature_id = r.u32();
   p.normal_impulse = r.real();
@@ -296,13 +294,13 @@ void check_bodies(ByteReader& r, const Decoded& d) {
   }
 }
 
-void check_manifold(ByteReader& r, const Manifold& m, std::size_t n, uint64_t previous_key,
-                    bool first) {
+void check_manifold(ByteReader& r, const Manifold& m, uint64_t key, std::size_t n,
+                    uint64_t previous_key, bool first) {
   if (m.body_a >= n || m.body_b >= n || m.body_a == m.body_b) {
     r.fail("manifold body index out of range");
   }
-  if (m.key != detail::make_pair_key(m.body_a, m.body_b)) r.fail("manifold key does not match");
-  if (!first && m.key <= previous_key) r.fail("manifolds are not sorted by key");
+  if (key != m.key()) r.fail("manifold key does not match");
+  if (!first && key <= previous_key) r.fail("manifolds are not sorted by key");
   if (m.point_count < 0 || m.point_count > detail::kMaxManifoldPoints) {
     r.fail("manifold point count out of range");
   }
@@ -353,14 +351,14 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
   d.contacts.resize(r.count(kManifoldBytes, "manifold"));
   for (std::size_t k = 0; k < d.contacts.size(); ++k) {
     Manifold& m = d.contacts[k];
-    m.key = r.u64();
+    const uint64_t key = r.u64();
     m.body_a = r.u32();
     m.body_b = r.u32();
     m.normal = r.vec3();
     m.point_count = r.u8();
     for (ContactPoint& p : m.points) p = read_point(r);
     read_friction(r, m);
-    check_manifold(r, m, n, k > 0 ? d.contacts[k - 1].key : 0, k == 0);
+    check_manifold(r, m, key, n, k > 0 ? d.contacts[k - 1].key() : 0, k == 0);
   }
   if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
   return d;
@@ -449,16 +447,16 @@ void read_rollback(ByteReader& r, WorldState& s) {
   uint64_t previous_key = 0;
   for (uint32_t k = 0; k < count; ++k) {
     Manifold m;
-    m.key = r.u64();
+    const uint64_t key = r.u64();
     const uint8_t swapped = r.u8();
-    m.body_a = detail::pair_first(m.key);
-    m.body_b = detail::pair_second(m.key);
+    m.body_a = detail::pair_first(key);
+    m.body_b = detail::pair_second(key);
     if (swapped > 1) r.fail("bad manifold order flag");
     if (swapped) std::swap(m.body_a, m.body_b);
     m.normal = r.vec3();
     m.point_count = r.u8();
-    check_manifold(r, m, n, previous_key, k == 0);
-    previous_key = m.key;
+    check_manifold(r, m, key, n, previous_key, k == 0);
+    previous_key = key;
     for (int p = 0; p < m.point_count; ++p) m.points[p] = read_point(r);
     read_friction(r, m);
     if constexpr (Apply) s.contacts[k] = m;
@@ -516,7 +514,7 @@ std::vector<uint8_t> save_snapshot(const World& world) {
 
   w.u32(uint32_t(s.contacts.size()));
   for (const Manifold& m : s.contacts) {
-    w.u64(m.key);
+    w.u64(m.key());
     w.u32(m.body_a);
     w.u32(m.body_b);
     w.vec3(m.normal);
@@ -559,7 +557,7 @@ void save_rollback(const World& world, std::vector<uint8_t>& out) {
   }
   w.u32(uint32_t(s.contacts.size()));
   for (const Manifold& m : s.contacts) {
-    w.u64(m.key);
+    w.u64(m.key());
     w.u8(m.body_a > m.body_b ? 1 : 0);
     w.vec3(m.normal);
     w.u8(uint8_t(m.point_count));

@@ -183,7 +183,6 @@ void World::destroy_body(BodyId id) {
     if (i != last && (m.body_a == last || m.body_b == last)) {
       if (m.body_a == last) m.body_a = i;
       if (m.body_b == last) m.body_b = i;
-      m.key = detail::make_pair_key(m.body_a, m.body_b);
       resort = true;
     }
     contacts[kept++] = m;
@@ -193,8 +192,9 @@ void World::destroy_body(BodyId id) {
   s.separated.clear();
   if (resort) {
     // determinism: keys are unique, so the sorted order is a function of the keys alone.
-    std::sort(contacts.begin(), contacts.end(),
-              [](const detail::Manifold& x, const detail::Manifold& y) { return x.key < y.key; });
+    std::sort(
+        contacts.begin(), contacts.end(),
+        [](const detail::Manifold& x, const detail::Manifold& y) { return x.key() < y.key(); });
   }
   // The sweep-and-prune's kept order is a permutation of 0..n-1 re-sorted every update (a full
   // sort when the count changes), and its output is canonical, so it needs no fix-up.

@@ -116,7 +116,7 @@ TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
   constexpr std::size_t kR = sizeof(Real);
   // Per manifold: key and bodies, normal, point count, points, friction, the cache poses.
   const std::size_t contacts =
-      4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (9 * kR + 4) + 18 * kR);
+      4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (6 * kR + 4) + 18 * kR);
   const std::size_t slots = 4 + 8 * s.slot_index.size() + 4 + 4 * s.free_slots.size();
   const std::size_t last_shape = bytes.size() - 8 - contacts - slots - 14 * n - 4;
   ASSERT_EQ(bytes[last_shape], s.bodies.shape[n - 1]);
@@ -146,13 +146,12 @@ TEST(SnapshotFormat, SavesEveryFieldOfAManifold) {
   constexpr std::size_t kR = sizeof(Real);
   using detail::ContactPoint;
   using detail::Manifold;
-  EXPECT_EQ(sizeof(ContactPoint), padded(9 * kR + 4, alignof(ContactPoint)));
-  const std::size_t head = padded(8 + 4 + 4 + 3 * kR + 4, alignof(Manifold));
-  EXPECT_EQ(sizeof(Manifold),
-            padded(padded(head + detail::kMaxManifoldPoints * sizeof(ContactPoint) + 3 * kR,
-                          alignof(Quat)) +
-                       2 * sizeof(Quat) + 3 * kR + sizeof(Quat) + 3 * kR,
-                   alignof(Manifold)));
+  EXPECT_EQ(sizeof(ContactPoint), padded(6 * kR + 4, alignof(ContactPoint)));
+  // The cache's three rotations and two offsets, the bodies, normal and point count, the points,
+  // the friction impulses.
+  EXPECT_EQ(sizeof(Manifold), padded(3 * sizeof(Quat) + 6 * kR + 4 + 4 + 3 * kR + 4 +
+                                         detail::kMaxManifoldPoints * sizeof(ContactPoint) + 3 * kR,
+                                     alignof(Manifold)));
 }
 
 TEST(SnapshotFormat, RestoresIdsAndTheirGenerations) {

@@ -48,7 +48,6 @@ Scene make_scene(const std::vector<std::pair<Real, uint8_t>>& spheres) {
 // A manifold of last step, marked by `tag` (its first point's separation, far from any real one).
 Manifold old_manifold(const Scene& s, uint32_t a, uint32_t b, Real tag, int points = 1) {
   Manifold m;
-  m.key = make_pair_key(a, b);
   // The static body as B, as collide_pairs orders them.
   m.body_a = s.bodies.is_dynamic(a) ? a : b;
   m.body_b = s.bodies.is_dynamic(a) ? b : a;
@@ -92,7 +91,7 @@ TEST(CollideCarry, MergesTheIdleOnesInKeyOrder) {
   };
   ASSERT_EQ(out.size(), expected.size());
   for (std::size_t i = 0; i < expected.size(); ++i) {
-    EXPECT_EQ(out[i].key, expected[i].first) << i;
+    EXPECT_EQ(out[i].key(), expected[i].first) << i;
     EXPECT_NEAR(out[i].points[0].separation, expected[i].second, Real(1e-3)) << i;
   }
 }
@@ -103,13 +102,13 @@ TEST(CollideCarry, CarriedBeforeAndAfterAllNewOnesAndWithoutPairs) {
   const std::vector<Manifold> out = run(s, {make_pair_key(0, 2)}, previous);
   ASSERT_EQ(out.size(), 3u);
   EXPECT_EQ(out[0].points[0].separation, 1);
-  EXPECT_EQ(out[1].key, make_pair_key(0, 2));
+  EXPECT_EQ(out[1].key(), make_pair_key(0, 2));
   EXPECT_EQ(out[2].points[0].separation, 2);
 
   const std::vector<Manifold> none = run(s, {}, previous);
   ASSERT_EQ(none.size(), 2u);
-  EXPECT_EQ(none[0].key, make_pair_key(0, 1));
-  EXPECT_EQ(none[1].key, make_pair_key(3, 4));
+  EXPECT_EQ(none[0].key(), make_pair_key(0, 1));
+  EXPECT_EQ(none[1].key(), make_pair_key(3, 4));
 }
 
 TEST(CollideCarry, MergesAcrossBlocksOfPairsUnderOneAndTwoThreads) {
@@ -128,16 +127,16 @@ TEST(CollideCarry, MergesAcrossBlocksOfPairsUnderOneAndTwoThreads) {
     }
   }
   std::sort(previous.begin(), previous.end(),
-            [](const Manifold& x, const Manifold& y) { return x.key < y.key; });
+            [](const Manifold& x, const Manifold& y) { return x.key() < y.key(); });
   for (int threads : {1, 2}) {
     const std::vector<Manifold> out = run(s, pairs, previous, threads);
     ASSERT_EQ(out.size(), 300u) << threads;
     for (std::size_t i = 0; i < out.size(); ++i) {
       if (i > 0) {
-        EXPECT_LT(out[i - 1].key, out[i].key) << i;
+        EXPECT_LT(out[i - 1].key(), out[i].key()) << i;
       }
       const uint32_t b = out[i].body_a;
-      EXPECT_EQ(out[i].key, make_pair_key(0, b));
+      EXPECT_EQ(out[i].key(), make_pair_key(0, b));
       EXPECT_NEAR(out[i].points[0].separation, s.idle[b] ? Real(b) : Real(0), Real(1e-3)) << b;
     }
   }

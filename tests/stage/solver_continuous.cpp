@@ -75,7 +75,8 @@ TEST(Continuous, BodyAlreadyTouchingIsLeftToItsContact) {
 TEST(Continuous, PairWithAContactIsLeftToTheSolver) {
   Scene s({Vec3(2, 0, 0)});
   Manifold m;
-  m.key = s.pairs[0];
+  m.body_a = pair_first(s.pairs[0]);
+  m.body_b = pair_second(s.pairs[0]);
   m.point_count = 1;
   const std::vector<Manifold> contacts = {m};
   EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.pairs, contacts, s.state), 0u);
