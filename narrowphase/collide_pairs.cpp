@@ -202,10 +202,12 @@ void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts) {
   at[0] = 0;
   for (std::size_t p = 0; p < parts; ++p) at[p + 1] = at[p] + u.live[p] + u.added_run[p].count;
   const std::size_t total = at[parts];
-  // Doubling, as std::vector grows: each growth holds the old list and the new at once, and the
-  // freed lists leave the allocator's heap in pieces, so fewer growths mean a lower peak. On
-  // pile10k, growing the contacts by a quarter gave 52.8 MB of peak RSS against 43.2 MB.
-  if (total > list.capacity()) list.reserve(2 * total);
+  // By half: each growth holds the old list and the new at once, and the freed lists leave the
+  // allocator's heap in pieces, so too many growths raise the peak (on pile10k, growing by a
+  // quarter once gave 52.8 MB of peak RSS against 43.2 MB doubling), while doubling leaves up to
+  // half of each list unused for good. By half: 34.7 MB peak, as doubling, and the two lists
+  // 934 B/body after 180 steps against 1163.
+  if (total > list.capacity()) list.reserve(total + total / 2);
   if (total > list.size()) list.resize(total);
   auto place = [&](std::size_t p) {
     const std::size_t from = u.start[p], to = u.start[p + 1];
