@@ -103,7 +103,6 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
     // have slid or turned they part (a 1 m cube turned 0.5 degree moves its corner 4 mm), and
     // the two halves of an impulse acting at different points would form a couple.
     p.anchor_a = Real(0.5) * (on_a + centres + on_b);
-    p.max_normal_impulse = 0;
   }
   m.orientation_a = xa.rotation;
   m.orientation_b = xb.rotation;
@@ -382,11 +381,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         continue;
       }
       if (apart != nullptr) end_apart(*apart);
-      for (int k = 0; k < m.point_count; ++k) {
-        ContactPoint& p = m.points[k];
-        p.normal_impulse = 0;
-        p.max_normal_impulse = 0;
-      }
+      for (int k = 0; k < m.point_count; ++k) m.points[k].normal_impulse = 0;
       m.tangent_impulse[0] = m.tangent_impulse[1] = 0;
       m.twist_impulse = 0;
       m.orientation_a = xa.rotation;

@@ -456,7 +456,6 @@ void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t en
       Manifold& m = manifolds[c.manifold[l]];
       for (int k = 0; k < m.point_count; ++k) {
         m.points[k].normal_impulse = rows[k].normal_impulse[l];
-        m.points[k].max_normal_impulse = rows[k].max_normal_impulse[l];
       }
       m.tangent_impulse[0] = c.tangent_impulse[0][l];
       m.tangent_impulse[1] = c.tangent_impulse[1][l];

@@ -23,10 +23,9 @@ struct ContactPoint {
   Real separation = 0;           // m: negative = penetration, positive = speculative gap
   uint32_t feature_id = 0;       // same while the same pair of features touches
   Real normal_impulse = 0;       // N s, accumulated; carried to the next step (warm start)
-  Real max_normal_impulse = 0;   // N s, largest applied during the step (events, sleep)
 };
 
-// 224 bytes in float. A pile keeps about 2.7 manifolds a body and the collide stage rewrites each
+// 208 bytes in float. A pile keeps about 2.7 manifolds a body and the collide stage rewrites each
 // every step, so what can be derived is: the pair key from the bodies, B's arms from A's.
 struct Manifold {
   // Jolt's body pair cache: the poses when the points were last updated (by the exact test or
@@ -55,7 +54,7 @@ struct Manifold {
   // solver, which runs at those poses, takes B's centre from the body store instead.
   Vec3 anchor_b(int k) const { return points[k].anchor_a - orientation_a * relative_position; }
 };
-static_assert(sizeof(Real) != 4 || sizeof(Manifold) == 224, "Manifold: 224 bytes in float");
+static_assert(sizeof(Real) != 4 || sizeof(Manifold) == 208, "Manifold: 208 bytes in float");
 
 // Deterministic tangent basis from the normal (pick the axis least aligned with n, as Box2D's
 // b2ComputeBasis does): the same normal always gives the same basis. Manifold::tangent_impulse

@@ -27,7 +27,7 @@ namespace {
 constexpr uint8_t kSnapshotMagic[8] = {0x89, 'E', 'L', 'A', 'N', 'S', 'N', 'P'};
 constexpr uint8_t kRollbackMagic[8] = {0x89, 'E', 'L', 'A', 'N', 'R', 'B', 'K'};
 constexpr std::size_t kHeaderBytes = 16;  // magic, version, sizeof(Real)
-constexpr std::size_t kPointReals = 6;    // A's anchor 3, separation, impulses 2; plus a u32 id
+constexpr std::size_t kPointReals = 5;    // A's anchor 3, separation, impulse; plus a u32 id
 // Per non-static body in a rollback state: 20 Reals and the flags byte.
 constexpr std::size_t kRollbackBodyBytes = 20 * sizeof(Real) + 1;
 
@@ -213,7 +213,6 @@ void write_point(ByteWriter& w, const ContactPoint& p) {
   w.real(p.separation);
   w.u32(p.feature_id);
   w.real(p.normal_impulse);
-  w.real(p.max_normal_impulse);
 }
 
 ContactPoint read_point(ByteReader& r) {
@@ -222,7 +221,6 @@ ContactPoint read_point(ByteReader& r) {
   p.separation = r.real();
   p.feature_id = r.u32();
   p.normal_impulse = r.real();
-  p.max_normal_impulse = r.real();
   return p;
 }
 

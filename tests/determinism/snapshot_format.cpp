@@ -116,7 +116,7 @@ TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
   constexpr std::size_t kR = sizeof(Real);
   // Per manifold: key and bodies, normal, point count, points, friction, the cache poses.
   const std::size_t contacts =
-      4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (6 * kR + 4) + 18 * kR);
+      4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (5 * kR + 4) + 18 * kR);
   const std::size_t slots = 4 + 8 * s.slot_index.size() + 4 + 4 * s.free_slots.size();
   const std::size_t last_shape = bytes.size() - 8 - contacts - slots - 14 * n - 4;
   ASSERT_EQ(bytes[last_shape], s.bodies.shape[n - 1]);
@@ -146,7 +146,7 @@ TEST(SnapshotFormat, SavesEveryFieldOfAManifold) {
   constexpr std::size_t kR = sizeof(Real);
   using detail::ContactPoint;
   using detail::Manifold;
-  EXPECT_EQ(sizeof(ContactPoint), padded(6 * kR + 4, alignof(ContactPoint)));
+  EXPECT_EQ(sizeof(ContactPoint), padded(5 * kR + 4, alignof(ContactPoint)));
   // The cache's three rotations and two offsets, the bodies, normal and point count, the points,
   // the friction impulses.
   EXPECT_EQ(sizeof(Manifold), padded(3 * sizeof(Quat) + 6 * kR + 4 + 4 + 3 * kR + 4 +

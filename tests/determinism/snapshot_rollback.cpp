@@ -57,7 +57,7 @@ TEST(Rollback, SizeIsEightyOneBytesPerMovingBodyPlusContacts) {
   for (std::size_t i = 0; i < s.bodies.size(); ++i) moving += !s.bodies.is_static(i);
   std::size_t contact_bytes = 4;
   for (const detail::Manifold& m : s.contacts) {
-    contact_bytes += 8 + 1 + 6 * sizeof(Real) + 1 + m.point_count * (6 * sizeof(Real) + 4) +
+    contact_bytes += 8 + 1 + 6 * sizeof(Real) + 1 + m.point_count * (5 * sizeof(Real) + 4) +
                      18 * sizeof(Real);  // the pair cache's three rotations and two offsets
   }
   const std::size_t per_body = 20 * sizeof(Real) + 1;

@@ -35,10 +35,11 @@ inline constexpr uint32_t kSnapshotVersion = 4;
 ///     | u32 bodies n, then each BodyStore column in declaration order, n values each
 ///     | u32 slots m, m x u32 slot index, m x u32 generation | u32 f, f x u32 free slots
 ///     | u32 manifolds, each: u64 key, u32 body a, u32 body b, 3R normal, u8 point count,
-///       4 points x (3R anchor a, R separation, u32 feature id, R normal impulse,
-///       R max normal impulse), 2R tangent impulses, R twist impulse, 4R orientation a,
+///       4 points x (3R anchor a, R separation, u32 feature id, R normal impulse),
+///       2R tangent impulses, R twist impulse, 4R orientation a,
 ///       4R orientation b (w x y z), 3R relative position, 4R exact rotation, 3R exact position
-///       (version 2 added the poses, 3 the exact ones; 4 dropped anchor b, derived from a)
+///       (version 2 added the poses, 3 the exact ones; 4 dropped anchor b, derived from
+///       a, and the max normal impulse, which nothing read)
 ///     | u64 checksum: 64-bit FNV-1a over 8-byte little-endian words of every byte before it
 ///       (the tail zero-padded), so any single changed byte changes it.
 ///
@@ -71,7 +72,7 @@ World load_snapshot(std::span<const uint8_t> bytes);
 /// in index order: px py pz qw qx qy qz vx vy vz wx wy wz fx fy fz tx ty tz sleep_time (R each),
 /// u8 flags | u32 manifolds, each: u64 key, u8 (1 when body A is the higher index), 3R normal,
 /// u8 point count, per point: 3R anchor a, R separation, u32 feature id,
-/// R normal impulse, R max normal impulse; then 2R tangent impulses, R twist impulse,
+/// R normal impulse; then 2R tangent impulses, R twist impulse,
 /// 4R orientation a, 4R orientation b, 3R relative position, 4R exact rotation, 3R exact position
 /// | u64 checksum as above.
 std::vector<uint8_t> save_rollback(const World& world);
