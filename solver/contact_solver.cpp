@@ -115,7 +115,8 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
                     uint32_t bundle, std::span<const uint32_t> lanes) {
   ContactBundle& c = ctx.bundles[bundle];
   WideContactPoint* rows = ctx.rows.data() + c.first_row;
-  BundleRestitution& bounce = ctx.restitution[bundle];
+  BundleRestitution unused;
+  BundleRestitution& bounce = ctx.restitution.empty() ? unused : ctx.restitution[bundle];
   const int lane_count = int(lanes.size());
   c.lanes = lane_count;
   // Lane by lane: the inputs, scattered over manifolds, bodies and packets, into lanes.
@@ -413,6 +414,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
 }
 
 void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) {
+  if (ctx.restitution.empty()) return;  // no body bounces
   SolverBody* bodies = ctx.bodies.data();
   const Wide zero{};
   const Wide threshold = splat(-ctx.restitution_threshold);

@@ -26,7 +26,7 @@ struct ContactSolverContext {
   std::span<const SolverBodyMass> masses;
   std::span<ContactBundle> bundles;          // grouped by colour
   std::span<WideContactPoint> rows;          // the bundles' point rows (ContactBundle::first_row)
-  std::span<BundleRestitution> restitution;  // per bundle
+  std::span<BundleRestitution> restitution;  // per bundle; empty when no body bounces
   Real h = 0;                                // s, substep
   Real inv_h = 0;
   Softness contact_softness;       // dynamic vs dynamic

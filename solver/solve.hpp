@@ -72,7 +72,7 @@ struct SolverState {
   std::vector<ContactBundle> bundles;  // segment by segment
   std::vector<uint32_t> row_start;     // bundle j's point rows are [row_start[j], row_start[j+1])
   std::vector<WideContactPoint> rows;
-  std::vector<BundleRestitution> restitution;  // per bundle
+  std::vector<BundleRestitution> restitution;  // per bundle; empty when no body bounces
   std::vector<uint32_t> bundle_start;  // segment s is bundles[bundle_start[s], bundle_start[s+1])
   ColorScratch color_scratch[kGroups];
   IslandScratch island_scratch;
