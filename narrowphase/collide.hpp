@@ -98,10 +98,12 @@ struct CollideScratch {
 // ones, in key order.
 //
 // Separation cache: `separated` holds, sorted by key, the pairs found apart with what their
-// rejection measured (Separation). While B's points have moved, relative to A, by less than
-// that gap minus the pair's speculative distance and a tolerance, the exact test is skipped: it
-// would reject the pair again, so the result is the same bits with or without the cache. It
-// belongs to one set of bodies and shapes: clear it when bodies are removed or renumbered.
+// rejection measured (Separation), but for those whose exact test is a closed form (two round
+// shapes, a sphere and a box), which costs about as much as checking the cache. While B's points
+// have moved, relative to A, by less than that gap minus the pair's speculative distance and a
+// tolerance, the exact test is skipped: it would reject the pair again, so the result is the same
+// bits with or without the cache. It belongs to one set of bodies and shapes: clear it when bodies
+// are removed or renumbered.
 //
 // Carrying: a manifold whose two bodies are both flagged in `idle` (per body; the world flags
 // static and sleeping bodies) and whose key has no touching manifold this step is kept as it is,

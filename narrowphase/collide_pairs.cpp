@@ -110,6 +110,17 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
   return true;
 }
 
+// The pairs whose exact test is a closed form (two balls, a ball and a segment, two segments, a
+// ball and a box): checking a cached separation costs about as much as the test, so they keep
+// none. A pile of spheres, capsules, boxes and hulls in equal numbers has 3 in 8 of its pairs
+// such, and its separated list was 40 bytes for each.
+bool closed_form(const Shape& a, const Shape& b) {
+  const auto round = [](ShapeType t) { return t == ShapeType::Sphere || t == ShapeType::Capsule; };
+  if (round(a.type) && round(b.type)) return true;
+  return (a.type == ShapeType::Sphere && b.type == ShapeType::Box) ||
+         (a.type == ShapeType::Box && b.type == ShapeType::Sphere);
+}
+
 // perf: two in three broadphase pairs of a settling pile do not touch (pile4k: 19k of 29k a step),
 // and nearly all of them moved less in a step than their gap; skipping their tests took the
 // collide stage from 6.6 to 4.9 ms a step on pile4k.
@@ -363,7 +374,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation);
       if (m.point_count == 0) {
         if (same_key != nullptr) keep_if_carried(*same_key);
-        if (separation.kind == Separation::Kind::Unknown) {
+        if (separation.kind == Separation::Kind::Unknown || closed_form(shape_a, shape_b)) {
           if (apart != nullptr) end_apart(*apart);
           continue;
         }
