@@ -7,6 +7,8 @@
 #include <cassert>
 #include <span>
 
+#include <tbb/task_arena.h>
+
 namespace elan::detail {
 
 namespace {
@@ -109,12 +111,14 @@ void sort_bucket(uint64_t* src, uint64_t* dst, std::size_t m) {
 }
 
 // The parallel MSD pass over `sources` spans (source(b) gives span b) of `total` keys, into
-// out[0, total). out must not alias a source.
+// out[0, total). out must not alias a source. With `direct`, the keys are scattered into `out`
+// and each bucket is sorted from a copy in its thread's scratch; otherwise they are scattered
+// into scratch.keys and each bucket sorted from there into `out`.
 template <class Source>
 void sort_sources(std::size_t sources, const Source& source, std::size_t total, uint64_t max_key,
-                  uint64_t* out, KeySortScratch& scratch) {
+                  uint64_t* out, KeySortScratch& scratch, bool direct) {
   const int shift = std::max(0, int(std::bit_width(max_key)) - kTopBits);
-  scratch.keys.resize(total);
+  if (!direct) scratch.keys.resize(total);
   scratch.counts.assign(sources * kTopBuckets + kTopBuckets + 1, 0);
   uint32_t* counts = scratch.counts.data();
   uint32_t* bucket_start = counts + sources * kTopBuckets;
@@ -128,16 +132,28 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
   });
   // Within a bucket, source b's keys follow source b-1's.
   bin_major_offsets(counts, sources, kTopBuckets, bucket_start);
-  uint64_t* mid = scratch.keys.data();
+  uint64_t* mid = direct ? out : scratch.keys.data();
   // determinism: every source writes the slots its offsets reserve (rule 1).
   for_blocks(sources, 1, [&](std::size_t b, std::size_t, std::size_t) {
     uint32_t* c = counts + b * kTopBuckets;
     for (uint64_t k : source(b)) mid[c[k >> shift]++] = k;
   });
+  const std::size_t threads = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  if (direct && scratch.bucket.size() < threads) scratch.bucket.resize(threads);
+  // determinism: a bucket's sorted keys are a function of its keys alone, whichever thread's
+  // scratch held them.
   for_blocks(kTopBuckets, kBucketGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    const int thread = tbb::this_task_arena::current_thread_index();
+    std::vector<uint64_t>* copy =
+        direct ? &scratch.bucket[thread < 0 ? 0 : std::size_t(thread)] : nullptr;
     for (std::size_t d = begin; d < end; ++d) {
       const uint32_t lo = bucket_start[d], hi = bucket_start[d + 1];
-      sort_bucket(mid + lo, out + lo, hi - lo);
+      if (direct) {
+        copy->assign(out + lo, out + hi);
+        sort_bucket(copy->data(), out + lo, hi - lo);
+      } else {
+        sort_bucket(mid + lo, out + lo, hi - lo);
+      }
     }
   });
 }
@@ -156,7 +172,7 @@ void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& sc
     return std::span<const uint64_t>(data + b * kChunk, std::min(n, (b + 1) * kChunk) - b * kChunk);
   };
   // Sources read keys, the MSD pass writes scratch, the buckets are sorted back into keys.
-  sort_sources(block_count(n, kChunk), chunk, n, max_key, keys.data(), scratch);
+  sort_sources(block_count(n, kChunk), chunk, n, max_key, keys.data(), scratch, false);
 }
 
 void sort_key_blocks(const std::vector<std::vector<uint64_t>>& blocks, uint64_t max_key,
@@ -170,7 +186,7 @@ void sort_key_blocks(const std::vector<std::vector<uint64_t>>& blocks, uint64_t 
   }
   out.resize(total);
   const auto block = [&](std::size_t b) { return std::span<const uint64_t>(blocks[b]); };
-  sort_sources(blocks.size(), block, total, max_key, out.data(), scratch);
+  sort_sources(blocks.size(), block, total, max_key, out.data(), scratch, true);
 }
 
 }  // namespace elan::detail

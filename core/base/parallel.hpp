@@ -74,19 +74,22 @@ inline uint32_t bin_major_offsets(uint32_t* counts, std::size_t blocks, std::siz
 
 // Reused buffers of sort_key_blocks / sort_keys, so a warm call allocates nothing.
 struct KeySortScratch {
-  std::vector<uint64_t> keys;
+  std::vector<uint64_t> keys;                 // sort_keys: all the keys
+  std::vector<std::vector<uint64_t>> bucket;  // sort_key_blocks: per thread, one bucket
   std::vector<uint32_t> counts;
 };
 
 inline std::size_t heap_bytes(const KeySortScratch& s) {
-  return heap_bytes(s.keys) + heap_bytes(s.counts);
+  return heap_bytes(s.keys) + heap_bytes(s.bucket) + heap_bytes(s.counts);
 }
 
 // Parallel sort of 64-bit keys, every key <= max_key: an MSD pass on the top 8 bits below
 // max_key's width scatters block by block into 256 buckets, then each bucket is sorted alone.
 // Integer keys that compare equal are equal, so the output is a function of the input multiset
 // alone, whatever the thread count.
-// sort_key_blocks writes the keys of all `blocks`, sorted, to `out`; sort_keys sorts in place.
+// sort_key_blocks writes the keys of all `blocks`, sorted, to `out`, scattering them there
+// directly (a thread's scratch holds one bucket at a time); sort_keys sorts in place, through a
+// scratch copy of all the keys.
 void sort_key_blocks(const std::vector<std::vector<uint64_t>>& blocks, uint64_t max_key,
                      std::vector<uint64_t>& out, KeySortScratch& scratch);
 void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch);
