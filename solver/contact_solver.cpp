@@ -127,6 +127,9 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   WideBody va, vb;
   WideMass ma, mb;  // zero in unused lanes
   Wide point_count{};
+  // B's centre from A's: the bodies are where the collide stage left them, so B's arm to a
+  // point is A's arm minus this.
+  WideVec3 b_from_a;
   for (int l = 0; l < kLanes; ++l) {
     if (l >= lane_count) {
       c.packet_a[l] = c.packet_b[l] = c.manifold[l] = 0;
@@ -164,6 +167,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     set_lane(vb.v, l, sb.v);
     set_lane(vb.w, l, sb.w);
     point_count[l] = Real(m.point_count);
+    set_lane(b_from_a, l, bodies.position(b) - bodies.position(a));
   }
   const Wide zero{};
   const Wide one = splat(1);
@@ -172,21 +176,18 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   WideVec3 ra[kMaxManifoldPoints], center_ra, center_rb;
   for (int k = 0; k < c.max_count; ++k) {
     WideContactPoint& p = rows[k];
-    WideVec3 rb;
     p.separation = p.normal_impulse = Wide{};
     // Arms of lanes without this point, and of unused lanes, stay zero.
     for (int l = 0; l < lane_count; ++l) {
       const Manifold& m = manifolds[lanes[l]];
       if (k >= m.point_count) continue;
-      // The bodies are where the collide stage left them: B's arm reaches the same point.
-      const Vec3 b_from_a = bodies.position(m.body_b) - bodies.position(m.body_a);
       set_lane(ra[k], l, m.points[k].anchor_a);
-      set_lane(rb, l, m.points[k].anchor_a - b_from_a);
       p.separation[l] = m.points[k].separation;
       p.normal_impulse[l] = m.points[k].normal_impulse;
     }
     // Lanes with fewer points leave this row empty: zero arms and zero mass apply no impulse.
     const auto used = point_count > splat(Real(k));
+    const WideVec3 rb = select(used, ra[k] - b_from_a, WideVec3{});
     p.ra_n = cross(ra[k], n);
     p.rb_n = cross(rb, n);
     const Wide k_n =
