@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/grow.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
 #include "narrowphase/collide.hpp"
@@ -64,7 +65,7 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
   if (!any) return 0;
 
   std::vector<Real>& toi = st.pair_toi;
-  toi.assign(pairs.size(), 1);
+  grow_fill(toi, pairs.size(), Real(1));
   for_blocks(pairs.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
     auto contact = std::lower_bound(contacts.begin(), contacts.end(), pairs[begin],
                                     [](const Manifold& m, uint64_t key) { return m.key() < key; });

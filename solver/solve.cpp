@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
 #include "elan/profile.hpp"
 #include "solver/integrate.hpp"
@@ -228,15 +229,10 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
         st.row_start[j + 1] = st.row_start[j] + uint32_t(point_count(first));
       }
     }
-    // Rebuilt every step, these keep their capacity for good: growing by a quarter, not
-    // doubling, leaves less of it unused (pile10k: the solver's part 1300 -> 976 B/body).
-    auto grow = [](auto& v, std::size_t n) {
-      if (n > v.capacity()) v.reserve(n + n / 4);
-      v.resize(n);
-    };
-    grow(st.bundles, bundle_count);
-    grow(st.rows, st.row_start[bundle_count]);
-    grow(st.restitution, bouncy ? bundle_count : 0);
+    // Growing by a quarter, not doubling: pile10k's solver part 1300 -> 976 B/body.
+    grow_to(st.bundles, bundle_count);
+    grow_to(st.rows, st.row_start[bundle_count]);
+    grow_to(st.restitution, bouncy ? bundle_count : 0);
   };
 
   auto prepare_group = [&](uint32_t g) {

@@ -9,6 +9,8 @@
 
 #include <tbb/task_arena.h>
 
+#include "core/base/grow.hpp"
+
 namespace elan::detail {
 
 namespace {
@@ -149,7 +151,8 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
     for (std::size_t d = begin; d < end; ++d) {
       const uint32_t lo = bucket_start[d], hi = bucket_start[d + 1];
       if (direct) {
-        copy->assign(out + lo, out + hi);
+        grow_to(*copy, hi - lo);
+        std::copy(out + lo, out + hi, copy->begin());
         sort_bucket(copy->data(), out + lo, hi - lo);
       } else {
         sort_bucket(mid + lo, out + lo, hi - lo);
