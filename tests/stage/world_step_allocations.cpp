@@ -24,6 +24,12 @@ void* allocate(std::size_t n, std::size_t align) {
   if (p == nullptr) throw std::bad_alloc();
   return p;
 }
+
+// Not inlined into the replacement deletes: GCC, seeing free() on what `new` returned, would warn
+// of a mismatch that is the replacement itself.
+[[gnu::noinline]] void deallocate(void* p) noexcept {
+  std::free(p);
+}
 }  // namespace
 
 void* operator new(std::size_t n) {
@@ -38,29 +44,64 @@ void* operator new(std::size_t n, std::align_val_t a) {
 void* operator new[](std::size_t n, std::align_val_t a) {
   return allocate(n, std::size_t(a));
 }
+// The nothrow forms too (std::stable_sort's buffer comes from one): every form of new must pair
+// with these deletes.
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  try {
+    return allocate(n, alignof(std::max_align_t));
+  } catch (const std::bad_alloc&) {
+    return nullptr;
+  }
+}
+void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept {
+  return operator new(n, t);
+}
+void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  try {
+    return allocate(n, std::size_t(a));
+  } catch (const std::bad_alloc&) {
+    return nullptr;
+  }
+}
+void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t& t) noexcept {
+  return operator new(n, a, t);
+}
 void operator delete(void* p) noexcept {
-  std::free(p);
+  deallocate(p);
 }
 void operator delete[](void* p) noexcept {
-  std::free(p);
+  deallocate(p);
 }
 void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
+  deallocate(p);
 }
 void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
+  deallocate(p);
 }
 void operator delete(void* p, std::align_val_t) noexcept {
-  std::free(p);
+  deallocate(p);
 }
 void operator delete[](void* p, std::align_val_t) noexcept {
-  std::free(p);
+  deallocate(p);
 }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
+  deallocate(p);
 }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
+  deallocate(p);
+}
+
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+  deallocate(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+  deallocate(p);
+}
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  deallocate(p);
+}
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  deallocate(p);
 }
 
 namespace elan {
