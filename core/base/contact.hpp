@@ -12,9 +12,6 @@ namespace elan::detail {
 
 inline constexpr int kMaxManifoldPoints = 4;
 
-// B's arm is not stored: every manifold's points are one world point seen from both centres
-// (the exact tests report them so, and the body pair cache carries them so), so B's arm is
-// anchor_a minus B's centre relative to A's, at the poses the points were made at.
 // B's arm is not stored: a manifold's points are each one world point seen from both centres
 // (the exact tests report them so and the body pair cache carries them so), so B's arm is A's
 // minus B's centre relative to A's at the poses the points were made at (Manifold::anchor_b).
