@@ -135,6 +135,13 @@ bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transfo
 
 }  // namespace
 
+bool exact_test_is_closed_form(const Shape& a, const Shape& b) {
+  PairFn f = pick(a, b);
+  if (f == nullptr) f = pick(b, a);
+  return f == collide_sphere_sphere || f == collide_sphere_capsule ||
+         f == collide_capsule_capsule || f == collide_sphere_box;
+}
+
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
              Real speculative_distance, Manifold& out) {
   return dispatch(a, xa, b, xb, speculative_distance, out, nullptr, nullptr);

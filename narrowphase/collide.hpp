@@ -22,6 +22,10 @@ namespace elan::detail {
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
              Real speculative_distance, Manifold& out);
 
+// Whether collide() takes a closed form for this pair (two spheres or capsules, a sphere and a
+// box), not SAT, GJK or a convex routine: the dispatch's own choice.
+bool exact_test_is_closed_form(const Shape& a, const Shape& b);
+
 // A's polyhedron from the last box or hull pair, for a caller that tests one body against
 // several in a row: the SAT works in a frame centred on A, so A's vertices and planes depend on
 // its shape and rotation alone, and the next pair with the same A (bit for bit) reuses them.

@@ -9,6 +9,7 @@
 #include <limits>
 #include <span>
 
+#include "core/base/grow.hpp"
 #include "core/base/heap_bytes.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
@@ -110,17 +111,6 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
   return true;
 }
 
-// The pairs whose exact test is a closed form (two balls, a ball and a segment, two segments, a
-// ball and a box): checking a cached separation costs about as much as the test, so they keep
-// none: on pile10k (spheres, capsules, boxes and hulls in equal numbers) the separated list
-// went from 49k pairs to 40k, 40 bytes each.
-bool closed_form(const Shape& a, const Shape& b) {
-  const auto round = [](ShapeType t) { return t == ShapeType::Sphere || t == ShapeType::Capsule; };
-  if (round(a.type) && round(b.type)) return true;
-  return (a.type == ShapeType::Sphere && b.type == ShapeType::Box) ||
-         (a.type == ShapeType::Box && b.type == ShapeType::Sphere);
-}
-
 // perf: two in three broadphase pairs of a settling pile do not touch (pile4k: 19k of 29k a step),
 // and nearly all of them moved less in a step than their gap; skipping their tests took the
 // collide stage from 6.6 to 4.9 ms a step on pile4k.
@@ -212,14 +202,13 @@ void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts) {
   at[0] = 0;
   for (std::size_t p = 0; p < parts; ++p) at[p + 1] = at[p] + u.live[p] + u.added_run[p].count;
   const std::size_t total = at[parts];
-  // By a quarter: a list keeps its largest size for good, and doubling left up to half of it
-  // unused. Each growth holds the old list and the new at once and leaves the freed one in the
-  // allocator's heap, which once (288-byte manifolds) made a quarter cost more peak RSS than
-  // doubling (52.8 against 43.2 MB on pile10k). No longer: 300 steps of pile10k peak at
-  // 34.8 MB doubling, 34.7 by half and 34.0 by a quarter; the two lists after 180 steps hold
-  // 889 B/body by half, 765 by a quarter.
-  if (total > list.capacity()) list.reserve(total + total / 4);
-  if (total > list.size()) list.resize(total);
+  // Long enough for the old entries and the new while parts move, grown by a quarter (grow_to):
+  // a list keeps its largest size for good, and doubling left up to half of it unused. Each growth
+  // holds the old list and the new at once and leaves the freed one in the allocator's heap, which
+  // once (288-byte manifolds) made a quarter cost more peak RSS than doubling (52.8 against 43.2 MB
+  // on pile10k). No longer: 300 steps of pile10k peak at 34.8 MB doubling, 34.7 by half and 34.0 by
+  // a quarter; the two lists after 180 steps hold 889 B/body by half, 765 by a quarter.
+  grow_to(list, std::max(list.size(), total));
   auto place = [&](std::size_t p) {
     const std::size_t from = u.start[p], to = u.start[p + 1];
     const auto& run = u.added_run[p];
@@ -375,7 +364,10 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation);
       if (m.point_count == 0) {
         if (same_key != nullptr) keep_if_carried(*same_key);
-        if (separation.kind == Separation::Kind::Unknown || closed_form(shape_a, shape_b)) {
+        // A closed-form test costs about what checking a cached separation does, so its pairs
+        // keep none: on pile10k the separated list went from 49k pairs to 40k, 40 bytes each.
+        if (separation.kind == Separation::Kind::Unknown ||
+            exact_test_is_closed_form(shape_a, shape_b)) {
           if (apart != nullptr) end_apart(*apart);
           continue;
         }
