@@ -1,10 +1,12 @@
 // Continuous collision of fast bodies by time of impact.
 #include "solver/continuous.hpp"
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
-#include "core/base/grow.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
 #include "narrowphase/collide.hpp"
@@ -64,9 +66,15 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
   }
   if (!any) return 0;
 
-  std::vector<Real>& toi = st.pair_toi;
-  grow_fill(toi, pairs.size(), Real(1));
+  // Impacts are few (a handful of fast bodies' near pairs), so each thread lists those it found
+  // rather than every pair keeping a time (4 bytes a pair, most of them never set).
+  const std::size_t threads = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  if (st.impacts.size() < threads) st.impacts.resize(threads);
+  for (std::vector<Impact>& list : st.impacts) list.clear();
   for_blocks(pairs.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
+    // Outside any arena (a serial call from a thread TBB has not seen) the index is negative.
+    const int thread = tbb::this_task_arena::current_thread_index();
+    std::vector<Impact>& found = st.impacts[thread < 0 ? 0 : std::size_t(thread)];
     auto contact = std::lower_bound(contacts.begin(), contacts.end(), pairs[begin],
                                     [](const Manifold& m, uint64_t key) { return m.key() < key; });
     for (std::size_t n = begin; n < end; ++n) {
@@ -98,18 +106,16 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
       }
       const Real t = time_of_impact(ms, m0, m1, os, o0, o1, kContinuousTarget);
       // t = 0: already touching at the start, which the contact solver has in hand.
-      if (t > 0 && t < 1) toi[n] = t;
+      if (t > 0 && t < 1) found.push_back({fast_a ? pa : pb, t});
     }
   });
 
+  // determinism: the minimum is exact and does not depend on the order, so neither which thread
+  // found an impact nor the order of the lists matters.
   std::vector<Real>& earliest = st.earliest_toi;
   earliest.assign(count, 1);
-  for (std::size_t n = 0; n < pairs.size(); ++n) {
-    if (toi[n] >= 1) continue;
-    const uint32_t a = pair_first(pairs[n]), b = pair_second(pairs[n]);
-    const uint32_t pa = st.packet_of[a], pb = st.packet_of[b];
-    const uint32_t k = fast[pa] ? pa : pb;
-    earliest[k] = std::min(earliest[k], toi[n]);
+  for (const std::vector<Impact>& list : st.impacts) {
+    for (const Impact& hit : list) earliest[hit.packet] = std::min(earliest[hit.packet], hit.t);
   }
   std::size_t moved = 0;
   for (std::size_t k = 1; k < count; ++k) {

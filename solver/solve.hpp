@@ -53,6 +53,12 @@ inline constexpr uint32_t kCutGroup = kHalves;
 inline constexpr uint32_t kSegmentsPerGroup = kColorCount + 1;
 inline constexpr uint32_t kSegments = kGroups * kSegmentsPerGroup;
 
+// A fast body's first impact in the step (the continuous stage): its packet and the time.
+struct Impact {
+  uint32_t packet = 0;
+  Real t = 1;
+};
+
 struct SolverState {
   std::vector<uint32_t> packet_of;  // per body: its packet, 0 when not simulated
   std::vector<uint32_t> simulated;  // the awake dynamic bodies, ascending
@@ -80,7 +86,8 @@ struct SolverState {
   std::vector<StageSpec> stages;
   std::vector<uint8_t> block_flags;  // per body block: went non-finite
   std::vector<uint8_t> fast;         // per packet: moved far for its size (continuous stage)
-  std::vector<Real> pair_toi, earliest_toi;
+  std::vector<std::vector<Impact>> impacts;  // per thread (continuous stage)
+  std::vector<Real> earliest_toi;
 };
 
 struct SolveStats {

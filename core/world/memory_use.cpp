@@ -54,7 +54,7 @@ MemoryUse memory_use(const WorldState& w) {
              heap_bytes(v.island_scratch.parent) + heap_bytes(v.island_scratch.island_sleep_time) +
              heap_bytes(v.island_scratch.island_awake) + v.executor.heap_bytes() +
              heap_bytes(v.stages) + heap_bytes(v.block_flags) + heap_bytes(v.fast) +
-             heap_bytes(v.pair_toi) + heap_bytes(v.earliest_toi);
+             heap_bytes(v.impacts) + heap_bytes(v.earliest_toi);
   for (const ColorScratch& c : v.color_scratch) {
     m.solver += heap_bytes(c.bits) + heap_bytes(c.color_of) + heap_bytes(c.cursor);
   }
