@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "broadphase/bounds.hpp"
+#include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
 
 namespace elan::detail {
@@ -92,6 +93,7 @@ class SweepAndPrune {
   // The box's kind, filter category and mask, so the accept test runs in the sweep's lanes.
   std::vector<uint8_t> entry_kind_;
   std::vector<uint32_t> entry_category_, entry_mask_;
+  SpikeTrim entry_trim_;  // the pile's first steps span more strips than it settles into
   std::vector<uint32_t> strip_begin_;    // per strip: first entry; strip_begin_[s + 1] - pad: end
   std::vector<uint32_t> sorted_strips_;  // per sorted box: first and last strip (first > last:
                                          // no entry)

@@ -395,17 +395,22 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
   strip_begin_.resize(strips + 1);
   const std::size_t entries = bin_major_offsets(deal_counts_.data(), blocks, strips,
                                                 strip_begin_.data(), uint32_t(kStripPad));
-  entry_min_.resize(entries);
-  entry_max_.resize(entries);
-  entry_lo1_.resize(entries);
-  entry_hi1_.resize(entries);
-  entry_lo2_.resize(entries);
-  entry_hi2_.resize(entries);
-  entry_body_.resize(entries);
-  entry_first_.resize(entries);
-  entry_kind_.resize(entries);
-  entry_category_.resize(entries);
-  entry_mask_.resize(entries);
+  const std::size_t cut = entry_trim_.note(entries, entry_body_.capacity(), sizeof(Real));
+  auto size_entries = [&](auto& column) {
+    if (cut != 0) cut_capacity(column, cut);
+    grow_to(column, entries);
+  };
+  size_entries(entry_min_);
+  size_entries(entry_max_);
+  size_entries(entry_lo1_);
+  size_entries(entry_hi1_);
+  size_entries(entry_lo2_);
+  size_entries(entry_hi2_);
+  size_entries(entry_body_);
+  size_entries(entry_first_);
+  size_entries(entry_kind_);
+  size_entries(entry_category_);
+  size_entries(entry_mask_);
   // determinism: every block writes the entries its offsets reserve (rule 1).
   for_blocks(n, grain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
     uint32_t* cursor = deal_counts_.data() + blk * strips;

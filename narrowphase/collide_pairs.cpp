@@ -156,8 +156,18 @@ bool ended(const SeparatedPair& s) {
 template <class T>
 void begin_update(ListUpdate<T>& u, const std::vector<T>& list, std::span<const uint64_t> pairs,
                   std::size_t parts, std::size_t threads) {
-  if (u.added.size() < threads) u.added.resize(threads);
-  for (std::vector<T>& buffer : u.added) buffer.clear();
+  if (u.added.size() < threads) {
+    u.added.resize(threads);
+    u.added_trim.resize(threads);
+  }
+  for (std::size_t t = 0; t < u.added.size(); ++t) {
+    std::vector<T>& buffer = u.added[t];
+    if (const std::size_t cut = u.added_trim[t].note(buffer.size(), buffer.capacity(), sizeof(T))) {
+      buffer.clear();
+      cut_capacity(buffer, cut);
+    }
+    buffer.clear();
+  }
   u.added_run.resize(parts);
   u.start.resize(parts + 1);
   u.live.resize(parts);
@@ -267,9 +277,9 @@ Quat SeparatedPair::rotation() const {
 
 template <class T>
 std::size_t ListUpdate<T>::heap_bytes() const {
-  return detail::heap_bytes(added) + detail::heap_bytes(added_run) + detail::heap_bytes(start) +
-         detail::heap_bytes(live) + detail::heap_bytes(at) + detail::heap_bytes(waiting) +
-         detail::heap_bytes(bounce);
+  return detail::heap_bytes(added) + detail::heap_bytes(added_trim) +
+         detail::heap_bytes(added_run) + detail::heap_bytes(start) + detail::heap_bytes(live) +
+         detail::heap_bytes(at) + detail::heap_bytes(waiting) + detail::heap_bytes(bounce);
 }
 template struct ListUpdate<Manifold>;
 template struct ListUpdate<SeparatedPair>;

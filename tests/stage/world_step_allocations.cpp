@@ -127,9 +127,11 @@ TEST(StepAllocations, NoneOnceAPileHasSettled) {
   }
 }
 
+// Warm-up includes the end of the first windows of SpikeTrim (64 steps each), which hand back what
+// the first steps left in the collide stage's new-key buffers; the count spans two window ends.
 TEST(StepAllocations, NoneOnceAPyramidIsWarm) {
   for (int threads : {1, 2}) {
-    EXPECT_EQ(allocations_once_warm("jolt_pyramid.json", threads, 120, 60), 0)
+    EXPECT_EQ(allocations_once_warm("jolt_pyramid.json", threads, 200, 130), 0)
         << threads << " threads";
   }
 }
