@@ -193,7 +193,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     const Wide k_n =
         m_sum + dot(p.ra_n, ma.inv_inertia * p.ra_n) + dot(p.rb_n, mb.inv_inertia * p.rb_n);
     p.normal_mass = (used & (k_n > zero)) ? one / (k_n > zero ? k_n : one) : zero;
-    p.max_normal_impulse = zero;
+    bounce.max_normal_impulse[k] = zero;
     p.current_separation = p.separation;
     bounce.relative_velocity[k] =
         used ? dot(n, vb.v - va.v) + dot(p.rb_n, vb.w) - dot(p.ra_n, va.w) : zero;
@@ -389,6 +389,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     const Wide bias_rate = fixed_b ? splat(fix.bias_rate) : splat(dyn.bias_rate);
     const Wide soft_mass = fixed_b ? splat(fix.mass_scale) : splat(dyn.mass_scale);
     const Wide soft_impulse = fixed_b ? splat(fix.impulse_scale) : splat(dyn.impulse_scale);
+    Wide* max_impulse = ctx.restitution.empty() ? nullptr : ctx.restitution[i].max_normal_impulse;
     for (int k = 0; k < c.max_count; ++k) {
       WideContactPoint& p = rows[k];
       const Wide s = p.current_separation;
@@ -406,7 +407,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       const Wide updated = wide_max(p.normal_impulse + impulse, zero);
       impulse = updated - p.normal_impulse;
       p.normal_impulse = updated;
-      p.max_normal_impulse = wide_max(p.max_normal_impulse, impulse);
+      if (max_impulse != nullptr) max_impulse[k] = wide_max(max_impulse[k], impulse);
       apply_row(c, ma, mb, a, b, p, impulse);
     }
     scatter_velocity(bodies, c.packet_a, c.write_a, a);
@@ -434,15 +435,14 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
       WideContactPoint& p = rows[k];
       const Wide approach = bounce.relative_velocity[k];
       // Only points that approached faster than the threshold and actually pushed bounce.
-      const auto bounces =
-          (bounce.restitution != zero) & (approach <= threshold) & (p.max_normal_impulse != zero);
+      const auto bounces = (bounce.restitution != zero) & (approach <= threshold) &
+                           (bounce.max_normal_impulse[k] != zero);
       const Wide vn = row_velocity(a, b, c.normal, p.ra_n, p.rb_n);
       Wide impulse = -p.normal_mass * (vn + bounce.restitution * approach);
       impulse = bounces ? impulse : zero;
       const Wide updated = wide_max(p.normal_impulse + impulse, zero);
       impulse = updated - p.normal_impulse;
       p.normal_impulse = updated;
-      p.max_normal_impulse = wide_max(p.max_normal_impulse, impulse);
       apply_row(c, ma, mb, a, b, p, impulse);
     }
     scatter_velocity(bodies, c.packet_a, c.write_a, a);

@@ -96,10 +96,9 @@ struct WideContactPoint {
   // m: s at the current pose. Positions change once per substep, so refresh_contacts computes
   // it then for every pass until the next (it was 12 body values gathered per lane per pass).
   Wide current_separation{};
-  Wide normal_mass{};         // kg: 1 / (J M^-1 J^T)
-  Wide twist_lever{};         // m: distance from the manifold centre (twist friction limit)
-  Wide normal_impulse{};      // N s, accumulated over the substep (warm started)
-  Wide max_normal_impulse{};  // N s
+  Wide normal_mass{};     // kg: 1 / (J M^-1 J^T)
+  Wide twist_lever{};     // m: distance from the manifold centre (twist friction limit)
+  Wide normal_impulse{};  // N s, accumulated over the substep (warm started)
 };
 
 // kLanes contact constraints of one colour (no two share a dynamic body), structure of arrays
@@ -131,10 +130,13 @@ struct ContactBundle {
   Wide twist_impulse{};                  // N m s
 };
 
-// Read by the restitution pass only: the lane's restitution, and per row the approach speed.
+// Read by the restitution pass only: the lane's restitution, and per row the approach speed and
+// the largest impulse any pass applied (Box2D v3: only points that pushed bounce). Kept only
+// when some body bounces, so the passes of an inelastic scene neither store nor stream it.
 struct BundleRestitution {
   Wide restitution{};
-  Wide relative_velocity[kMaxManifoldPoints] = {};  // m/s along n before the solve
+  Wide relative_velocity[kMaxManifoldPoints] = {};   // m/s along n before the solve
+  Wide max_normal_impulse[kMaxManifoldPoints] = {};  // N s
 };
 
 }  // namespace elan::detail
