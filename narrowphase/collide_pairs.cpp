@@ -116,9 +116,9 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
 // collide stage from 6.6 to 4.9 ms a step on pile4k.
 //
 // Tolerance of the separation cache, m, plus a part per metre of coordinate size: the exact
-// tests' rounding near the origin, GJK's relative tolerance (1e-5 of the distance) and the
-// stored rotation's rounding (a few 1e-7 rad, times the bounding radius) are far below it, and
-// coordinates far from the origin round to a step of about eps * |x|.
+// tests' rounding near the origin and GJK's relative tolerance (1e-5 of the distance) are far
+// below it, and coordinates far from the origin round to a step of about eps * |x|. (The stored
+// rotation's error is bounded in closing().)
 constexpr Real kSeparationSlack = Real(1e-3);
 constexpr Real kSeparationSlackPerMetre = 64 * std::numeric_limits<Real>::epsilon();
 
@@ -127,13 +127,16 @@ constexpr Real kSeparationSlackPerMetre = 64 * std::numeric_limits<Real>::epsilo
 // |p - p0| plus the chord of the relative turn, 2 sin(angle / 2) |y| = 2 |vec(q q0^-1)| |y|, with
 // |y| no more than B's bounding radius. A's points in B's frame likewise, from A's centre
 // p' = -q^-1 p and A's bounding radius. A distance is bounded by either.
+//
+// q0 comes back from its 16-bit components within kRotationError (SeparatedPair): the chord, and
+// q0's turn of p0, are each off by at most that times the radius it turns.
 Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& a, const Shape& b) {
   const Quat q0 = s.rotation();
-  const Real chord = 2 * (q * q0.conjugate()).vec().norm();
+  const Real chord = 2 * (q * q0.conjugate()).vec().norm() + SeparatedPair::kRotationError;
   const Real in_a = (p - s.position).norm() + chord * b.bounding_radius;
   if (s.kind == Separation::Kind::FaceOfA) return in_a;
-  const Real in_b =
-      (q.conjugate() * p - q0.conjugate() * s.position).norm() + chord * a.bounding_radius;
+  const Real in_b = (q.conjugate() * p - q0.conjugate() * s.position).norm() +
+                    SeparatedPair::kRotationError * s.position.norm() + chord * a.bounding_radius;
   return s.kind == Separation::Kind::FaceOfB ? in_b : std::min(in_a, in_b);
 }
 
@@ -252,6 +255,9 @@ void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts) {
 
 }  // namespace
 
+// A kept component's step: 1/sqrt 2 maps to 32767.
+constexpr Real kRotationScale = Real(32767 * 1.41421356237309505);
+
 void SeparatedPair::set_rotation(const Quat& q) {
   const auto& c = q.coeffs();  // x, y, z, w
   int largest = 3;
@@ -261,16 +267,20 @@ void SeparatedPair::set_rotation(const Quat& q) {
   const Real sign = c[largest] < 0 ? Real(-1) : Real(1);
   dropped = uint8_t(largest);
   for (int i = 0, k = 0; i < 4; ++i) {
-    if (i != largest) kept[k++] = sign * c[i];
+    if (i == largest) continue;
+    const long step = std::lround(sign * c[i] * kRotationScale);
+    kept[k++] = int16_t(std::clamp(step, -32767L, 32767L));
   }
 }
 
 Quat SeparatedPair::rotation() const {
   Quat q;
   auto& c = q.coeffs();
-  const Real rest = kept[0] * kept[0] + kept[1] * kept[1] + kept[2] * kept[2];
+  Real rest = 0;
+  for (int k = 0; k < 3; ++k) rest += Real(kept[k]) * Real(kept[k]);
+  rest /= kRotationScale * kRotationScale;
   for (int i = 0, k = 0; i < 4; ++i) {
-    c[i] = i == dropped ? std::sqrt(std::max(Real(0), 1 - rest)) : kept[k++];
+    c[i] = i == dropped ? std::sqrt(std::max(Real(0), 1 - rest)) : Real(kept[k++]) / kRotationScale;
   }
   return q;
 }
