@@ -154,8 +154,8 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   st.group_start[0] = 0;
   for (uint32_t g = 0; g < kGroups; ++g) st.group_start[g + 1] = st.group_start[g] + group_size[g];
   const uint32_t candidate_count = st.group_start[kGroups];
-  st.candidates.resize(candidate_count);
-  st.color_input.resize(candidate_count);
+  grow_to(st.candidates, candidate_count);
+  grow_to(st.color_input, candidate_count);
   uint32_t cursor[kGroups + 1] = {st.group_start[0], st.group_start[1], st.group_start[2], 0};
   for (std::size_t m = 0; m < contacts.size(); ++m) {
     ColorInput in;
@@ -168,8 +168,8 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     st.candidates[cursor[g]] = uint32_t(m);
     st.color_input[cursor[g]++] = in;
   }
-  st.order.resize(candidate_count);
-  st.order_scratch.resize(candidate_count);
+  grow_to(st.order, candidate_count);
+  grow_to(st.order_scratch, candidate_count);
   st.segment_start.resize(kSegments + 1);
   st.segment_start[kSegments] = candidate_count;
   st.bundle_start.resize(kSegments + 1);
