@@ -120,7 +120,7 @@ template <class Source>
 void sort_sources(std::size_t sources, const Source& source, std::size_t total, uint64_t max_key,
                   uint64_t* out, KeySortScratch& scratch, bool direct) {
   const int shift = std::max(0, int(std::bit_width(max_key)) - kTopBits);
-  if (!direct) scratch.keys.resize(total);
+  if (!direct) grow_to(scratch.keys, total);
   scratch.counts.assign(sources * kTopBuckets + kTopBuckets + 1, 0);
   uint32_t* counts = scratch.counts.data();
   uint32_t* bucket_start = counts + sources * kTopBuckets;
@@ -187,7 +187,7 @@ void sort_key_blocks(const std::vector<std::vector<uint64_t>>& blocks, uint64_t 
     sort_keys(out, max_key, scratch);
     return;
   }
-  out.resize(total);
+  grow_to(out, total);
   const auto block = [&](std::size_t b) { return std::span<const uint64_t>(blocks[b]); };
   sort_sources(blocks.size(), block, total, max_key, out.data(), scratch, true);
 }
