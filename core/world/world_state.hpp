@@ -20,10 +20,14 @@
 
 namespace elan::detail {
 
-// Margin added to every bounding box, m: a little more than the speculative distance so pairs
-// about to touch are found before they do.
-inline constexpr Real kBoundsMargin = Real(0.04);
 inline constexpr Real kSpeculativeDistance = Real(0.02);
+// Margin added to every bounding box, m: two boxes this far out overlap whenever their shapes are
+// within 2.5 cm, a quarter more than the speculative distance. The boxes are rebuilt every step
+// and swept over the step's motion and turn (compute_bounds), so pairs that close faster are
+// found by the sweep, and nothing else needs slack. perf: at 4 cm a box, pile4k had 30.1k pairs
+// a step for 10.8k manifolds; at 1.25 cm, 25.9k for the same manifolds, and its collide stage
+// went from 5.03 to 4.61 ms a step (a pair found apart still costs a cache check).
+inline constexpr Real kBoundsMargin = Real(0.625) * kSpeculativeDistance;
 
 // A touching pair of last step: what contact events need of it (a whole manifold is 224 bytes).
 struct ContactRecord {
