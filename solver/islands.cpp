@@ -46,14 +46,21 @@ std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts
       s.island_sleep_time[r] = std::min(s.island_sleep_time[r], bodies.sleep_time[i]);
     }
   }
-  // A moving kinematic body keeps what it touches awake.
-  for (const Manifold& m : contacts) {
+  // A moving kinematic body keeps what it touches awake. perf: the bodies are checked for one
+  // first, a pass over a byte and six floats a body, so a scene without one does not read the
+  // contact list a second time (pile10k: 27k manifolds, a cache line each, most of them last
+  // written by the other thread at 2 threads).
+  auto moving = [&](uint32_t k) {
+    return bodies.motion[k] == uint8_t(MotionType::Kinematic) &&
+           (bodies.vx[k] != 0 || bodies.vy[k] != 0 || bodies.vz[k] != 0 || bodies.wx[k] != 0 ||
+            bodies.wy[k] != 0 || bodies.wz[k] != 0);
+  };
+  bool any_moving = false;
+  for (std::size_t k = 0; k < n && !any_moving; ++k) any_moving = moving(uint32_t(k));
+  for (const Manifold& m : any_moving ? contacts : std::span<const Manifold>()) {
     if (m.point_count == 0) continue;
-    const uint32_t k = m.body_b;  // a kinematic body of a pair is B
-    if (bodies.motion[k] != uint8_t(MotionType::Kinematic)) continue;
-    const bool moving = bodies.vx[k] != 0 || bodies.vy[k] != 0 || bodies.vz[k] != 0 ||
-                        bodies.wx[k] != 0 || bodies.wy[k] != 0 || bodies.wz[k] != 0;
-    if (!moving || !bodies.is_dynamic(m.body_a)) continue;
+    // A kinematic body of a pair is B.
+    if (!moving(m.body_b) || !bodies.is_dynamic(m.body_a)) continue;
     const uint32_t r = s.parent[m.body_a];
     s.island_awake[r] = 1;
     s.island_sleep_time[r] = 0;
