@@ -165,11 +165,9 @@ void begin_update(ListUpdate<T>& u, const std::vector<T>& list, std::span<const 
   }
   for (std::size_t t = 0; t < u.added.size(); ++t) {
     std::vector<T>& buffer = u.added[t];
-    if (const std::size_t cut = u.added_trim[t].note(buffer.size(), buffer.capacity(), sizeof(T))) {
-      buffer.clear();
-      cut_capacity(buffer, cut);
-    }
+    const std::size_t cut = u.added_trim[t].note(buffer.size(), buffer.capacity(), sizeof(T));
     buffer.clear();
+    if (cut != 0) cut_capacity(buffer, cut);
   }
   u.added_run.resize(parts);
   u.start.resize(parts + 1);

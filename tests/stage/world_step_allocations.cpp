@@ -131,7 +131,7 @@ TEST(StepAllocations, NoneOnceAPileHasSettled) {
 // the first steps left in the collide stage's new-key buffers; the count spans two window ends.
 TEST(StepAllocations, NoneOnceAPyramidIsWarm) {
   for (int threads : {1, 2}) {
-    EXPECT_EQ(allocations_once_warm("jolt_pyramid.json", threads, 200, 130), 0)
+    EXPECT_EQ(allocations_once_warm("jolt_pyramid.json", threads, 130, 130), 0)
         << threads << " threads";
   }
 }
