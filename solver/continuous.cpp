@@ -75,18 +75,20 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
     // Outside any arena (a serial call from a thread TBB has not seen) the index is negative.
     const int thread = tbb::this_task_arena::current_thread_index();
     std::vector<Impact>& found = st.impacts[thread < 0 ? 0 : std::size_t(thread)];
-    auto contact = std::lower_bound(contacts.begin(), contacts.end(), pairs[begin],
-                                    [](const Manifold& m, uint64_t key) { return m.key() < key; });
     for (std::size_t n = begin; n < end; ++n) {
-      while (contact != contacts.end() && contact->key() < pairs[n]) ++contact;
-      // A pair with a manifold had its (speculative) contact in the solve, placed along the
-      // motion predicted at the step's start: the contact solver has it in hand.
-      if (contact != contacts.end() && contact->key() == pairs[n]) continue;
       const uint32_t a = pair_first(pairs[n]), b = pair_second(pairs[n]);
       const uint32_t pa = st.packet_of[a], pb = st.packet_of[b];
       const bool fast_a = fast[pa] != 0, fast_b = fast[pb] != 0;  // packet 0 is never fast
       // Two fast bodies are left to their contacts: moving both back would need a joint time.
       if (fast_a == fast_b) continue;
+      // A pair with a manifold had its (speculative) contact in the solve, placed along the
+      // motion predicted at the step's start: the contact solver has it in hand. perf: looked up
+      // for the few pairs of one fast body, not merged along the whole list (pile10k: 27k
+      // manifolds, a cache line each, read for a handful of falling bodies).
+      const auto contact =
+          std::lower_bound(contacts.begin(), contacts.end(), pairs[n],
+                           [](const Manifold& m, uint64_t key) { return m.key() < key; });
+      if (contact != contacts.end() && contact->key() == pairs[n]) continue;
       const uint32_t mover = fast_a ? a : b, other = fast_a ? b : a;
       const uint32_t other_packet = fast_a ? pb : pa;
       const Shape& ms = shapes[bodies.shape[mover]];
