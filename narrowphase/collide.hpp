@@ -81,7 +81,7 @@ struct ListUpdate {
     std::size_t first = 0, count = 0;
   };
   std::vector<std::vector<T>> added;  // per thread: entries of new keys, block by block
-  std::vector<SpikeTrim> added_trim;  // per thread
+  SpikeTrim added_trim;               // of all threads' buffers together
   std::vector<Run> added_run;         // per block: its new keys' run, in key order
   std::vector<std::size_t> start;     // per block + 1: its range of the list on entry
   std::vector<std::size_t> live;      // per block: entries of its range that stay

@@ -159,15 +159,24 @@ bool ended(const SeparatedPair& s) {
 template <class T>
 void begin_update(ListUpdate<T>& u, const std::vector<T>& list, std::span<const uint64_t> pairs,
                   std::size_t parts, std::size_t threads) {
-  if (u.added.size() < threads) {
-    u.added.resize(threads);
-    u.added_trim.resize(threads);
+  if (u.added.size() < threads) u.added.resize(threads);
+  // Which thread takes which blocks changes from run to run, so every buffer keeps room for what
+  // the largest has held, and the trim counts all threads' use together: a thread that happens to
+  // take more blocks than before does not reallocate.
+  std::size_t used = 0, largest = 0;
+  for (const std::vector<T>& buffer : u.added) {
+    used += buffer.size();
+    largest = std::max(largest, buffer.capacity());
   }
-  for (std::size_t t = 0; t < u.added.size(); ++t) {
-    std::vector<T>& buffer = u.added[t];
-    const std::size_t cut = u.added_trim[t].note(buffer.size(), buffer.capacity(), sizeof(T));
+  const std::size_t cut = u.added_trim.note(used, largest, sizeof(T));
+  const std::size_t room = cut != 0 ? cut : largest;
+  for (std::vector<T>& buffer : u.added) {
     buffer.clear();
-    if (cut != 0) cut_capacity(buffer, cut);
+    if (buffer.capacity() > room) {
+      cut_capacity(buffer, room);
+    } else {
+      buffer.reserve(room);
+    }
   }
   u.added_run.resize(parts);
   u.start.resize(parts + 1);
@@ -285,9 +294,9 @@ Quat SeparatedPair::rotation() const {
 
 template <class T>
 std::size_t ListUpdate<T>::heap_bytes() const {
-  return detail::heap_bytes(added) + detail::heap_bytes(added_trim) +
-         detail::heap_bytes(added_run) + detail::heap_bytes(start) + detail::heap_bytes(live) +
-         detail::heap_bytes(at) + detail::heap_bytes(waiting) + detail::heap_bytes(bounce);
+  return detail::heap_bytes(added) + detail::heap_bytes(added_run) + detail::heap_bytes(start) +
+         detail::heap_bytes(live) + detail::heap_bytes(at) + detail::heap_bytes(waiting) +
+         detail::heap_bytes(bounce);
 }
 template struct ListUpdate<Manifold>;
 template struct ListUpdate<SeparatedPair>;

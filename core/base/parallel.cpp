@@ -141,7 +141,18 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
     for (uint64_t k : source(b)) mid[c[k >> shift]++] = k;
   });
   const std::size_t threads = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  if (direct && scratch.bucket.size() < threads) scratch.bucket.resize(threads);
+  if (direct) {
+    if (scratch.bucket.size() < threads) scratch.bucket.resize(threads);
+    // Which thread sorts which bucket changes from run to run, so every thread's copy is sized
+    // for the largest bucket: none reallocates because the schedule changed.
+    uint32_t largest = 0;
+    for (std::size_t d = 0; d < kTopBuckets; ++d) {
+      largest = std::max(largest, bucket_start[d + 1] - bucket_start[d]);
+    }
+    for (std::vector<uint64_t>& copy : scratch.bucket) {
+      if (largest > copy.capacity()) copy.reserve(largest + largest / 4);
+    }
+  }
   // determinism: a bucket's sorted keys are a function of its keys alone, whichever thread's
   // scratch held them.
   for_blocks(kTopBuckets, kBucketGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -151,8 +162,7 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
     for (std::size_t d = begin; d < end; ++d) {
       const uint32_t lo = bucket_start[d], hi = bucket_start[d + 1];
       if (direct) {
-        grow_to(*copy, hi - lo);
-        std::copy(out + lo, out + hi, copy->begin());
+        copy->assign(out + lo, out + hi);  // within the capacity reserved above
         sort_bucket(copy->data(), out + lo, hi - lo);
       } else {
         sort_bucket(mid + lo, out + lo, hi - lo);
