@@ -2,7 +2,6 @@
 // warm-start impulses matched by key and feature id, touching manifolds compacted in key order;
 // pairs found apart skip their exact test while their motion cannot have closed the gap.
 #include <tbb/parallel_invoke.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -310,7 +309,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   const std::size_t parts = std::max<std::size_t>(block_count(n, kPairGrain), 1);
   // One buffer of new keys per thread of the arena, not per block: a block's new entries are
   // one run in its thread's buffer, so only a step's new keys are held, not each block's most.
-  const std::size_t threads = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  const std::size_t threads = thread_slots();
   ListUpdate<Manifold>& mu = scratch.contacts;
   ListUpdate<SeparatedPair>& su = scratch.separated;
   begin_update(mu, contacts, pairs, parts, threads);
@@ -325,9 +324,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   // separated pair of kind Unknown). Nothing depends on which thread ran a part. A key is in at
   // most one of the lists: touching or apart.
   for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
-    // Outside any arena (a serial call from a thread TBB has not seen) the index is negative.
-    const int thread = tbb::this_task_arena::current_thread_index();
-    const std::size_t slot = thread < 0 ? 0 : std::size_t(thread);
+    const std::size_t slot = thread_slot();
     std::vector<Manifold>& added = mu.added[slot];
     std::vector<SeparatedPair>& added_apart = su.added[slot];
     const std::size_t first_added = added.size(), first_apart = added_apart.size();

@@ -1,8 +1,6 @@
 // Continuous collision of fast bodies by time of impact.
 #include "solver/continuous.hpp"
 
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -68,13 +66,17 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
 
   // Impacts are few (a handful of fast bodies' near pairs), so each thread lists those it found
   // rather than every pair keeping a time (4 bytes a pair, most of them never set).
-  const std::size_t threads = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  if (st.impacts.size() < threads) st.impacts.resize(threads);
-  for (std::vector<Impact>& list : st.impacts) list.clear();
+  // Every list keeps the room of the largest, so a thread that happens to find more impacts than
+  // before does not reallocate.
+  if (st.impacts.size() < thread_slots()) st.impacts.resize(thread_slots());
+  std::size_t room = 0;
+  for (const std::vector<Impact>& list : st.impacts) room = std::max(room, list.capacity());
+  for (std::vector<Impact>& list : st.impacts) {
+    list.clear();
+    list.reserve(room);
+  }
   for_blocks(pairs.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
-    // Outside any arena (a serial call from a thread TBB has not seen) the index is negative.
-    const int thread = tbb::this_task_arena::current_thread_index();
-    std::vector<Impact>& found = st.impacts[thread < 0 ? 0 : std::size_t(thread)];
+    std::vector<Impact>& found = st.impacts[thread_slot()];
     for (std::size_t n = begin; n < end; ++n) {
       const uint32_t a = pair_first(pairs[n]), b = pair_second(pairs[n]);
       const uint32_t pa = st.packet_of[a], pb = st.packet_of[b];

@@ -7,8 +7,6 @@
 #include <cassert>
 #include <span>
 
-#include <tbb/task_arena.h>
-
 #include "core/base/grow.hpp"
 
 namespace elan::detail {
@@ -140,7 +138,7 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
     uint32_t* c = counts + b * kTopBuckets;
     for (uint64_t k : source(b)) mid[c[k >> shift]++] = k;
   });
-  const std::size_t threads = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  const std::size_t threads = thread_slots();
   if (direct) {
     if (scratch.bucket.size() < threads) scratch.bucket.resize(threads);
     // Which thread sorts which bucket changes from run to run, so every thread's copy is sized
@@ -156,9 +154,7 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
   // determinism: a bucket's sorted keys are a function of its keys alone, whichever thread's
   // scratch held them.
   for_blocks(kTopBuckets, kBucketGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
-    const int thread = tbb::this_task_arena::current_thread_index();
-    std::vector<uint64_t>* copy =
-        direct ? &scratch.bucket[thread < 0 ? 0 : std::size_t(thread)] : nullptr;
+    std::vector<uint64_t>* copy = direct ? &scratch.bucket[thread_slot()] : nullptr;
     for (std::size_t d = begin; d < end; ++d) {
       const uint32_t lo = bucket_start[d], hi = bucket_start[d + 1];
       if (direct) {

@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -38,6 +39,17 @@ void for_blocks(std::size_t count, std::size_t grain, F&& f) {
         }
       },
       tbb::simple_partitioner());
+}
+
+// Per-thread scratch: the slots the current arena needs, and the calling thread's slot (a serial
+// call from a thread TBB has not seen, whose index is negative, gets slot 0). Which thread takes
+// which block changes from run to run, so nothing but capacity may depend on the slot.
+inline std::size_t thread_slots() {
+  return std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+}
+inline std::size_t thread_slot() {
+  const int thread = tbb::this_task_arena::current_thread_index();
+  return thread < 0 ? 0 : std::size_t(thread);
 }
 
 // Joins per-block outputs in block order into `out` (cleared first).
