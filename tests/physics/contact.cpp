@@ -246,5 +246,29 @@ TEST(Contact, ElasticHeadOnHitGivesTextbookVelocities) {
   EXPECT_LT(world.linear_velocity(s1).tail<2>().norm(), Real(1e-3) * v1) << "not head-on";
 }
 
+// Bodies at rest within the speculative distance (2 cm) of each other get a speculative contact
+// before they touch; 3 cm apart they get none. The broadphase boxes grow by 1.25 cm each, so
+// the 1.99 cm gap is the case that fails if the margin stops covering the speculative distance.
+TEST(Contact, PairWithinTheSpeculativeDistanceGetsAContact) {
+  for (const Real gap : {Real(0.005), Real(0.0199), Real(0.03)}) {
+    World world = gravity_world(Vec3::Zero());
+    add_body(world, test::box_shape(Vec3::Constant(Real(0.5))),
+             at(Vec3::Zero(), MotionType::Static));
+    const Vec3 box_at(0, 1 + gap, 0), ball_at(3, 1 + gap, 0);
+    const BodyId box = add_body(world, test::box_shape(Vec3::Constant(Real(0.5))), at(box_at));
+    add_body(world, test::sphere_shape(Real(0.5)), at(Vec3(3, 0, 0), MotionType::Static));
+    const BodyId ball = add_body(world, test::sphere_shape(Real(0.5)), at(ball_at));
+    world.step(kDt);
+    const bool within = gap < Real(0.02);
+    EXPECT_EQ(world.last_step().manifolds, within ? 2u : 0u) << "gap " << gap;
+    if (!within) continue;
+    // A speculative contact of bodies that do not approach applies nothing: they stay put.
+    for (int n = 0; n < 60; ++n) world.step(kDt);
+    EXPECT_EQ(world.last_step().manifolds, 2u) << "gap " << gap;
+    EXPECT_EQ(world.position(box), box_at) << "gap " << gap;
+    EXPECT_EQ(world.position(ball), ball_at) << "gap " << gap;
+  }
+}
+
 }  // namespace
 }  // namespace elan
