@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/cli_runner.hpp"
+#include "tools/recording.hpp"
 
 #include <cctype>
 #include <cstdint>
@@ -326,12 +327,32 @@ TEST_F(Recording, CorruptByteIsRefused) {
   EXPECT_EQ(count_lines(r.err), 1u);
 }
 
-TEST_F(Recording, EveryTruncationIsRefused) {
+// Every length short of the whole file, through the decoder the binary uses: each names the file.
+TEST_F(Recording, EveryTruncationIsRefusedByTheDecoder) {
+  const std::string name = "cut.rec";
   for (std::size_t n = 0; n < bytes_.size(); ++n) {
+    try {
+      elan::cli::decode_recording(bytes_.substr(0, n), name);
+      ADD_FAILURE() << "length " << n << " was accepted";
+    } catch (const elan::cli::RecordingError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(name + ": ", 0), 0u)
+          << "length " << n << ": " << e.what();
+    }
+  }
+  EXPECT_NO_THROW(elan::cli::decode_recording(bytes_, name));
+}
+
+// And through the binary, at the lengths that end inside each kind of field: the magic, the
+// header's numbers, the scene text, the hashes and the checksum.
+TEST_F(Recording, TruncationsExitTwoNamingTheFile) {
+  const std::size_t size = bytes_.size();
+  for (std::size_t n : {std::size_t(0), std::size_t(5), std::size_t(8), std::size_t(13),
+                        std::size_t(40), size / 2, size - 12, size - 8, size - 1}) {
     write(path_, bytes_.substr(0, n));
     const Result r = run_elan({"replay", path_});
     EXPECT_EQ(r.status, 2) << "length " << n << ": " << r.err;
     EXPECT_NE(r.err.find(path_), std::string::npos) << "length " << n << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
     EXPECT_TRUE(r.out.empty());
   }
 }
