@@ -8,6 +8,7 @@
 #include "core/base/body_store.hpp"
 #include "core/base/contact.hpp"
 #include "core/base/grow.hpp"
+#include "core/base/packed_rotation.hpp"
 #include "core/base/shape.hpp"
 #include "narrowphase/polyhedron.hpp"
 #include "narrowphase/separation.hpp"
@@ -48,27 +49,13 @@ struct CollideSettings {
 };
 
 // A pair the exact test found apart, what the rejection measured, and B's pose relative to A at
-// that test: the reference the motion since is measured from. 32 bytes: the rotation keeps three
-// of its four components, in 16 bits each (a pile keeps about four of these a body).
+// that test: the reference the motion since is measured from. 32 bytes: the rotation is packed
+// into seven (a pile keeps about four of these a body).
 struct SeparatedPair {
   uint64_t key = 0;
   Vec3 position = Vec3::Zero();  // m: B's centre of mass minus A's, in A's frame
   Real gap = 0;                  // m: Separation::gap
-
-  // A's frame to B's (A^-1 B). The largest component of the unit quaternion is left out and
-  // made non-negative (q and -q are one rotation); it is at least 1/2, so it comes back from
-  // the unit norm as sqrt(1 - the others' squares), well conditioned (the "smallest three" of
-  // network codecs; leaving out w instead would lose half the digits near a half turn). The
-  // other three lie in [-1/sqrt 2, 1/sqrt 2] and are kept to steps of 1/46340: each within
-  // 1.08e-5, 1.87e-5 together; the rebuilt one moves by at most |kept| / largest <= sqrt 3 times
-  // that, 3.24e-5; the quaternion by 3.74e-5 in all. Rotating by it instead of the exact one
-  // moves a point at radius r by at most twice that times r: kRotationError bounds the factor.
-  static constexpr Real kRotationError = Real(1e-4);  // rad
-  void set_rotation(const Quat& q);
-  Quat rotation() const;
-
-  int16_t kept[3] = {0, 0, 0};  // the other three of (x, y, z, w), in that order, quantised
-  uint8_t dropped = 3;          // which of (x, y, z, w) is left out
+  PackedRotation rotation;       // A's frame to B's (A^-1 B)
   Separation::Kind kind = Separation::Kind::Unknown;  // Unknown marks an entry that ended
 };
 static_assert(sizeof(Real) != 4 || sizeof(SeparatedPair) == 32, "SeparatedPair: 32 bytes in float");

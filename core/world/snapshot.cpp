@@ -233,8 +233,8 @@ void write_friction(ByteWriter& w, const Manifold& m) {
   write_quat(w, m.orientation_a);
   write_quat(w, m.orientation_b);
   w.vec3(m.relative_position);
-  write_quat(w, m.exact_rotation);
   w.vec3(m.exact_position);
+  for (uint8_t byte : m.exact_rotation.bytes) w.u8(byte);
 }
 
 void read_friction(ByteReader& r, Manifold& m) {
@@ -244,8 +244,9 @@ void read_friction(ByteReader& r, Manifold& m) {
   m.orientation_a = read_quat(r);
   m.orientation_b = read_quat(r);
   m.relative_position = r.vec3();
-  m.exact_rotation = read_quat(r);
   m.exact_position = r.vec3();
+  for (uint8_t& byte : m.exact_rotation.bytes) byte = r.u8();
+  if (!m.exact_rotation.valid()) r.fail("manifold exact rotation is not a packed rotation");
 }
 
 // Everything a snapshot holds, decoded and checked before any of it reaches a world.
@@ -299,7 +300,7 @@ void check_manifold(ByteReader& r, const Manifold& m, uint64_t key, std::size_t 
   }
   if (key != m.key()) r.fail("manifold key does not match");
   if (!first && key <= previous_key) r.fail("manifolds are not sorted by key");
-  if (m.point_count < 0 || m.point_count > detail::kMaxManifoldPoints) {
+  if (m.point_count > detail::kMaxManifoldPoints) {
     r.fail("manifold point count out of range");
   }
 }

@@ -116,7 +116,7 @@ TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
   constexpr std::size_t kR = sizeof(Real);
   // Per manifold: key and bodies, normal, point count, points, friction, the cache poses.
   const std::size_t contacts =
-      4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (5 * kR + 4) + 18 * kR);
+      4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (5 * kR + 4) + 14 * kR + 7);
   const std::size_t slots = 4 + 8 * s.slot_index.size() + 4 + 4 * s.free_slots.size();
   const std::size_t last_shape = bytes.size() - 8 - contacts - slots - 14 * n - 4;
   ASSERT_EQ(bytes[last_shape], s.bodies.shape[n - 1]);
@@ -124,6 +124,22 @@ TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
   reseal(bytes);
   World target;
   EXPECT_NE(error_of(target, bytes).find("body 3: bad shape index"), std::string::npos)
+      << error_of(target, bytes);
+}
+
+TEST(SnapshotFormat, ResealedBadPackedRotationIsRefused) {
+  // The last manifold ends the contents, and its packed exact rotation ends it: the byte before
+  // the checksum says which component was left out, 0..3.
+  World world = small_world();
+  ASSERT_FALSE(world.state().contacts.empty());
+  std::vector<uint8_t> bytes = save_snapshot(world);
+  uint8_t& dropped = bytes[bytes.size() - 9];
+  ASSERT_LE(dropped, 3);
+  dropped = 4;
+  reseal(bytes);
+  World target;
+  EXPECT_NE(error_of(target, bytes).find("manifold exact rotation is not a packed rotation"),
+            std::string::npos)
       << error_of(target, bytes);
 }
 
@@ -147,11 +163,12 @@ TEST(SnapshotFormat, SavesEveryFieldOfAManifold) {
   using detail::ContactPoint;
   using detail::Manifold;
   EXPECT_EQ(sizeof(ContactPoint), padded(5 * kR + 4, alignof(ContactPoint)));
-  // The cache's three rotations and two offsets, the bodies, normal and point count, the points,
-  // the friction impulses.
-  EXPECT_EQ(sizeof(Manifold), padded(3 * sizeof(Quat) + 6 * kR + 4 + 4 + 3 * kR + 4 +
-                                         detail::kMaxManifoldPoints * sizeof(ContactPoint) + 3 * kR,
-                                     alignof(Manifold)));
+  // The cache's two rotations, two offsets and packed rotation, the bodies, normal and point
+  // count, the points, the friction impulses.
+  EXPECT_EQ(sizeof(Manifold),
+            padded(2 * sizeof(Quat) + 6 * kR + sizeof(detail::PackedRotation) + 4 + 4 + 3 * kR + 1 +
+                       detail::kMaxManifoldPoints * sizeof(ContactPoint) + 3 * kR,
+                   alignof(Manifold)));
 }
 
 TEST(SnapshotFormat, RestoresIdsAndTheirGenerations) {

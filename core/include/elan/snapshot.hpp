@@ -14,7 +14,7 @@
 namespace elan {
 
 /// Format version written by save_snapshot and save_rollback; other versions are refused.
-inline constexpr uint32_t kSnapshotVersion = 4;
+inline constexpr uint32_t kSnapshotVersion = 5;
 
 /// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built
 /// (hull vertices, faces and edges in the principal frame, frames, mass properties), every body
@@ -37,9 +37,11 @@ inline constexpr uint32_t kSnapshotVersion = 4;
 ///     | u32 manifolds, each: u64 key, u32 body a, u32 body b, 3R normal, u8 point count,
 ///       4 points x (3R anchor a, R separation, u32 feature id, R normal impulse),
 ///       2R tangent impulses, R twist impulse, 4R orientation a,
-///       4R orientation b (w x y z), 3R relative position, 4R exact rotation, 3R exact position
+///       4R orientation b (w x y z), 3R relative position, 3R exact position, 7-byte exact
+///       rotation (3 x i16 components and u8 index of the fourth, the largest, which is left
+///       out: core/base/packed_rotation.hpp)
 ///       (version 2 added the poses, 3 the exact ones; 4 dropped anchor b, derived from
-///       a, and the max normal impulse, which nothing read)
+///       a, and the max normal impulse, which nothing read; 5 packed the exact rotation)
 ///     | u64 checksum: 64-bit FNV-1a over 8-byte little-endian words of every byte before it
 ///       (the tail zero-padded), so any single changed byte changes it.
 ///
@@ -73,8 +75,8 @@ World load_snapshot(std::span<const uint8_t> bytes);
 /// u8 flags | u32 manifolds, each: u64 key, u8 (1 when body A is the higher index), 3R normal,
 /// u8 point count, per point: 3R anchor a, R separation, u32 feature id,
 /// R normal impulse; then 2R tangent impulses, R twist impulse,
-/// 4R orientation a, 4R orientation b, 3R relative position, 4R exact rotation, 3R exact position
-/// | u64 checksum as above.
+/// 4R orientation a, 4R orientation b, 3R relative position, 3R exact position, 7-byte exact
+/// rotation (as in the snapshot) | u64 checksum as above.
 std::vector<uint8_t> save_rollback(const World& world);
 /// As above, into `out` (cleared first), reusing its capacity: no allocation once warm.
 void save_rollback(const World& world, std::vector<uint8_t>& out);
