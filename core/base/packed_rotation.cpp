@@ -6,14 +6,6 @@
 
 namespace elan::detail {
 
-namespace {
-
-int16_t kept_at(const uint8_t* bytes, int k) {
-  return int16_t(uint16_t(bytes[2 * k]) | uint16_t(bytes[2 * k + 1]) << 8);
-}
-
-}  // namespace
-
 PackedRotation PackedRotation::pack(const Quat& q) {
   const auto& c = q.coeffs();  // x, y, z, w
   int largest = 3;
@@ -27,7 +19,7 @@ PackedRotation PackedRotation::pack(const Quat& q) {
   p.bytes[6] = uint8_t(largest);
   for (int k = 0; k < 3; ++k) {
     // lrint, to nearest (ties to even): one instruction, where lround is a library call, and the
-    // collide stage packs a rotation for every exact test that touches.
+    // collide stage packs a rotation for every touching exact test of a pair it may reuse.
     const long step = std::clamp(std::lrint(c[kKept[largest][k]] * scale), -32767L, 32767L);
     const auto bits = uint16_t(int16_t(step));
     p.bytes[2 * k] = uint8_t(bits & 0xFF);
@@ -39,7 +31,7 @@ PackedRotation PackedRotation::pack(const Quat& q) {
 bool PackedRotation::valid() const {
   if (bytes[6] > 3) return false;
   for (int k = 0; k < 3; ++k) {
-    if (kept_at(bytes, k) == INT16_MIN) return false;
+    if (kept_step(k) == INT16_MIN) return false;
   }
   return true;
 }

@@ -36,7 +36,7 @@ struct PackedRotation {
     Real kept[3];
     Real rest = 0;
     for (int k = 0; k < 3; ++k) {
-      kept[k] = Real(int16_t(uint16_t(bytes[2 * k]) | uint16_t(bytes[2 * k + 1]) << 8));
+      kept[k] = Real(kept_step(k));
       rest += kept[k] * kept[k];
     }
     rest /= kScale * kScale;
@@ -52,6 +52,12 @@ struct PackedRotation {
   bool valid() const;
 
   bool operator==(const PackedRotation&) const = default;
+
+ private:
+  // Kept component k (0..2) in steps of 1/kScale.
+  int16_t kept_step(int k) const {
+    return int16_t(uint16_t(bytes[2 * k]) | uint16_t(bytes[2 * k + 1]) << 8);
+  }
 };
 static_assert(sizeof(PackedRotation) == 7 && alignof(PackedRotation) == 1);
 
