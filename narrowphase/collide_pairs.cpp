@@ -158,26 +158,14 @@ bool ended(const SeparatedPair& s) {
 // (block p owns the keys from its first pair's up to the next block's first pair's).
 template <class T>
 void begin_update(ListUpdate<T>& u, const std::vector<T>& list, std::span<const uint64_t> pairs,
-                  std::size_t parts, std::size_t threads) {
-  if (u.added.size() < threads) u.added.resize(threads);
-  // Which thread takes which blocks changes from run to run, so every buffer keeps room for what
-  // the largest has held, and the trim counts all threads' use together: a thread that happens to
-  // take more blocks than before does not reallocate.
-  std::size_t used = 0, largest = 0;
-  for (const std::vector<T>& buffer : u.added) {
-    used += buffer.size();
-    largest = std::max(largest, buffer.capacity());
-  }
+                  std::size_t parts) {
+  // Every buffer keeps room for what the largest has held (reset_thread_buffers), and the trim
+  // counts all threads' use together.
+  std::size_t used = 0;
+  for (const std::vector<T>& buffer : u.added) used += buffer.size();
+  const std::size_t largest = largest_capacity(u.added);
   const std::size_t cut = u.added_trim.note(used, largest, sizeof(T));
-  const std::size_t room = cut != 0 ? cut : largest;
-  for (std::vector<T>& buffer : u.added) {
-    buffer.clear();
-    if (buffer.capacity() > room) {
-      cut_capacity(buffer, room);
-    } else {
-      buffer.reserve(room);
-    }
-  }
+  reset_thread_buffers(u.added, cut != 0 ? cut : largest);
   u.added_run.resize(parts);
   u.start.resize(parts + 1);
   u.live.resize(parts);
@@ -280,11 +268,10 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   const std::size_t parts = std::max<std::size_t>(block_count(n, kPairGrain), 1);
   // One buffer of new keys per thread of the arena, not per block: a block's new entries are
   // one run in its thread's buffer, so only a step's new keys are held, not each block's most.
-  const std::size_t threads = thread_slots();
   ListUpdate<Manifold>& mu = scratch.contacts;
   ListUpdate<SeparatedPair>& su = scratch.separated;
-  begin_update(mu, contacts, pairs, parts, threads);
-  begin_update(su, separated, pairs, parts, threads);
+  begin_update(mu, contacts, pairs, parts);
+  begin_update(su, separated, pairs, parts);
   auto carried = [&](const Manifold& m) {
     return !idle.empty() && m.point_count > 0 && idle[m.body_a] && idle[m.body_b];
   };

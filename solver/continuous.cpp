@@ -66,15 +66,7 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
 
   // Impacts are few (a handful of fast bodies' near pairs), so each thread lists those it found
   // rather than every pair keeping a time (4 bytes a pair, most of them never set).
-  // Every list keeps the room of the largest, so a thread that happens to find more impacts than
-  // before does not reallocate.
-  if (st.impacts.size() < thread_slots()) st.impacts.resize(thread_slots());
-  std::size_t room = 0;
-  for (const std::vector<Impact>& list : st.impacts) room = std::max(room, list.capacity());
-  for (std::vector<Impact>& list : st.impacts) {
-    list.clear();
-    list.reserve(room);
-  }
+  reset_thread_buffers(st.impacts, largest_capacity(st.impacts));
   for_blocks(pairs.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
     std::vector<Impact>& found = st.impacts[thread_slot()];
     for (std::size_t n = begin; n < end; ++n) {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/grow.hpp"
 #include "core/base/heap_bytes.hpp"
 
 namespace elan::detail {
@@ -50,6 +51,30 @@ inline std::size_t thread_slots() {
 inline std::size_t thread_slot() {
   const int thread = tbb::this_task_arena::current_thread_index();
   return thread < 0 ? 0 : std::size_t(thread);
+}
+
+// The largest capacity among per-thread buffers.
+template <class T>
+std::size_t largest_capacity(const std::vector<std::vector<T>>& buffers) {
+  std::size_t largest = 0;
+  for (const std::vector<T>& b : buffers) largest = std::max(largest, b.capacity());
+  return largest;
+}
+
+// Per-thread buffers for the current arena (thread_slots()), emptied, each with room for exactly
+// `room` entries (more is cut back). Which thread takes which block changes from run to run, so
+// every buffer is given what the largest needs: none reallocates because the schedule changed.
+template <class T>
+void reset_thread_buffers(std::vector<std::vector<T>>& buffers, std::size_t room) {
+  if (buffers.size() < thread_slots()) buffers.resize(thread_slots());
+  for (std::vector<T>& b : buffers) {
+    b.clear();
+    if (b.capacity() > room) {
+      cut_capacity(b, room);
+    } else {
+      b.reserve(room);
+    }
+  }
 }
 
 // Joins per-block outputs in block order into `out` (cleared first).
