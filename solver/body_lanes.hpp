@@ -45,6 +45,15 @@ static_assert(sizeof(SolverBodyMass) == 8 * sizeof(Real) &&
               offsetof(SolverBodyMass, inv_inertia) == sizeof(Real) &&
               sizeof(SymMat3) == 6 * sizeof(Real));
 
+// GCC 12 warns that the AVX-512 intrinsics' deliberately undefined merge operand (`__m512 __Y =
+// __Y`) is used uninitialized wherever they are inlined into a caller it analyses whole (GCC bug
+// 105593, fixed in 13); -Werror turns that into an error in some callers, so it is silenced here.
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ < 13
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
 inline void transpose_8x8_halves(const __m512 in[8], __m512 out[8]) {
   __m512 t[8], u[8];
   for (int i = 0; i < 4; ++i) {
@@ -122,6 +131,9 @@ inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const 
                           _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows[l]), 1)));
   }
 }
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ < 13
+#pragma GCC diagnostic pop
+#endif
 #else
 inline void gather_velocity(const SolverBody* bodies, const uint32_t* packets, WideBody& out) {
   for (int l = 0; l < kLanes; ++l) {

@@ -8,7 +8,7 @@
 #include "elan/elan.hpp"
 
 namespace elan {
-namespace {
+namespace api_mutations_test {
 
 constexpr Real kDt = Real(1.0 / 60.0);
 
@@ -131,5 +131,5 @@ TEST(StepAll, EachWorldMatchesSteppingItAlone) {
   EXPECT_NE(many[0].state_hash(), many[1].state_hash());
 }
 
-}  // namespace
+}  // namespace api_mutations_test
 }  // namespace elan

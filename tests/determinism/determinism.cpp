@@ -10,7 +10,7 @@
 #include "physics/physics_util.hpp"
 
 namespace elan {
-namespace {
+namespace determinism_test {
 
 // pile1k mixes every shape type in ~1000 bodies, so each parallel stage spans several blocks;
 // 2 s covers the first impacts, stacking and the busiest contact steps.
@@ -96,5 +96,5 @@ TEST(Determinism, OneAndTwoThreadsSideBySideBitIdentical) {
   }
 }
 
-}  // namespace
+}  // namespace determinism_test
 }  // namespace elan

@@ -10,7 +10,7 @@
 #include "elan/snapshot.hpp"
 
 namespace elan {
-namespace {
+namespace snapshot_divergence_test {
 
 TEST(Divergence, ThreadsAndBroadphaseDoNotDiverge) {
   World a = test::make_snapshot_world(1);
@@ -73,5 +73,5 @@ TEST(Divergence, SignOfZeroAndBodyCountAreDifferences) {
   EXPECT_EQ(count.value_b, 2);
 }
 
-}  // namespace
+}  // namespace snapshot_divergence_test
 }  // namespace elan

@@ -13,7 +13,7 @@
 #include "elan/snapshot.hpp"
 
 namespace elan {
-namespace {
+namespace snapshot_format_test {
 
 // Two boxes and a hull on a plane after a few steps: small enough to try every truncation.
 World small_world() {
@@ -207,5 +207,5 @@ TEST(SnapshotFormat, DestroyedBodiesAndShapesRoundTripAndContinueIdentically) {
   }
 }
 
-}  // namespace
+}  // namespace snapshot_format_test
 }  // namespace elan

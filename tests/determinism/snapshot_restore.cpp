@@ -10,7 +10,7 @@
 #include "elan/snapshot.hpp"
 
 namespace elan {
-namespace {
+namespace snapshot_restore_test {
 
 constexpr int kSaveAt = 100;
 constexpr int kEnd = 130;
@@ -133,5 +133,5 @@ TEST(Snapshot, RestoresSettingsStepCountAndShapes) {
   }
 }
 
-}  // namespace
+}  // namespace snapshot_restore_test
 }  // namespace elan

@@ -10,7 +10,7 @@
 #include "elan/snapshot.hpp"
 
 namespace elan {
-namespace {
+namespace snapshot_rollback_test {
 
 constexpr int kSaveAt = 100;
 constexpr int kEnd = 130;
@@ -113,5 +113,5 @@ TEST(Rollback, CorruptOrTruncatedStateIsRefusedAndNothingChanges) {
   EXPECT_EQ(world.state().contacts.size(), contacts);
 }
 
-}  // namespace
+}  // namespace snapshot_rollback_test
 }  // namespace elan

@@ -7,7 +7,7 @@
 #include "elan/elan.hpp"
 
 namespace elan {
-namespace {
+namespace api_bodies_test {
 
 constexpr Real kDt = Real(1.0 / 60.0);
 
@@ -257,5 +257,5 @@ TEST(WorldApi, CollisionFilterAndPairFilterDropPairs) {
   EXPECT_NEAR(w.position(c).y(), 0.5, 0.02);
 }
 
-}  // namespace
+}  // namespace api_bodies_test
 }  // namespace elan

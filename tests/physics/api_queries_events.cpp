@@ -9,7 +9,7 @@
 #include "elan/elan.hpp"
 
 namespace elan {
-namespace {
+namespace api_queries_events_test {
 
 constexpr Real kDt = Real(1.0 / 60.0);
 // Float closed forms with one sqrt and a frame change of O(1) values: a few ulps of 10 m.
@@ -191,5 +191,5 @@ TEST(ContactEvents, BouncingBallBeginsOnceAndEndsOnEachBounce) {
   EXPECT_TRUE(touching);  // at rest on the floor at the end
 }
 
-}  // namespace
+}  // namespace api_queries_events_test
 }  // namespace elan

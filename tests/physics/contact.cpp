@@ -10,7 +10,7 @@
 #include "physics/physics_util.hpp"
 
 namespace elan {
-namespace {
+namespace contact_test {
 
 using test::add_body;
 using test::add_ground;
@@ -270,5 +270,5 @@ TEST(Contact, PairWithinTheSpeculativeDistanceGetsAContact) {
   }
 }
 
-}  // namespace
+}  // namespace contact_test
 }  // namespace elan

@@ -9,7 +9,7 @@
 #include "physics/physics_util.hpp"
 
 namespace elan {
-namespace {
+namespace free_flight_test {
 
 using test::add_body;
 using test::at;
@@ -224,5 +224,5 @@ TEST(KinematicAndStatic, KinematicMovesWithItsVelocityStaticNeverMoves) {
   EXPECT_FALSE(world.is_awake(wall));
 }
 
-}  // namespace
+}  // namespace free_flight_test
 }  // namespace elan

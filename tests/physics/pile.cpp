@@ -10,7 +10,7 @@
 #include "physics/physics_util.hpp"
 
 namespace elan {
-namespace {
+namespace pile_test {
 
 using test::add_body;
 using test::at;
@@ -160,5 +160,5 @@ TEST(Pile, MixedPileSettlesInItsContainer) {
   expect_settles(world, c, test::kDt, 15);
 }
 
-}  // namespace
+}  // namespace pile_test
 }  // namespace elan

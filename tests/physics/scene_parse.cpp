@@ -9,7 +9,7 @@
 #include "elan/elan.hpp"
 
 namespace elan {
-namespace {
+namespace scene_parse_test {
 
 std::string sphere_body(const std::string& extra = "") {
   return R"({"shape": {"type": "sphere", "radius": 0.5})" + extra + "}";
@@ -190,5 +190,5 @@ TEST(SceneLoader, LibraryErrorsArePrefixedWithFileAndBody) {
   }
 }
 
-}  // namespace
+}  // namespace scene_parse_test
 }  // namespace elan

@@ -9,7 +9,7 @@
 #include "physics/physics_util.hpp"
 
 namespace elan {
-namespace {
+namespace stacking_test {
 
 // Steps the scene for `seconds` and fails at the first step where the top cube (the last body:
 // pyramids are numbered bottom layer first, the tower bottom cube first) is 5 cm or more from
@@ -56,5 +56,5 @@ TEST(Stacking, Pyramid20Stands) {
   expect_stack_stands("pyramid20.json", test::kSanitized ? 4 : 10);
 }
 
-}  // namespace
+}  // namespace stacking_test
 }  // namespace elan

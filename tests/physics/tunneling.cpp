@@ -5,7 +5,7 @@
 #include "physics/physics_util.hpp"
 
 namespace elan {
-namespace {
+namespace tunneling_test {
 
 using test::add_body;
 using test::at;
@@ -57,5 +57,5 @@ TEST(Tunneling, FastSphereStaysInFrontOfThinDynamicPlate) {
   EXPECT_GT(world.linear_velocity(plate).x(), Real(0)) << "the plate was never hit";
 }
 
-}  // namespace
+}  // namespace tunneling_test
 }  // namespace elan

@@ -11,7 +11,7 @@
 #include "broadphase/bounds.hpp"
 
 namespace elan::detail {
-namespace {
+namespace broadphase_bounds_test {
 
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
 
@@ -267,5 +267,5 @@ TEST(Bounds, PlanesAreInfiniteOrAxisAlignedAndNeverNaN) {
   }
 }
 
-}  // namespace
+}  // namespace broadphase_bounds_test
 }  // namespace elan::detail

@@ -15,7 +15,7 @@
 #include "core/base/pair_key.hpp"
 
 namespace elan::detail {
-namespace {
+namespace broadphase_pairs_test {
 
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
 
@@ -306,5 +306,5 @@ TEST(SweepAndPrune, NonFiniteBoxesPairWithNothing) {
   expect_all_methods_match(s, "NaN boxes");
 }
 
-}  // namespace
+}  // namespace broadphase_pairs_test
 }  // namespace elan::detail

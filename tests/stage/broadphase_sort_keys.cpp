@@ -12,7 +12,7 @@
 #include "core/base/parallel.hpp"
 
 namespace elan::detail {
-namespace {
+namespace broadphase_sort_keys_test {
 
 enum class Keys { Pairs, FullWidth, FewDistinct, OneBody, Constant };
 
@@ -109,5 +109,5 @@ TEST(SortKeys, SmallBodyCountsUseEveryBucket) {
   }
 }
 
-}  // namespace
+}  // namespace broadphase_sort_keys_test
 }  // namespace elan::detail

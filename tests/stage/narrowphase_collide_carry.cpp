@@ -13,7 +13,7 @@
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
-namespace {
+namespace narrowphase_collide_carry_test {
 
 constexpr Real kRadius = Real(0.4);
 
@@ -142,5 +142,5 @@ TEST(CollideCarry, MergesAcrossBlocksOfPairsUnderOneAndTwoThreads) {
   }
 }
 
-}  // namespace
+}  // namespace narrowphase_collide_carry_test
 }  // namespace elan::detail

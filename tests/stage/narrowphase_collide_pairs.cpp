@@ -12,7 +12,7 @@
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
-namespace {
+namespace narrowphase_collide_pairs_test {
 
 struct Pile {
   BodyStore bodies;
@@ -329,5 +329,5 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   EXPECT_GT(closed_in, 20) << "cached pairs that went on to touch";
 }
 
-}  // namespace
+}  // namespace narrowphase_collide_pairs_test
 }  // namespace elan::detail

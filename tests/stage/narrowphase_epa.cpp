@@ -10,7 +10,7 @@
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
-namespace {
+namespace narrowphase_epa_test {
 
 using test::at;
 using test::axis_angle;
@@ -150,5 +150,5 @@ TEST(Epa, DegenerateInputsStayFinite) {
   EXPECT_NEAR(e.normal.y(), -1, 1e-4);
 }
 
-}  // namespace
+}  // namespace narrowphase_epa_test
 }  // namespace elan::detail

@@ -12,7 +12,7 @@
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
-namespace {
+namespace narrowphase_gjk_test {
 
 using test::at;
 using test::axis_angle;
@@ -221,5 +221,5 @@ TEST(Gjk, DegenerateInputsStayFiniteAndTerminate) {
   EXPECT_LE(g.iterations, 64);
 }
 
-}  // namespace
+}  // namespace narrowphase_gjk_test
 }  // namespace elan::detail

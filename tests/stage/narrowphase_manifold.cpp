@@ -12,7 +12,7 @@
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
-namespace {
+namespace narrowphase_manifold_test {
 
 using test::axis_angle;
 using test::pose;
@@ -207,5 +207,5 @@ TEST(Collide, RejectionsReportAGapNoLargerThanTheDistance) {
   EXPECT_GT(faces, 100);
 }
 
-}  // namespace
+}  // namespace narrowphase_manifold_test
 }  // namespace elan::detail

@@ -12,7 +12,7 @@
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
-namespace {
+namespace narrowphase_round_pairs_test {
 
 using test::at;
 using test::axis_angle;
@@ -305,5 +305,5 @@ TEST(ManifoldReduce, KeepsDeepestAndSpansTheLargestArea) {
   EXPECT_EQ(reduce_to_four(line, zero, Vec3::UnitY(), out), 2);
 }
 
-}  // namespace
+}  // namespace narrowphase_round_pairs_test
 }  // namespace elan::detail

@@ -9,7 +9,7 @@
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
-namespace {
+namespace narrowphase_sat_test {
 
 using test::axis_angle;
 using test::pose;
@@ -270,5 +270,5 @@ TEST(SatSegment, FaceQueryGivesTheDistanceOverAFaceAndABoundBesideIt) {
   EXPECT_GT(beside, 100);
 }
 
-}  // namespace
+}  // namespace narrowphase_sat_test
 }  // namespace elan::detail

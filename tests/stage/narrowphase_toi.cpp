@@ -8,7 +8,7 @@
 #include "narrowphase/gjk.hpp"
 
 namespace elan::detail {
-namespace {
+namespace narrowphase_toi_test {
 
 Shape make(ShapeType type, Real r, Vec3 he = Vec3::Zero()) {
   ShapeDef d;
@@ -81,5 +81,5 @@ TEST(TimeOfImpact, RotationIsBoundedWithoutOvershoot) {
   EXPECT_NEAR(t * Real(1.2), angle, 0.01);
 }
 
-}  // namespace
+}  // namespace narrowphase_toi_test
 }  // namespace elan::detail

@@ -12,7 +12,7 @@
 #include "solver/body_lanes.hpp"
 
 namespace elan::detail {
-namespace {
+namespace solver_body_lanes_test {
 
 std::vector<SolverBody> random_bodies(std::size_t n, std::mt19937& rng) {
   std::uniform_real_distribution<float> u(-100, 100);
@@ -93,5 +93,5 @@ TEST(BodyLanes, ScatterWritesOnlyTheFlaggedLanesVelocities) {
   }
 }
 
-}  // namespace
+}  // namespace solver_body_lanes_test
 }  // namespace elan::detail

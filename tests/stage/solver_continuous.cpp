@@ -8,7 +8,7 @@
 #include "solver/continuous.hpp"
 
 namespace elan::detail {
-namespace {
+namespace solver_continuous_test {
 
 // Body 0: a static wall 4 cm thick, faces at x = 0.98 and 1.02. Bodies 1..: spheres of 5 cm
 // radius at the origin, each in its own packet with the given step motion.
@@ -97,5 +97,5 @@ TEST(Continuous, EarliestWallWins) {
               Real(0.25) * kContinuousTarget);
 }
 
-}  // namespace
+}  // namespace solver_continuous_test
 }  // namespace elan::detail

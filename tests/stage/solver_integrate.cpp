@@ -13,7 +13,7 @@
 #include "solver/integrate.hpp"
 
 namespace elan::detail {
-namespace {
+namespace solver_integrate_test {
 
 constexpr Real kEps = std::numeric_limits<Real>::epsilon();
 
@@ -165,5 +165,5 @@ TEST(IntegratePositions, ABodyGetsTheSameBitsInAnyLaneAndBlock) {
   }
 }
 
-}  // namespace
+}  // namespace solver_integrate_test
 }  // namespace elan::detail

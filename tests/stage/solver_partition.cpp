@@ -12,7 +12,7 @@
 #include "solver/partition.hpp"
 
 namespace elan::detail {
-namespace {
+namespace solver_partition_test {
 
 BodyStore store_with(const std::vector<Vec3>& centres) {
   BodyStore s;
@@ -67,5 +67,5 @@ TEST(SolverPartition, OnlyTheSimulatedBodiesAreCut) {
   EXPECT_EQ(sides(s, simulated), (std::vector<uint8_t>{0, 0, 1, 1}));
 }
 
-}  // namespace
+}  // namespace solver_partition_test
 }  // namespace elan::detail

@@ -13,7 +13,7 @@
 #include "physics/physics_util.hpp"
 
 namespace elan {
-namespace {
+namespace world_memory_use_test {
 
 std::size_t heap_in_use() {
   const struct mallinfo2 m = mallinfo2();
@@ -103,5 +103,5 @@ TEST(MemoryUse, NewKeyBuffersShrinkOnceAPileSettles) {
   EXPECT_LT(capacity(), high / 2);
 }
 
-}  // namespace
+}  // namespace world_memory_use_test
 }  // namespace elan

@@ -18,7 +18,7 @@
 #include "elan/error.hpp"
 
 namespace elan::detail {
-namespace {
+namespace convex_hull_test {
 
 // Float inputs are exact in the double arithmetic of the builder; what remains is the rounding of
 // one Real dot product against an offset of the cloud's magnitude (tens of ulps), so geometric
@@ -355,5 +355,5 @@ TEST(ConvexHull, PileSceneCloudsBuild) {
   }
 }
 
-}  // namespace
+}  // namespace convex_hull_test
 }  // namespace elan::detail

@@ -8,7 +8,7 @@
 #include "core/base/packed_rotation.hpp"
 
 namespace elan::detail {
-namespace {
+namespace packed_rotation_test {
 
 TEST(PackedRotation, ComesBackWithinItsErrorBound) {
   // Three components kept in 16 bits, the largest rebuilt from the unit norm: it is at least 1/2,
@@ -53,5 +53,5 @@ TEST(PackedRotation, IdentityByDefaultAndBytesPackNeverWritesAreInvalid) {
   EXPECT_FALSE(p.valid());
 }
 
-}  // namespace
+}  // namespace packed_rotation_test
 }  // namespace elan::detail

@@ -17,7 +17,7 @@
 #include "elan/error.hpp"
 
 namespace elan::detail {
-namespace {
+namespace shape_mass_properties_test {
 
 constexpr double kPi = std::numbers::pi;
 
@@ -344,5 +344,5 @@ TEST(ShapeValidation, BadSizesThrowNamingTheField) {
   expect_field(hull_def(std::vector<Vec3>(6, Vec3(1, 1, 1))), "shape.points");
 }
 
-}  // namespace
+}  // namespace shape_mass_properties_test
 }  // namespace elan::detail

@@ -11,7 +11,7 @@
 #include "core/base/shape.hpp"
 
 namespace elan::detail {
-namespace {
+namespace shape_support_test {
 
 constexpr double kPi = std::numbers::pi;
 
@@ -189,5 +189,5 @@ TEST(ShapeSupport, ZeroDirectionGivesAFiniteSurfacePoint) {
   }
 }
 
-}  // namespace
+}  // namespace shape_support_test
 }  // namespace elan::detail
