@@ -1,7 +1,8 @@
 // Loads and stores of the bodies on one side of a contact bundle: lane l of the wide values is
 // the solver body packets[l]. gather_velocity reads v and w, gather_pose dp and dtheta,
 // gather_mass the inverse mass and inertia, and scatter_velocity writes v and w back to the
-// lanes flagged `write` only (static, kinematic and unused sides are read-only). The packets of a
+// lanes whose packet is written (written_packet: static, kinematic and unused sides are
+// read-only). The packets of a
 // bundle are scattered in memory.
 #pragma once
 
@@ -117,15 +118,19 @@ inline void gather_mass(const SolverBodyMass* masses, const uint32_t* packets, W
                      Wide(cols[4]), Wide(cols[5]), Wide(cols[6])};
 }
 
-inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
+inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, uint32_t written_end,
                              const WideBody& in) {
+  // Lane l is written when packet - 1 < written_end - 1, unsigned (written_packet).
+  const __m512i one = _mm512_set1_epi32(1);
+  const __mmask16 write = _mm512_cmplt_epu32_mask(
+      _mm512_sub_epi32(_mm512_loadu_si512(packets), one), _mm512_set1_epi32(int(written_end - 1)));
   const __m512 cols[8] = {__m512(in.v.x), __m512(in.v.y), __m512(in.v.z),      __m512(in.w.x),
                           __m512(in.w.y), __m512(in.w.z), _mm512_setzero_ps(), _mm512_setzero_ps()};
   __m512 rows[8];
   transpose_8x8_halves(cols, rows);
   for (int l = 0; l < 8; ++l) {
     // The first six floats of the row, v and w; a lane not written stores nothing.
-    const __mmask8 lo = write[l] ? 0x3F : 0, hi = write[l + 8] ? 0x3F : 0;
+    const __mmask8 lo = (write >> l) & 1 ? 0x3F : 0, hi = (write >> (l + 8)) & 1 ? 0x3F : 0;
     _mm256_mask_storeu_ps(bodies[packets[l]].v.data(), lo, _mm512_castps512_ps256(rows[l]));
     _mm256_mask_storeu_ps(bodies[packets[l + 8]].v.data(), hi,
                           _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows[l]), 1)));
@@ -161,11 +166,11 @@ inline void gather_mass(const SolverBodyMass* masses, const uint32_t* packets, W
 }
 
 // perf: a lane that is not written stores into a local sink instead of branching over it.
-inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, const uint8_t* write,
+inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, uint32_t written_end,
                              const WideBody& in) {
   SolverBody sink;
   for (int l = 0; l < kLanes; ++l) {
-    SolverBody& b = write[l] ? bodies[packets[l]] : sink;
+    SolverBody& b = written_packet(packets[l], written_end) ? bodies[packets[l]] : sink;
     b.v = lane(in.v, l);
     b.w = lane(in.w, l);
   }

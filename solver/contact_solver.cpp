@@ -114,11 +114,11 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
                     std::span<const Manifold> manifolds, std::span<const uint32_t> packet_of,
                     uint32_t bundle, std::span<const uint32_t> lanes) {
   ContactBundle& c = ctx.bundles[bundle];
-  WideContactPoint* rows = ctx.rows.data() + c.first_row;
+  WideContactPoint* rows = ctx.rows.data() + ctx.row_start[bundle];
+  const int row_count = int(ctx.row_start[bundle + 1] - ctx.row_start[bundle]);
   BundleRestitution unused;
   BundleRestitution& bounce = ctx.restitution.empty() ? unused : ctx.restitution[bundle];
   const int lane_count = int(lanes.size());
-  c.lanes = lane_count;
   // Lane by lane: the inputs, scattered over manifolds, bodies and packets, into lanes.
   // Unused lanes stay zero (packet 0, no mass), so every product below is zero there.
   c.friction = bounce.restitution = Wide{};
@@ -133,18 +133,14 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   for (int l = 0; l < kLanes; ++l) {
     if (l >= lane_count) {
       c.packet_a[l] = c.packet_b[l] = c.manifold[l] = 0;
-      c.write_a[l] = c.write_b[l] = 0;
       continue;
     }
     const Manifold& m = manifolds[lanes[l]];
     const uint32_t a = m.body_a, b = m.body_b;
     const uint32_t packet_a = packet_of[a], packet_b = packet_of[b];
-    const bool write_a = bodies.is_dynamic(a), write_b = bodies.is_dynamic(b);
     c.packet_a[l] = packet_a;
     c.packet_b[l] = packet_b;
     c.manifold[l] = lanes[l];
-    c.write_a[l] = write_a;
-    c.write_b[l] = write_b;
     const SolverBodyMass& mass_a = ctx.masses[packet_a];
     const SolverBodyMass& mass_b = ctx.masses[packet_b];
     ma.inv_mass[l] = mass_a.inv_mass;
@@ -174,7 +170,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   const WideVec3& n = c.normal;
   const Wide m_sum = ma.inv_mass + mb.inv_mass;
   WideVec3 ra[kMaxManifoldPoints], center_ra, center_rb;
-  for (int k = 0; k < c.max_count; ++k) {
+  for (int k = 0; k < row_count; ++k) {
     WideContactPoint& p = rows[k];
     p.separation = p.normal_impulse = Wide{};
     // Arms of lanes without this point, and of unused lanes, stay zero.
@@ -203,7 +199,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   const Wide inv_count = point_count > zero ? one / (point_count > zero ? point_count : one) : zero;
   center_ra = inv_count * center_ra;
   center_rb = inv_count * center_rb;
-  for (int k = 0; k < c.max_count; ++k) {
+  for (int k = 0; k < row_count; ++k) {
     const auto used = point_count > splat(Real(k));
     const WideVec3 offset = ra[k] - center_ra;
     const WideVec3 in_plane = offset - dot(offset, n) * n;
@@ -224,7 +220,8 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
   const Wide half = splat(Real(0.5));
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
-    WideContactPoint* rows = ctx.rows.data() + c.first_row;
+    WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
+    const int row_count = int(ctx.row_start[i + 1] - ctx.row_start[i]);
     // Current separation from the pose change since the step began, linearised in the
     // rotation: s = s0 + n.(dp_b - dp_a) + (rb x n).dtheta_b - (ra x n).dtheta_a.
     WideVec3 dp_a, dtheta_a, dp_b, dtheta_b;
@@ -232,7 +229,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     gather_pose(ctx.bodies.data(), c.packet_b, dp_b, dtheta_b);
     const WideVec3& n = c.normal;
     const Wide dp_n = dot(n, dp_b - dp_a);
-    for (int k = 0; k < c.max_count; ++k) {
+    for (int k = 0; k < row_count; ++k) {
       WideContactPoint& p = rows[k];
       p.current_separation = p.separation + dp_n + dot(p.rb_n, dtheta_b) - dot(p.ra_n, dtheta_a);
     }
@@ -253,8 +250,8 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     // point count and the contact points of the step's start.
     WideVec3 start_b, anchor_a[kMaxManifoldPoints];
     Wide count{};
-    for (int l = 0; l < c.lanes; ++l) {
-      if (!refresh[l]) continue;
+    for (int l = 0; l < kLanes; ++l) {
+      if (!refresh[l]) continue;  // unused lanes have no mass, so they are never refreshed
       const Manifold& m = manifolds[c.manifold[l]];
       set_lane(start_b, l, bodies.position(m.body_b) - bodies.position(m.body_a));
       count[l] = Real(m.point_count);
@@ -271,7 +268,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     // through them too).
     const Wide m_sum = ma.inv_mass + mb.inv_mass;
     WideVec3 center_ra, center_rb;
-    for (int k = 0; k < c.max_count; ++k) {
+    for (int k = 0; k < row_count; ++k) {
       WideContactPoint& p = rows[k];
       const auto used = refresh & (count > splat(Real(k)));
       // The contact point of the step's start, carried by the mean translation of the two
@@ -301,7 +298,8 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
   SolverBody* bodies = ctx.bodies.data();
   for (uint32_t i = begin; i < end; ++i) {
     const ContactBundle& c = ctx.bundles[i];
-    const WideContactPoint* rows = ctx.rows.data() + c.first_row;
+    const WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
+    const int row_count = int(ctx.row_start[i + 1] - ctx.row_start[i]);
     WideBody a, b;
     WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
@@ -311,7 +309,7 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
     // The points' impulses summed first: one angular response per side instead of one per point.
     Wide total{};
     WideVec3 ra_n_sum, rb_n_sum;
-    for (int k = 0; k < c.max_count; ++k) {
+    for (int k = 0; k < row_count; ++k) {
       const WideContactPoint& p = rows[k];
       total += p.normal_impulse;
       ra_n_sum = ra_n_sum + p.normal_impulse * p.ra_n;
@@ -324,8 +322,8 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
     apply_friction(c, cross(c.normal, c.tangent), ma, mb, a, b, c.tangent_impulse[0],
                    c.tangent_impulse[1]);
     apply_twist(c, ma, mb, a, b, c.twist_impulse);
-    scatter_velocity(bodies, c.packet_a, c.write_a, a);
-    scatter_velocity(bodies, c.packet_b, c.write_b, b);
+    scatter_velocity(bodies, c.packet_a, ctx.written_end, a);
+    scatter_velocity(bodies, c.packet_b, ctx.written_end, b);
   }
 }
 
@@ -338,7 +336,8 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
   const Softness& fix = ctx.static_softness;
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
-    WideContactPoint* rows = ctx.rows.data() + c.first_row;
+    WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
+    const int row_count = int(ctx.row_start[i + 1] - ctx.row_start[i]);
     WideBody a, b;
     WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
@@ -351,7 +350,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       // Coulomb limits from the accumulated normal impulses: the tangent impulse within
       // mu * sum(lambda_n), the twist within mu * sum(lever_k * lambda_n_k).
       Wide total_normal{}, twist_limit{};
-      for (int k = 0; k < c.max_count; ++k) {
+      for (int k = 0; k < row_count; ++k) {
         total_normal += rows[k].normal_impulse;
         twist_limit += rows[k].twist_lever * rows[k].normal_impulse;
       }
@@ -390,7 +389,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     const Wide soft_mass = fixed_b ? splat(fix.mass_scale) : splat(dyn.mass_scale);
     const Wide soft_impulse = fixed_b ? splat(fix.impulse_scale) : splat(dyn.impulse_scale);
     Wide* max_impulse = ctx.restitution.empty() ? nullptr : ctx.restitution[i].max_normal_impulse;
-    for (int k = 0; k < c.max_count; ++k) {
+    for (int k = 0; k < row_count; ++k) {
       WideContactPoint& p = rows[k];
       const Wide s = p.current_separation;
       // Speculative (s > 0): allow closing the gap within this substep only. Penetrating: the
@@ -410,8 +409,8 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       if (max_impulse != nullptr) max_impulse[k] = wide_max(max_impulse[k], impulse);
       apply_row(c, ma, mb, a, b, p, impulse);
     }
-    scatter_velocity(bodies, c.packet_a, c.write_a, a);
-    scatter_velocity(bodies, c.packet_b, c.write_b, b);
+    scatter_velocity(bodies, c.packet_a, ctx.written_end, a);
+    scatter_velocity(bodies, c.packet_b, ctx.written_end, b);
   }
 }
 
@@ -424,14 +423,15 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
     const BundleRestitution& bounce = ctx.restitution[i];
     if (!any_lane(bounce.restitution != zero)) continue;
     const ContactBundle& c = ctx.bundles[i];
-    WideContactPoint* rows = ctx.rows.data() + c.first_row;
+    WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
+    const int row_count = int(ctx.row_start[i + 1] - ctx.row_start[i]);
     WideBody a, b;
     WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
     gather_velocity(bodies, c.packet_b, b);
     gather_mass(ctx.masses.data(), c.packet_a, ma);
     gather_mass(ctx.masses.data(), c.packet_b, mb);
-    for (int k = 0; k < c.max_count; ++k) {
+    for (int k = 0; k < row_count; ++k) {
       WideContactPoint& p = rows[k];
       const Wide approach = bounce.relative_velocity[k];
       // Only points that approached faster than the threshold and actually pushed bounce.
@@ -445,8 +445,8 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
       p.normal_impulse = updated;
       apply_row(c, ma, mb, a, b, p, impulse);
     }
-    scatter_velocity(bodies, c.packet_a, c.write_a, a);
-    scatter_velocity(bodies, c.packet_b, c.write_b, b);
+    scatter_velocity(bodies, c.packet_a, ctx.written_end, a);
+    scatter_velocity(bodies, c.packet_b, ctx.written_end, b);
   }
 }
 
@@ -454,8 +454,9 @@ void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t en
                     std::span<Manifold> manifolds) {
   for (uint32_t i = begin; i < end; ++i) {
     const ContactBundle& c = ctx.bundles[i];
-    const WideContactPoint* rows = ctx.rows.data() + c.first_row;
-    for (int l = 0; l < c.lanes; ++l) {
+    const WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
+    const int lanes = used_lanes(c);
+    for (int l = 0; l < lanes; ++l) {
       Manifold& m = manifolds[c.manifold[l]];
       for (int k = 0; k < m.point_count; ++k) {
         m.points[k].normal_impulse = rows[k].normal_impulse[l];

@@ -25,8 +25,10 @@ struct ContactSolverContext {
   std::span<SolverBody> bodies;  // packets (0 = static dummy)
   std::span<const SolverBodyMass> masses;
   std::span<ContactBundle> bundles;          // grouped by colour
-  std::span<WideContactPoint> rows;          // the bundles' point rows (ContactBundle::first_row)
+  std::span<WideContactPoint> rows;          // the bundles' point rows
+  std::span<const uint32_t> row_start;       // bundle j's rows are [row_start[j], row_start[j + 1])
   std::span<BundleRestitution> restitution;  // per bundle; empty when no body bounces
+  uint32_t written_end = 1;                  // packets [1, written_end) are written back
   Real h = 0;                                // s, substep
   Real inv_h = 0;
   Softness contact_softness;       // dynamic vs dynamic
@@ -36,9 +38,9 @@ struct ContactSolverContext {
 };
 
 // Builds bundle `bundle` from the manifolds `lanes` (indices into `manifolds`, at most kLanes,
-// sharing no dynamic body), lane l from lanes[l]. The bundle's first_row and max_count (the
-// most points of its manifolds) must be set; every other field of it, of its rows and of its
-// BundleRestitution is written, unused lanes and points with zero mass so they apply nothing.
+// sharing no dynamic body), lane l from lanes[l]. Its rows (ctx.row_start) must be as many as
+// the most points of its manifolds; every field of it, of its rows and of its BundleRestitution
+// is written, unused lanes and points with zero mass so they apply nothing.
 void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
                     std::span<const Manifold> manifolds, std::span<const uint32_t> packet_of,
                     uint32_t bundle, std::span<const uint32_t> lanes);

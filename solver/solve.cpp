@@ -38,6 +38,8 @@ ContactSolverContext make_context(const SolveSettings& settings, SolverState& st
   ctx.bundles = state.bundles;
   ctx.rows = state.rows;
   ctx.restitution = state.restitution;
+  ctx.row_start = state.row_start;
+  ctx.written_end = state.half_start[kHalves];
   ctx.h = settings.dt / Real(settings.substeps);
   ctx.inv_h = 1 / ctx.h;
   // Box2D v3: contact stiffness at most a quarter of the substep rate, twice as stiff against
@@ -242,9 +244,6 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
       for (uint32_t j = st.bundle_start[s]; j < st.bundle_start[s + 1]; ++j) {
         const uint32_t first = st.segment_start[s] + (j - st.bundle_start[s]) * per_bundle;
         const uint32_t last = std::min(st.segment_start[s + 1], first + per_bundle);
-        ContactBundle& bundle = st.bundles[j];
-        bundle.first_row = st.row_start[j];
-        bundle.max_count = int(st.row_start[j + 1] - st.row_start[j]);
         uint32_t lanes[kLanes];
         for (uint32_t k = first; k < last; ++k) lanes[k - first] = st.candidates[st.order[k]];
         prepare_bundle(ctx, bodies, contacts, st.packet_of, j,

@@ -32,6 +32,13 @@ struct alignas(16) SolverBody {
   Quat dq = Quat::Identity();  // rotation since the step began (world: q = dq * q0)
 };
 
+// Whether the solver writes packet `packet` back: the awake dynamic bodies' packets, 1 up to
+// `written_end` (SolverState::half_start[kHalves]); the static dummy (0) and the kinematic
+// bodies' packets, which follow, are only read. One unsigned compare: packet 0 wraps around.
+inline bool written_packet(uint32_t packet, uint32_t written_end) {
+  return packet - 1u < written_end - 1u;
+}
+
 // What every constraint pass reads of a body besides its velocity: its inverse mass and world
 // inverse inertia, 32 bytes a packet (zero for kinematic bodies and the static dummy, so a side
 // that is not written gets none). perf: kept per packet and gathered by each pass, not copied
@@ -85,7 +92,7 @@ inline void set_lane(WideSym3& w, int l, const SymMat3& m) {
 
 // One non-penetration row per lane in Jacobian form, J = [-n, -(ra x n), n, (rb x n)]. A
 // bundle's rows are stored apart from it, only as many as its lanes have points
-// (ContactBundle::first_row); points past a lane's count are zero, so they apply no impulse.
+// (SolverState::row_start); points past a lane's count are zero, so they apply no impulse.
 // perf: the angular responses I^-1 (r x n) are not stored but recomputed from the bundle's
 // inverse inertias in every pass (15 operations a side, off the chain of dependent updates):
 // stored, they were 6 of 17 values a row, and the passes are bound by memory traffic.
@@ -110,14 +117,13 @@ struct WideContactPoint {
 // as bepuphysics2 does: the friction Jacobians come from the manifold centre and the tangent, the
 // angular responses from the inverse inertias, the softness from whether B is written, the
 // masses from the packets (SolverBodyMass), and the restitution inputs, read once per step, live
-// apart (ContactSolverContext::restitution).
+// apart (ContactSolverContext::restitution). Nor does it keep what its packets or the layout
+// tell: which sides are written (written_packet), how many lanes are used (used_lanes), where
+// its point rows are (SolverState::row_start). So its header is its three index arrays, 192
+// bytes, and the wide values start on the next cache line (a bundle was 1536 bytes, now 1472).
 struct ContactBundle {
-  uint32_t packet_a[kLanes] = {}, packet_b[kLanes] = {};  // 0 = static dummy
+  uint32_t packet_a[kLanes] = {}, packet_b[kLanes] = {};  // 0 = static dummy, and unused lanes
   uint32_t manifold[kLanes] = {};  // index into the contact list, to store impulses back
-  uint8_t write_a[kLanes] = {}, write_b[kLanes] = {};  // dynamic bodies only are written
-  int lanes = 0;                                       // lanes in use
-  int max_count = 0;                                   // most points of any lane
-  uint32_t first_row = 0;  // its points are rows [first_row, first_row + max_count)
   WideVec3 normal;
   WideVec3 tangent;  // first axis of tangent_basis(normal); the second is normal x tangent
   Wide friction{};
@@ -129,6 +135,17 @@ struct ContactBundle {
   Wide tangent_impulse[2] = {};          // N s
   Wide twist_impulse{};                  // N m s
 };
+
+static_assert(sizeof(Real) != 4 || kLanes != 16 || sizeof(ContactBundle) == 1472,
+              "ContactBundle: the index arrays, then 20 wide values");
+
+// Lanes in use: from the first, up to the first whose both packets are 0 (a used lane has an
+// awake dynamic body, so a packet that is not the static dummy).
+inline int used_lanes(const ContactBundle& c) {
+  int l = 0;
+  while (l < kLanes && (c.packet_a[l] | c.packet_b[l]) != 0) ++l;
+  return l;
+}
 
 // Read by the restitution pass only: the lane's restitution, and per row the approach speed and
 // the largest impulse any pass applied (Box2D v3: only points that pushed bounce). Kept only

@@ -1,5 +1,5 @@
 // Loads and stores of a bundle's bodies: each lane gets exactly its body's values, and a store
-// touches only v and w of the lanes flagged for writing. With AVX-512 these run as a transpose
+// touches only v and w of the lanes whose packet is written. With AVX-512 these run as a transpose
 // of whole rows, which must move the same bits as the lane-by-lane loop.
 #include <gtest/gtest.h>
 
@@ -51,27 +51,35 @@ TEST(BodyLanes, EachLaneGathersItsOwnBody) {
   }
 }
 
-TEST(BodyLanes, ScatterWritesOnlyTheFlaggedLanesVelocities) {
+TEST(BodyLanes, WrittenPacketsAreTheAwakeDynamicOnes) {
+  EXPECT_FALSE(written_packet(0, 10));  // the static dummy
+  EXPECT_TRUE(written_packet(1, 10));
+  EXPECT_TRUE(written_packet(9, 10));
+  EXPECT_FALSE(written_packet(10, 10));  // the first kinematic packet
+  EXPECT_FALSE(written_packet(0, 1));    // no awake dynamic body
+  EXPECT_FALSE(written_packet(1, 1));
+}
+
+// A store writes v and w of the lanes whose packet is below written_end, except the static dummy
+// (packet 0), and nothing else of any packet.
+TEST(BodyLanes, ScatterWritesOnlyTheWrittenPacketsVelocities) {
   std::mt19937 rng(9);
   for (int trial = 0; trial < 50; ++trial) {
     const std::vector<SolverBody> before = random_bodies(64, rng);
     std::vector<SolverBody> after = before;
-    // Written lanes hold distinct bodies, as within a colour; read-only lanes may repeat any
-    // body, written or not, as the static dummy does.
-    std::vector<uint32_t> order(before.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::shuffle(order.begin(), order.end(), rng);
+    const uint32_t written_end = 20 + uint32_t(rng() % 24);
+    // Written lanes hold distinct dynamic packets, as within a colour; read-only lanes may
+    // repeat the static dummy or a kinematic packet (at or past written_end).
+    std::vector<uint32_t> dynamic(written_end - 1);
+    std::iota(dynamic.begin(), dynamic.end(), 1u);
+    std::shuffle(dynamic.begin(), dynamic.end(), rng);
     uint32_t packets[kLanes];
-    uint8_t write[kLanes];
+    bool write[kLanes];
     for (int l = 0; l < kLanes; ++l) {
-      write[l] = uint8_t(rng() % 3 != 0);
-      packets[l] = write[l] ? order[std::size_t(l)] : order[rng() % order.size()];
-    }
-    for (int l = 0; l < kLanes; ++l) {
-      if (write[l]) continue;
-      for (int k = 0; k < kLanes; ++k) {
-        if (write[k] && packets[k] == packets[l]) packets[l] = order[kLanes + std::size_t(l)];
-      }
+      const uint32_t kind = rng() % 3;
+      write[l] = kind != 0;
+      const uint32_t kinematic = written_end + uint32_t(rng() % (before.size() - written_end));
+      packets[l] = write[l] ? dynamic[std::size_t(l)] : (rng() % 2 == 0 ? 0 : kinematic);
     }
     WideBody in;
     std::uniform_real_distribution<float> u(-5, 5);
@@ -79,7 +87,7 @@ TEST(BodyLanes, ScatterWritesOnlyTheFlaggedLanesVelocities) {
       set_lane(in.v, l, Vec3(u(rng), u(rng), u(rng)));
       set_lane(in.w, l, Vec3(u(rng), u(rng), u(rng)));
     }
-    scatter_velocity(after.data(), packets, write, in);
+    scatter_velocity(after.data(), packets, written_end, in);
     std::vector<SolverBody> expected = before;
     for (int l = 0; l < kLanes; ++l) {
       if (!write[l]) continue;
