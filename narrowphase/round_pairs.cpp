@@ -14,7 +14,7 @@ namespace {
 
 constexpr Real kEps = std::numeric_limits<Real>::epsilon();
 // Segments within this sine of parallel get the two-point manifold (about 0.57 degrees).
-constexpr Real kParallelSine = Real(0.01);
+constexpr Real kParallelSegmentsSine = Real(0.01);
 // perf: stack buffer of plane-contact candidates; beyond it the shallowest is replaced.
 constexpr int kMaxPlaneCandidates = 64;
 
@@ -148,7 +148,8 @@ bool collide_capsule_capsule(const Shape& a, const Transform& xa, const Shape& b
   const Real radii = a.radius + b.radius;
   const Real cross = d1.cross(d2).squaredNorm();
   begin(out, Vec3::UnitY());
-  if (len1 > 0 && len2 > 0 && cross <= kParallelSine * kParallelSine * len1 * len2) {
+  if (len1 > 0 && len2 > 0 &&
+      cross <= kParallelSegmentsSine * kParallelSegmentsSine * len1 * len2) {
     // B's ends in A's segment parameter; the overlap [lo, hi] of that interval and [0, 1].
     const Real t0 = d1.dot(b0 - a0) / len1, t1 = d1.dot(b0 + d2 - a0) / len1;
     const int b_lo = t0 <= t1 ? 0 : 1;

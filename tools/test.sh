@@ -27,9 +27,12 @@ ctest --test-dir build/test-release -j"$jobs" --output-on-failure --timeout 300
 echo "== Debug build with AddressSanitizer + UndefinedBehaviorSanitizer, and tests"
 # -O1 keeps the sanitized physics tests fast enough; benchmarks are not built here. -g1 (line
 # tables, no variables) is all a sanitizer's stack trace reads, and builds in about two thirds of
-# the time of -g, which was most of this script's run.
+# the time of -g, which was most of this script's run. The engine's files are compiled four at a
+# time as one unit here (the test files always are), which shares the parsing of Eigen and TBB:
+# a clean build went from about 350 to 300 s. The Release build above compiles the engine file by
+# file, as users build it.
 cmake -S . -B build/test-asan -DCMAKE_BUILD_TYPE=Debug -DELAN_SANITIZE=ON -DELAN_BUILD_BENCH=OFF \
-      -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1"
+      -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=4
 cmake --build build/test-asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build/test-asan -j"$jobs" --output-on-failure --timeout 600
