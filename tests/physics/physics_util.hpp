@@ -1,4 +1,4 @@
-// Shared helpers of the physics, determinism and regression tests: building small worlds in code,
+// Shared helpers of the physics, determinism and stage tests: building small worlds in code,
 // loading the standard scenes, and the sanitizer switch that shrinks the longest runs.
 #pragma once
 
