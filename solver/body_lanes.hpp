@@ -2,8 +2,7 @@
 // the solver body packets[l]. gather_velocity reads v and w, gather_pose dp and dtheta,
 // gather_mass the inverse mass and inertia, and scatter_velocity writes v and w back to the
 // lanes whose packet is written (written_packet: static, kinematic and unused sides are
-// read-only). The packets of a
-// bundle are scattered in memory.
+// read-only). The packets of a bundle are scattered in memory.
 #pragma once
 
 #include <cstddef>
