@@ -114,8 +114,8 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
                     std::span<const Manifold> manifolds, std::span<const uint32_t> packet_of,
                     uint32_t bundle, std::span<const uint32_t> lanes) {
   ContactBundle& c = ctx.bundles[bundle];
-  WideContactPoint* rows = ctx.rows.data() + ctx.row_start[bundle];
-  const int row_count = int(ctx.row_start[bundle + 1] - ctx.row_start[bundle]);
+  WideContactPoint* rows = ctx.rows_of(bundle);
+  const int row_count = ctx.row_count(bundle);
   BundleRestitution unused;
   BundleRestitution& bounce = ctx.restitution.empty() ? unused : ctx.restitution[bundle];
   const int lane_count = int(lanes.size());
@@ -220,8 +220,8 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
   const Wide half = splat(Real(0.5));
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
-    WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
-    const int row_count = int(ctx.row_start[i + 1] - ctx.row_start[i]);
+    WideContactPoint* rows = ctx.rows_of(i);
+    const int row_count = ctx.row_count(i);
     // Current separation from the pose change since the step began, linearised in the
     // rotation: s = s0 + n.(dp_b - dp_a) + (rb x n).dtheta_b - (ra x n).dtheta_a.
     WideVec3 dp_a, dtheta_a, dp_b, dtheta_b;
@@ -298,8 +298,8 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
   SolverBody* bodies = ctx.bodies.data();
   for (uint32_t i = begin; i < end; ++i) {
     const ContactBundle& c = ctx.bundles[i];
-    const WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
-    const int row_count = int(ctx.row_start[i + 1] - ctx.row_start[i]);
+    const WideContactPoint* rows = ctx.rows_of(i);
+    const int row_count = ctx.row_count(i);
     WideBody a, b;
     WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
@@ -336,8 +336,8 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
   const Softness& fix = ctx.static_softness;
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
-    WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
-    const int row_count = int(ctx.row_start[i + 1] - ctx.row_start[i]);
+    WideContactPoint* rows = ctx.rows_of(i);
+    const int row_count = ctx.row_count(i);
     WideBody a, b;
     WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
@@ -423,8 +423,8 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
     const BundleRestitution& bounce = ctx.restitution[i];
     if (!any_lane(bounce.restitution != zero)) continue;
     const ContactBundle& c = ctx.bundles[i];
-    WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
-    const int row_count = int(ctx.row_start[i + 1] - ctx.row_start[i]);
+    WideContactPoint* rows = ctx.rows_of(i);
+    const int row_count = ctx.row_count(i);
     WideBody a, b;
     WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
@@ -454,7 +454,7 @@ void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t en
                     std::span<Manifold> manifolds) {
   for (uint32_t i = begin; i < end; ++i) {
     const ContactBundle& c = ctx.bundles[i];
-    const WideContactPoint* rows = ctx.rows.data() + ctx.row_start[i];
+    const WideContactPoint* rows = ctx.rows_of(i);
     const int lanes = used_lanes(c);
     for (int l = 0; l < lanes; ++l) {
       Manifold& m = manifolds[c.manifold[l]];

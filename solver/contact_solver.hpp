@@ -35,6 +35,10 @@ struct ContactSolverContext {
   Softness static_softness;        // against a static or kinematic body (stiffer)
   Real max_push_velocity = 3;      // m/s: cap of the position-correction speed
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
+
+  // Bundle j's point rows: as many as the most points of its lanes.
+  WideContactPoint* rows_of(uint32_t j) const { return rows.data() + row_start[j]; }
+  int row_count(uint32_t j) const { return int(row_start[j + 1] - row_start[j]); }
 };
 
 // Builds bundle `bundle` from the manifolds `lanes` (indices into `manifolds`, at most kLanes,
