@@ -182,7 +182,7 @@ def main():
     heap_elan = med(runs, "memory/elan/pile10k", "heap_bytes_per_body")
     heap_bullet = med(runs, "memory/bullet/pile10k", "heap_bytes_per_body")
     mem_parts = [(part, med(runs, "memory/elan/pile10k", "mem_" + part))
-                 for part in ("bodies", "shapes", "broadphase", "contacts", "solver", "api")]
+                 for part in ("bodies", "shapes", "broadphase", "contacts", "solver", "api", "scratch")]
     rss_elan, rss_bullet = peak_rss_kib(os.path.join(a.raw, "rss_elan.txt")), peak_rss_kib(
         os.path.join(a.raw, "rss_bullet.txt"))
 
@@ -254,7 +254,9 @@ def main():
              f"Bullet {fmt(heap_bullet, 0)} B/body (glibc mallinfo2, in process)")
     if all(v == v for _, v in mem_parts):
         L.append("- elan's by part (buffer capacities, B/body; the contacts part holds the contact list and "
-                 "the collide stage's buffers of keys new to it): " +
+                 "the collide stage's buffers of keys new to it; scratch is the step's scratch, which the "
+                 "sweep's strip entries and pair blocks and then the solver's bundles and rows use in "
+                 "turn): " +
                  ", ".join(f"{part} {fmt(v, 0)}" for part, v in mem_parts) +
                  f"; sum {fmt(sum(v for _, v in mem_parts), 0)}")
     L.append(f"- peak RSS, separate processes, {a.rss_steps} steps, 1 thread, both parsing the scene with "
@@ -285,7 +287,7 @@ def main():
     if all(v == v for v in parts.values()):
         engine = sum(v for part, v in parts.items() if part != "shapes")
         L.append(f"| engine memory ≤ 1 KiB/body on pile10k | {fmt(engine, 0)} B/body (bodies, broadphase, "
-                 f"contacts, solver, api; shapes {fmt(parts['shapes'], 0)} more, heap in all "
+                 f"contacts, solver, api, scratch; shapes {fmt(parts['shapes'], 0)} more, heap in all "
                  f"{fmt(heap_elan, 0)}) | {'yes' if engine <= 1024 else 'no: ' + fmt(engine / 1024) + '× over'} |")
     if rss_elan and rss_bullet:
         L.append(f"| peak RSS below Bullet's on pile10k | {rss_elan} vs {rss_bullet} KiB | "

@@ -369,6 +369,7 @@ void bm_memory(benchmark::State& state, Case c, bool bullet) {
     state.counters["mem_contacts"] = double(use.contacts) / n;
     state.counters["mem_solver"] = double(use.solver) / n;
     state.counters["mem_api"] = double(use.api) / n;
+    state.counters["mem_scratch"] = double(use.scratch) / n;
   }
 }
 

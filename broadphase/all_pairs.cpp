@@ -43,7 +43,7 @@ void tile_of(std::size_t t, std::size_t nb, std::size_t& bi, std::size_t& bj) {
 constexpr std::size_t kMaxTile = 256;
 
 void scan_tile(const BroadphaseInput& in, std::size_t i0, std::size_t i1, std::size_t j0,
-               std::size_t j1, std::vector<uint64_t>& out) {
+               std::size_t j1, ScratchVector<uint64_t>& out) {
   const BoundsColumns& b = *in.bounds;
   const Real* min_x = b.min_x.data();
   const Real* min_y = b.min_y.data();
@@ -93,7 +93,7 @@ void AllPairs::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_
   for_blocks(tiles, 1, [&](std::size_t t, std::size_t, std::size_t) {
     std::size_t bi, bj;
     tile_of(t, nb, bi, bj);
-    std::vector<uint64_t>& out = block_pairs_[t];
+    ScratchVector<uint64_t>& out = block_pairs_[t];
     out.clear();
     scan_tile(in, bi * edge, std::min(n, (bi + 1) * edge), bj * edge, std::min(n, (bj + 1) * edge),
               out);

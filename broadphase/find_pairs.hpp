@@ -6,12 +6,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "broadphase/bounds.hpp"
 #include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
+#include "core/base/step_scratch.hpp"
 
 namespace elan::detail {
 
@@ -48,7 +50,7 @@ class AllPairs {
   std::size_t heap_bytes() const;  // scratch kept between steps (the memory report)
 
  private:
-  std::vector<std::vector<uint64_t>> block_pairs_;  // one per tile
+  std::vector<ScratchVector<uint64_t>> block_pairs_;  // one per tile
   KeySortScratch pair_sort_;
 };
 
@@ -61,15 +63,26 @@ class SweepAndPrune {
   // Sentinels after each strip's entries: the sweep tests candidates this many at a time.
   static constexpr std::size_t kStripPad = 8;
 
-  void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
-  std::size_t heap_bytes() const;  // sorted boxes, strips and scratch (the memory report)
+  // The buffers of one update (the boxes dealt into strips, the chunks' pairs) are taken from
+  // `scratch` in its current phase and given back before returning. The two-argument form uses
+  // a scratch of the sweep's own.
+  void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs,
+                  StepScratch& scratch);
+  void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs) {
+    if (!own_scratch_) own_scratch_ = std::make_unique<StepScratch>();
+    own_scratch_->begin_phase();
+    find_pairs(in, out_pairs, *own_scratch_);
+  }
+  // Sorted boxes and the sort's scratch (the memory report); the own scratch, if used, too.
+  std::size_t heap_bytes() const;
 
  private:
   bool choose_axis(const BroadphaseInput& in);
   void sort_full(const BroadphaseInput& in);
   bool sort_incremental();
-  void deal_strips(const BroadphaseInput& in);
-  void sweep_range(std::size_t begin, std::size_t end, std::vector<uint64_t>& out) const;
+  void deal_strips(const BroadphaseInput& in, StepScratch& scratch);
+  void sweep_range(std::size_t begin, std::size_t end, ScratchVector<uint64_t>& out) const;
+  void release_update_buffers();
   // Monotonic in v, which the sweep's dedup rule relies on; NaN and v <= strip_lo_ give 0.
   uint32_t strip_of(Real v) const {
     if (!(v > strip_lo_)) return 0;
@@ -79,28 +92,30 @@ class SweepAndPrune {
 
   std::vector<uint32_t> order_;   // body indices sorted by min on the sweep axis
   std::vector<Real> sorted_min_;  // min on the axis, in order_ (planes, NaN: +inf)
-  Column<Real> sorted_max_;       // the rest of each box, in order_: max on the axis and
-  Column<Real> sorted_lo1_, sorted_hi1_, sorted_lo2_, sorted_hi2_;  // the two other axes
+  // The rest of each box, in order_: max on the axis and the two other axes. Like everything
+  // below up to planes_, rebuilt by every update and held only during it (scratch).
+  ScratchVector<Real> sorted_max_, sorted_lo1_, sorted_hi1_, sorted_lo2_, sorted_hi2_;
   int axis_ = 0;
   int strip_axis_ = 1;  // 1 or 2: which of the other axes (lo1/lo2) the strips cut
   Real strip_lo_ = 0, strip_width_ = 1;
   uint32_t strip_count_ = 1;
   // Entries: one per (box, strip it overlaps), strip by strip, each strip in sweep order and
   // followed by kStripPad sentinels (min +inf, the rest NaN) so the sweep reads whole chunks.
-  Column<Real> entry_min_, entry_max_, entry_lo1_, entry_hi1_, entry_lo2_, entry_hi2_;
-  std::vector<uint32_t> entry_body_;
-  std::vector<uint32_t> entry_first_;  // strip of the box's low end on the strip axis
+  ScratchVector<Real> entry_min_, entry_max_, entry_lo1_, entry_hi1_, entry_lo2_, entry_hi2_;
+  ScratchVector<uint32_t> entry_body_;
+  ScratchVector<uint32_t> entry_first_;  // strip of the box's low end on the strip axis
   // The box's kind, filter category and mask, so the accept test runs in the sweep's lanes.
-  std::vector<uint8_t> entry_kind_;
-  std::vector<uint32_t> entry_category_, entry_mask_;
-  SpikeTrim entry_trim_;  // the pile's first steps span more strips than it settles into
-  std::vector<uint32_t> strip_begin_;    // per strip: first entry; strip_begin_[s + 1] - pad: end
-  std::vector<uint32_t> sorted_strips_;  // per sorted box: first and last strip (first > last:
-                                         // no entry)
-  std::vector<uint32_t> deal_counts_;    // per deal block and strip: entries, then offsets
-  std::vector<double> axis_partials_;    // per block: statistics of box centres and sizes
+  ScratchVector<uint8_t> entry_kind_;
+  ScratchVector<uint32_t> entry_category_, entry_mask_;
+  std::vector<uint32_t> strip_begin_;      // per strip: first entry; strip_begin_[s + 1] - pad: end
+  ScratchVector<uint32_t> sorted_strips_;  // per sorted box: first and last strip (first > last:
+                                           // no entry)
+  std::vector<uint32_t> deal_counts_;      // per deal block and strip: entries, then offsets
+  std::vector<double> axis_partials_;      // per block: statistics of box centres and sizes
   std::vector<uint32_t> planes_;
-  std::vector<std::vector<uint64_t>> block_pairs_;  // sweep chunks, then plane blocks
+  std::vector<ScratchVector<uint64_t>> block_pairs_;  // sweep chunks, then plane blocks (scratch)
+  std::vector<uint32_t> block_room_;  // per block: pairs last update, its buffer's next room
+  std::unique_ptr<StepScratch> own_scratch_;  // of the two-argument form
   std::vector<uint64_t> sort_keys_;
   std::vector<double> range_partials_;  // per block: smallest and largest finite sweep key
   KeySortScratch key_sort_, pair_sort_;

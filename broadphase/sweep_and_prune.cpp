@@ -348,7 +348,7 @@ bool SweepAndPrune::sort_incremental() {
 // Gathers the sorted boxes and deals them into strips in sweep order (a stable counting sort),
 // so every strip comes out sorted without a sort of its own. Planes and boxes with a NaN bound
 // never overlap anything and get no entry.
-void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
+void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch) {
   const std::size_t n = order_.size();
   const std::size_t strips = strip_count_;
   // determinism: the block layout is a function of n and the strip count alone (rule 2); blocks
@@ -360,12 +360,16 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
   const Real *lo0 = axis_min(b, axis_), *hi0 = axis_max(b, axis_);
   const Real *lo1 = axis_min(b, a1), *hi1 = axis_max(b, a1);
   const Real *lo2 = axis_min(b, a2), *hi2 = axis_max(b, a2);
-  sorted_max_.resize(n);
-  sorted_lo1_.resize(n);
-  sorted_hi1_.resize(n);
-  sorted_lo2_.resize(n);
-  sorted_hi2_.resize(n);
-  sorted_strips_.resize(2 * n);
+  auto take = [&](auto& column, std::size_t size) {
+    take_from(column, scratch);
+    column.resize(size);
+  };
+  take(sorted_max_, n);
+  take(sorted_lo1_, n);
+  take(sorted_hi1_, n);
+  take(sorted_lo2_, n);
+  take(sorted_hi2_, n);
+  take(sorted_strips_, 2 * n);
   deal_counts_.assign(blocks * strips, 0);
   // The rest of each box in sweep order, its strips, and per block the entries per strip.
   // determinism: indexed writes, and each block counts into its own row (rule 1).
@@ -395,22 +399,17 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
   strip_begin_.resize(strips + 1);
   const std::size_t entries = bin_major_offsets(deal_counts_.data(), blocks, strips,
                                                 strip_begin_.data(), uint32_t(kStripPad));
-  const std::size_t cut = entry_trim_.note(entries, entry_body_.capacity(), sizeof(Real));
-  auto size_entries = [&](auto& column) {
-    if (cut != 0) cut_capacity(column, cut);
-    grow_to(column, entries);
-  };
-  size_entries(entry_min_);
-  size_entries(entry_max_);
-  size_entries(entry_lo1_);
-  size_entries(entry_hi1_);
-  size_entries(entry_lo2_);
-  size_entries(entry_hi2_);
-  size_entries(entry_body_);
-  size_entries(entry_first_);
-  size_entries(entry_kind_);
-  size_entries(entry_category_);
-  size_entries(entry_mask_);
+  take(entry_min_, entries);
+  take(entry_max_, entries);
+  take(entry_lo1_, entries);
+  take(entry_hi1_, entries);
+  take(entry_lo2_, entries);
+  take(entry_hi2_, entries);
+  take(entry_body_, entries);
+  take(entry_first_, entries);
+  take(entry_kind_, entries);
+  take(entry_category_, entries);
+  take(entry_mask_, entries);
   // determinism: every block writes the entries its offsets reserve (rule 1).
   for_blocks(n, grain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
     uint32_t* cursor = deal_counts_.data() + blk * strips;
@@ -457,7 +456,7 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in) {
 // only in strip_of(m), so it is reported once; strip_of is monotonic, so
 // strip_of(m) = max(strip_of(lo_a), strip_of(lo_b)) = max(first).
 void SweepAndPrune::sweep_range(std::size_t begin, std::size_t end,
-                                std::vector<uint64_t>& out) const {
+                                ScratchVector<uint64_t>& out) const {
   ChunkTest<Real> t{entry_min_.data(),      entry_lo1_.data(),  entry_hi1_.data(),
                     entry_lo2_.data(),      entry_hi2_.data(),  entry_first_.data(),
                     entry_category_.data(), entry_mask_.data(), entry_kind_.data()};
@@ -501,7 +500,29 @@ void SweepAndPrune::sweep_range(std::size_t begin, std::size_t end,
   out.insert(out.end(), buffer, buffer + used);
 }
 
-void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs) {
+void SweepAndPrune::release_update_buffers() {
+  release(sorted_max_);
+  release(sorted_lo1_);
+  release(sorted_hi1_);
+  release(sorted_lo2_);
+  release(sorted_hi2_);
+  release(sorted_strips_);
+  release(entry_min_);
+  release(entry_max_);
+  release(entry_lo1_);
+  release(entry_hi1_);
+  release(entry_lo2_);
+  release(entry_hi2_);
+  release(entry_body_);
+  release(entry_first_);
+  release(entry_kind_);
+  release(entry_category_);
+  release(entry_mask_);
+  for (ScratchVector<uint64_t>& b : block_pairs_) release(b);
+}
+
+void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs,
+                               StepScratch& scratch) {
   const BoundsColumns& b = *in.bounds;
   const std::size_t n = b.size();
 
@@ -524,7 +545,7 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
   }
   if (!sorted) sort_full(in);
 
-  deal_strips(in);
+  deal_strips(in, scratch);
 
   planes_.clear();
   for (uint32_t i = 0; i < n; ++i) {
@@ -534,24 +555,27 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
   const std::size_t sweep_blocks = block_count(entries, kSweepGrain);
   const std::size_t plane_blocks = planes_.empty() ? 0 : block_count(n, kPlaneGrain);
   const std::size_t blocks = sweep_blocks + plane_blocks;
-  // perf: buffers only grow, so after warm-up an update allocates nothing.
+  // Each block's buffer starts with room for a quarter more than the block found last update, so
+  // once the scene has settled no buffer grows (a grown one leaves its old bytes unused in the
+  // scratch until the phase ends).
   if (block_pairs_.size() < blocks) block_pairs_.resize(blocks);
-  for (std::size_t t = blocks; t < block_pairs_.size(); ++t) block_pairs_[t].clear();
+  block_room_.resize(block_pairs_.size());
+  for (std::size_t t = 0; t < block_pairs_.size(); ++t) {
+    take_from(block_pairs_[t], scratch);
+    if (t < blocks) block_pairs_[t].reserve(block_room_[t] + block_room_[t] / 4 + 16);
+  }
 
   // Each chunk scans forward from its own entries to the end of their strip, possibly past the
   // chunk's end.
   // determinism: one buffer per chunk, joined in chunk order, then sorted (rule 1).
   for_blocks(entries, kSweepGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
-    std::vector<uint64_t>& out = block_pairs_[blk];
-    out.clear();
-    sweep_range(begin, end, out);
+    sweep_range(begin, end, block_pairs_[blk]);
   });
 
   // Planes against every other body; a plane-plane pair once, from the lower index.
   if (plane_blocks != 0) {
     for_blocks(n, kPlaneGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
-      std::vector<uint64_t>& out = block_pairs_[sweep_blocks + blk];
-      out.clear();
+      ScratchVector<uint64_t>& out = block_pairs_[sweep_blocks + blk];
       const Real *min_x = b.min_x.data(), *min_y = b.min_y.data(), *min_z = b.min_z.data();
       const Real *max_x = b.max_x.data(), *max_y = b.max_y.data(), *max_z = b.max_z.data();
       for (uint32_t p : planes_) {
@@ -583,6 +607,8 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
   // sorted list is already unique.
   const uint64_t max_key = n < 2 ? 0 : make_pair_key(uint32_t(n - 2), uint32_t(n - 1));
   sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_);
+  for (std::size_t t = 0; t < blocks; ++t) block_room_[t] = uint32_t(block_pairs_[t].size());
+  release_update_buffers();
 }
 
 std::size_t SweepAndPrune::heap_bytes() const {
@@ -596,7 +622,8 @@ std::size_t SweepAndPrune::heap_bytes() const {
          heap_bytes(strip_begin_) + heap_bytes(sorted_strips_) + heap_bytes(deal_counts_) +
          heap_bytes(axis_partials_) + heap_bytes(planes_) + heap_bytes(block_pairs_) +
          heap_bytes(sort_keys_) + heap_bytes(range_partials_) + heap_bytes(key_sort_) +
-         heap_bytes(pair_sort_);
+         heap_bytes(pair_sort_) + heap_bytes(block_room_) +
+         (own_scratch_ ? own_scratch_->heap_bytes() : 0);
 }
 
 }  // namespace elan::detail

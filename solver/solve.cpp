@@ -55,7 +55,7 @@ ContactSolverContext make_context(const SolveSettings& settings, SolverState& st
 }  // namespace
 
 void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
-                   SolverState& st, SolveStats& stats) {
+                   SolverState& st, SolveStats& stats, StepScratch& scratch) {
   auto t0 = std::chrono::steady_clock::now();
   update_islands(bodies, contacts, {settings.allow_sleep, settings.time_to_sleep},
                  st.island_scratch);
@@ -231,10 +231,12 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
         st.row_start[j + 1] = st.row_start[j] + uint32_t(point_count(first));
       }
     }
-    // Growing by a quarter, not doubling: pile10k's solver part 1300 -> 976 B/body.
-    grow_to(st.bundles, bundle_count);
-    grow_to(st.rows, st.row_start[bundle_count]);
-    grow_to(st.restitution, bouncy ? bundle_count : 0);
+    take_from(st.bundles, scratch);
+    take_from(st.rows, scratch);
+    take_from(st.restitution, scratch);
+    st.bundles.resize(bundle_count);
+    st.rows.resize(st.row_start[bundle_count]);
+    st.restitution.resize(bouncy ? bundle_count : 0);
   };
 
   auto prepare_group = [&](uint32_t g) {
@@ -368,6 +370,9 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
     }
   };
   st.executor.run(stages, std::min(settings.participants, int(kHalves)), work);
+  release(st.bundles);
+  release(st.rows);
+  release(st.restitution);
 }
 
 uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,

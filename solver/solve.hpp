@@ -13,6 +13,7 @@
 #include "core/base/body_store.hpp"
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
+#include "core/base/step_scratch.hpp"
 #include "solver/coloring.hpp"
 #include "solver/contact_solver.hpp"
 #include "solver/islands.hpp"
@@ -75,10 +76,12 @@ struct SolverState {
   std::vector<uint32_t> order;             // candidate positions, segment by segment
   std::vector<uint32_t> segment_start;     // segment s is order[segment_start[s], [s + 1])
   std::vector<uint32_t> order_scratch;
-  std::vector<ContactBundle> bundles;  // segment by segment
-  std::vector<uint32_t> row_start;     // bundle j's point rows are [row_start[j], row_start[j+1])
-  std::vector<WideContactPoint> rows;
-  std::vector<BundleRestitution> restitution;  // per bundle; empty when no body bounces
+  // The bundles, their point rows and restitution inputs are taken from the step's scratch by
+  // prepare_solve and given back by solve(): between steps they are empty.
+  ScratchVector<ContactBundle> bundles;  // segment by segment
+  std::vector<uint32_t> row_start;       // bundle j's point rows are [row_start[j], row_start[j+1])
+  ScratchVector<WideContactPoint> rows;
+  ScratchVector<BundleRestitution> restitution;  // per bundle; empty when no body bounces
   std::vector<uint32_t> bundle_start;  // segment s is bundles[bundle_start[s], bundle_start[s+1])
   ColorScratch color_scratch[kGroups];
   IslandScratch island_scratch;
@@ -95,11 +98,13 @@ struct SolveStats {
   double islands_ms = 0, color_ms = 0, solve_ms = 0;
 };
 
-// Islands and sleep, packets for the awake bodies, colouring and constraint preparation.
+// Islands and sleep, packets for the awake bodies, colouring and constraint preparation. The
+// bundles and rows are taken from `scratch`, in its current phase.
 void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
-                   SolverState& state, SolveStats& stats);
+                   SolverState& state, SolveStats& stats, StepScratch& scratch);
 
-// The substeps, restitution and impulse storage. Results stay in state.packets.
+// The substeps, restitution and impulse storage. Results stay in state.packets; the bundles and
+// rows go back to the scratch.
 void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
            SolverState& state);
 

@@ -184,7 +184,7 @@ void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& sc
   sort_sources(block_count(n, kChunk), chunk, n, max_key, keys.data(), scratch, false);
 }
 
-void sort_key_blocks(const std::vector<std::vector<uint64_t>>& blocks, uint64_t max_key,
+void sort_key_blocks(const std::vector<ScratchVector<uint64_t>>& blocks, uint64_t max_key,
                      std::vector<uint64_t>& out, KeySortScratch& scratch) {
   std::size_t total = 0;
   for (const auto& b : blocks) total += b.size();

@@ -14,6 +14,7 @@
 
 #include "core/base/grow.hpp"
 #include "core/base/heap_bytes.hpp"
+#include "core/base/step_scratch.hpp"
 
 namespace elan::detail {
 
@@ -127,7 +128,7 @@ inline std::size_t heap_bytes(const KeySortScratch& s) {
 // sort_key_blocks writes the keys of all `blocks`, sorted, to `out`, scattering them there
 // directly (a thread's scratch holds one bucket at a time); sort_keys sorts in place, through a
 // scratch copy of all the keys.
-void sort_key_blocks(const std::vector<std::vector<uint64_t>>& blocks, uint64_t max_key,
+void sort_key_blocks(const std::vector<ScratchVector<uint64_t>>& blocks, uint64_t max_key,
                      std::vector<uint64_t>& out, KeySortScratch& scratch);
 void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch);
 

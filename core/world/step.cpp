@@ -54,10 +54,11 @@ uint32_t run_step(WorldState& w, Real dt) {
         kind == BroadKind::Static || (kind == BroadKind::Sleeping && !(bodies.flags[i] & kFrozen));
   }
   BroadphaseInput input{&w.bounds, w.broad_kind, bodies.category, bodies.mask, w.is_plane};
+  w.scratch.begin_phase();
   if (w.def.broadphase == BroadphaseType::AllPairs) {
     w.all_pairs.find_pairs(input, w.pairs);
   } else {
-    w.sap.find_pairs(input, w.pairs);
+    w.sap.find_pairs(input, w.pairs, w.scratch);
   }
   filter_pairs(w);
   const auto t2 = clock::now();
@@ -78,7 +79,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve_settings.allow_sleep = w.def.allow_sleep;
   solve_settings.participants = w.threads;
   SolveStats solve_stats;
-  prepare_solve(bodies, w.contacts, solve_settings, w.solver, solve_stats);
+  w.scratch.begin_phase();
+  prepare_solve(bodies, w.contacts, solve_settings, w.solver, solve_stats, w.scratch);
   const auto t4 = clock::now();
   solve(bodies, w.contacts, solve_settings, w.solver);
   compute_contact_events(w);

@@ -12,6 +12,7 @@
 #include "core/base/body_store.hpp"
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
+#include "core/base/step_scratch.hpp"
 #include "core/world/api_state.hpp"
 #include "elan/defs.hpp"
 #include "elan/profile.hpp"
@@ -67,6 +68,8 @@ struct WorldState {
   CollideScratch contact_blocks;
 
   SolverState solver;
+  // Per-step buffers of the sweep and the solver, which are never in use at once (StepScratch).
+  StepScratch scratch;
   ApiState api;
   StepStats stats;
   uint32_t reported_status = 0;  // flags already reported once

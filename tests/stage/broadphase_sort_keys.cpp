@@ -52,9 +52,9 @@ std::vector<uint64_t> make_keys(Keys kind, std::size_t count, uint32_t bodies, u
 }
 
 // Cuts keys into blocks of random lengths, some empty, as sweep chunks and plane blocks come.
-std::vector<std::vector<uint64_t>> split(const std::vector<uint64_t>& keys, std::size_t blocks,
-                                         std::mt19937_64& rng) {
-  std::vector<std::vector<uint64_t>> out(blocks);
+std::vector<ScratchVector<uint64_t>> split(const std::vector<uint64_t>& keys, std::size_t blocks,
+                                           std::mt19937_64& rng) {
+  std::vector<ScratchVector<uint64_t>> out(blocks);
   for (uint64_t k : keys) {
     const std::size_t b = rng() % blocks;
     if (b % 7 != 3)

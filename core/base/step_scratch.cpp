@@ -1,0 +1,50 @@
+#include "core/base/step_scratch.hpp"
+
+#include <cassert>
+#include <cstdint>
+#include <new>
+
+namespace elan::detail {
+
+StepScratch::~StepScratch() {
+  if (block_) ::operator delete(block_, std::align_val_t(kAlign));
+}
+
+void StepScratch::reallocate(std::size_t capacity) {
+  if (block_) ::operator delete(block_, std::align_val_t(kAlign));
+  block_ = nullptr;
+  capacity_ = 0;
+  if (capacity == 0) return;
+  block_ = static_cast<std::byte*>(::operator new(capacity, std::align_val_t(kAlign)));
+  capacity_ = capacity;
+}
+
+void StepScratch::begin_phase() {
+  assert(held_.load() == 0 && "StepScratch: a buffer of the last phase is still held");
+  if (held_.load(std::memory_order_relaxed) != 0) return;
+  const std::size_t asked = top_.exchange(0, std::memory_order_relaxed);
+  if (asked > capacity_) {
+    reallocate(round_up(asked + asked / 4));
+    return;
+  }
+  const std::size_t cut = trim_.note(asked, capacity_, 1);
+  if (cut != 0) reallocate(round_up(cut));
+}
+
+void* StepScratch::allocate(std::size_t bytes) {
+  bytes = round_up(bytes);
+  held_.fetch_add(bytes, std::memory_order_relaxed);
+  const std::size_t at = top_.fetch_add(bytes, std::memory_order_relaxed);
+  if (at + bytes <= capacity_) return block_ + at;
+  return ::operator new(bytes, std::align_val_t(kAlign));
+}
+
+void StepScratch::deallocate(void* p, std::size_t bytes) {
+  held_.fetch_sub(round_up(bytes), std::memory_order_relaxed);
+  const auto at = reinterpret_cast<std::uintptr_t>(p);
+  const auto first = reinterpret_cast<std::uintptr_t>(block_);
+  if (at >= first && at < first + capacity_) return;
+  ::operator delete(p, std::align_val_t(kAlign));
+}
+
+}  // namespace elan::detail

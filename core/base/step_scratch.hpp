@@ -1,0 +1,122 @@
+// StepScratch: one block of memory that the stages of a step take their per-step buffers from,
+// in turn. The sweep's strip entries and pair blocks are dead by the time the solver lays out its
+// bundles and point rows, and those are dead once the step ends, so the two never need memory at
+// once: each phase starts again at the front of the block, and the block holds the larger of the
+// two, not their sum (Box2D v3's b2ArenaAllocator and Jolt's TempAllocator, per step).
+//
+// A buffer is a std::vector with a ScratchAllocator: it grows and is indexed as any vector, and
+// taking memory is a bump of an atomic offset, so the sweep's chunks may grow theirs in parallel.
+// What the block cannot hold comes from the heap; the next phase then starts with a block large
+// enough for what this one asked (a quarter more), so a scene allocates while it grows and then
+// never. Which thread took which bytes does not matter: no result depends on an address.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "core/base/grow.hpp"
+
+namespace elan::detail {
+
+class StepScratch {
+ public:
+  static constexpr std::size_t kAlign = 64;  // every buffer starts on a cache line
+
+  StepScratch() = default;
+  StepScratch(const StepScratch&) = delete;
+  StepScratch& operator=(const StepScratch&) = delete;
+  ~StepScratch();
+
+  // Starts a phase at the front of the block. Every buffer of the last phase must have been
+  // released (release()): one still held keeps its bytes, and the phase continues behind it
+  // instead (never two buffers in the same bytes; a debug build asserts). The block is resized
+  // here only, when nothing is held: grown to what the last phase asked, or, after a passing
+  // spike, cut back (SpikeTrim's rule over phases).
+  void begin_phase();
+
+  // Thread-safe. `bytes` rounded up to kAlign.
+  void* allocate(std::size_t bytes);
+  void deallocate(void* p, std::size_t bytes);
+
+  std::size_t heap_bytes() const { return capacity_; }
+  std::size_t held_bytes() const { return held_.load(std::memory_order_relaxed); }
+
+ private:
+  static std::size_t round_up(std::size_t bytes) { return (bytes + kAlign - 1) / kAlign * kAlign; }
+  void reallocate(std::size_t capacity);
+
+  std::byte* block_ = nullptr;
+  std::size_t capacity_ = 0;
+  std::atomic<std::size_t> top_{0};   // bytes asked for in this phase, block or heap
+  std::atomic<std::size_t> held_{0};  // bytes handed out and not yet given back
+  SpikeTrim trim_;
+};
+
+// The allocator of a buffer in a StepScratch. A default-constructed one (no scratch) allocates
+// from the heap, so such a vector also works where no step is running (tests, a lone sweep).
+template <class T>
+struct ScratchAllocator {
+  using value_type = T;
+  using propagate_on_container_copy_assignment = std::true_type;
+  using propagate_on_container_move_assignment = std::true_type;
+  using propagate_on_container_swap = std::true_type;
+
+  StepScratch* scratch = nullptr;
+
+  ScratchAllocator() = default;
+  explicit ScratchAllocator(StepScratch* s) : scratch(s) {}
+  template <class U>
+  ScratchAllocator(const ScratchAllocator<U>& other) : scratch(other.scratch) {}
+
+  T* allocate(std::size_t n) {
+    const std::size_t bytes = n * sizeof(T);
+    if (scratch) return static_cast<T*>(scratch->allocate(bytes));
+    return static_cast<T*>(::operator new(bytes, std::align_val_t(StepScratch::kAlign)));
+  }
+  void deallocate(T* p, std::size_t n) {
+    if (scratch) {
+      scratch->deallocate(p, n * sizeof(T));
+    } else {
+      ::operator delete(p, std::align_val_t(StepScratch::kAlign));
+    }
+  }
+  // resize() leaves new elements as the memory holds them: every scratch buffer is written whole
+  // before it is read (the sweep's entries, prepare_bundle's bundles and rows), and setting
+  // pile10k's bundles and rows to zero first would write 4 MB a step that the heap vectors,
+  // which kept their size from step to step, never wrote.
+  template <class U>
+  void construct(U* p) noexcept {
+    static_assert(std::is_trivially_destructible_v<U>, "scratch buffers hold plain data");
+    static_cast<void>(p);
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  template <class U>
+  bool operator==(const ScratchAllocator<U>& other) const {
+    return scratch == other.scratch;
+  }
+};
+
+template <class T>
+using ScratchVector = std::vector<T, ScratchAllocator<T>>;
+
+// Empties `v` and points it at `scratch`, room for nothing yet: the start of its use in a phase.
+template <class T>
+void take_from(ScratchVector<T>& v, StepScratch& scratch) {
+  ScratchVector<T>(ScratchAllocator<T>(&scratch)).swap(v);
+}
+
+// Gives `v`'s bytes back (to the scratch or the heap): the end of its use in a phase.
+template <class T>
+void release(ScratchVector<T>& v) {
+  ScratchVector<T>().swap(v);
+}
+
+}  // namespace elan::detail
