@@ -79,6 +79,31 @@ TEST(StepScratch, APhaseLargerThanTheBlockGetsItsBytesAndTheNextFits) {
   release(v);
 }
 
+TEST(StepScratch, HandsBackWhatASpikeLeft) {
+  // A pile's first steps: every pair new, the block grows to what they ask. Once the phases ask
+  // far less for a whole SpikeTrim window, the block is cut to a quarter past their high.
+  StepScratch s;
+  ScratchVector<uint64_t> v;
+  auto phase = [&](std::size_t keys) {
+    s.begin_phase();
+    take_from(v, s);
+    v.resize(keys);
+    release(v);
+  };
+  phase(200000);
+  phase(1000);
+  const std::size_t spike = s.heap_bytes();
+  EXPECT_GE(spike, 200000 * sizeof(uint64_t));
+  for (uint32_t k = 0; k < 2 * SpikeTrim::kWindow; ++k) phase(1000);
+  EXPECT_LT(s.heap_bytes(), spike / 10);
+  EXPECT_GE(s.heap_bytes(), 1000 * sizeof(uint64_t));
+  // A swing within a window is not cut and regrown in turn.
+  for (uint32_t k = 0; k < 2 * SpikeTrim::kWindow; ++k) phase(k % 2 ? 20000 : 1000);
+  const std::size_t swing = s.heap_bytes();
+  for (uint32_t k = 0; k < 2 * SpikeTrim::kWindow; ++k) phase(k % 2 ? 20000 : 1000);
+  EXPECT_EQ(s.heap_bytes(), swing);
+}
+
 TEST(StepScratch, BuffersGrownInParallelNeverShareBytes) {
   // The sweep's chunks push pairs into their own buffers at once: each must read back exactly
   // what it wrote, whether its bytes came from the block or, past it, from the heap.
