@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "core/base/grow.hpp"
 #include "core/base/packed_rotation.hpp"
 #include "core/base/shape.hpp"
+#include "core/base/step_scratch.hpp"
 #include "narrowphase/polyhedron.hpp"
 #include "narrowphase/separation.hpp"
 
@@ -67,14 +69,16 @@ struct ListUpdate {
     uint32_t thread = 0;
     std::size_t first = 0, count = 0;
   };
-  std::vector<std::vector<T>> added;  // per thread: entries of new keys, block by block
-  SpikeTrim added_trim;               // of all threads' buffers together
-  std::vector<Run> added_run;         // per block: its new keys' run, in key order
-  std::vector<std::size_t> start;     // per block + 1: its range of the list on entry
-  std::vector<std::size_t> live;      // per block: entries of its range that stay
-  std::vector<std::size_t> at;        // per block + 1: its range of the list on return
-  std::vector<std::size_t> waiting;   // the join: blocks waiting for their right neighbour
-  std::vector<T> bounce;              // the join: one block's entries on their way
+  // Per thread: entries of new keys, block by block. Taken from the step's scratch for the
+  // stage, each with room for a quarter more than the largest held the step before.
+  std::vector<ScratchVector<T>> added;
+  std::size_t room = 0;
+  std::vector<Run> added_run;        // per block: its new keys' run, in key order
+  std::vector<std::size_t> start;    // per block + 1: its range of the list on entry
+  std::vector<std::size_t> live;     // per block: entries of its range that stay
+  std::vector<std::size_t> at;       // per block + 1: its range of the list on return
+  std::vector<std::size_t> waiting;  // the join: blocks waiting for their right neighbour
+  std::vector<T> bounce;             // the join: one block's entries on their way
 
   std::size_t heap_bytes() const;
 };
@@ -82,6 +86,7 @@ struct ListUpdate {
 struct CollideScratch {
   ListUpdate<Manifold> contacts;
   ListUpdate<SeparatedPair> separated;
+  std::unique_ptr<StepScratch> own;  // for the new-key buffers when the caller gives no scratch
 };
 
 // The stage. `contacts` holds last step's manifolds, sorted by key, and receives this step's. For
@@ -113,11 +118,13 @@ struct CollideScratch {
 // from its first pair's up to the next block's first pair's. It rewrites the entries of its key
 // range where they are, marks those that end, and collects entries of keys new to a list in its
 // thread's buffer; a serial join then closes the gaps and merges the new ones in. Nothing depends
-// on the thread count.
+// on the thread count. The threads' buffers are taken from `step_scratch` in its current phase
+// and given back before returning (none: from a scratch of `scratch`'s own).
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,
-                   std::vector<Manifold>& contacts, std::vector<SeparatedPair>& separated);
+                   std::vector<Manifold>& contacts, std::vector<SeparatedPair>& separated,
+                   StepScratch* step_scratch = nullptr);
 
 // Time of impact by conservative advancement on the GJK distance: the earliest t in [0, 1] at
 // which A moving linearly from xa0 to xa1 (rotation slerped) comes within `target` of B moving

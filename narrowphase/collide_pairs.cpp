@@ -158,14 +158,15 @@ bool ended(const SeparatedPair& s) {
 // (block p owns the keys from its first pair's up to the next block's first pair's).
 template <class T>
 void begin_update(ListUpdate<T>& u, const std::vector<T>& list, std::span<const uint64_t> pairs,
-                  std::size_t parts) {
-  // Every buffer keeps room for what the largest has held (reset_thread_buffers), and the trim
-  // counts all threads' use together.
-  std::size_t used = 0;
-  for (const std::vector<T>& buffer : u.added) used += buffer.size();
-  const std::size_t largest = largest_capacity(u.added);
-  const std::size_t cut = u.added_trim.note(used, largest, sizeof(T));
-  reset_thread_buffers(u.added, cut != 0 ? cut : largest);
+                  std::size_t parts, StepScratch& step_scratch) {
+  // Which thread takes which block changes from run to run, so every buffer gets the room the
+  // largest needed: none grows (inside the scratch, leaving its old bytes unused) because the
+  // schedule changed.
+  if (u.added.size() < thread_slots()) u.added.resize(thread_slots());
+  for (ScratchVector<T>& buffer : u.added) {
+    take_from(buffer, step_scratch);
+    buffer.reserve(u.room);
+  }
   u.added_run.resize(parts);
   u.start.resize(parts + 1);
   u.live.resize(parts);
@@ -177,6 +178,15 @@ void begin_update(ListUpdate<T>& u, const std::vector<T>& list, std::span<const 
                                      [](const T& x, uint64_t k) { return list_key(x) < k; }) -
                     list.begin());
   }
+}
+
+// After the join: the room for the next step, and the buffers back to the scratch.
+template <class T>
+void end_update(ListUpdate<T>& u) {
+  std::size_t largest = 0;
+  for (const ScratchVector<T>& buffer : u.added) largest = std::max(largest, buffer.size());
+  u.room = largest + largest / 4;
+  for (ScratchVector<T>& buffer : u.added) release(buffer);
 }
 
 // The join's move of one part: its live entries, merged in key order with its added ones, to
@@ -262,7 +272,13 @@ template struct ListUpdate<SeparatedPair>;
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,
-                   std::vector<Manifold>& contacts, std::vector<SeparatedPair>& separated) {
+                   std::vector<Manifold>& contacts, std::vector<SeparatedPair>& separated,
+                   StepScratch* step_scratch) {
+  if (step_scratch == nullptr) {
+    if (!scratch.own) scratch.own = std::make_unique<StepScratch>();
+    step_scratch = scratch.own.get();
+    step_scratch->begin_phase();
+  }
   const std::size_t n = pairs.size();
   // With no pairs there is one (empty) part, to carry what the lists hold.
   const std::size_t parts = std::max<std::size_t>(block_count(n, kPairGrain), 1);
@@ -270,8 +286,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   // one run in its thread's buffer, so only a step's new keys are held, not each block's most.
   ListUpdate<Manifold>& mu = scratch.contacts;
   ListUpdate<SeparatedPair>& su = scratch.separated;
-  begin_update(mu, contacts, pairs, parts);
-  begin_update(su, separated, pairs, parts);
+  begin_update(mu, contacts, pairs, parts, *step_scratch);
+  begin_update(su, separated, pairs, parts, *step_scratch);
   auto carried = [&](const Manifold& m) {
     return !idle.empty() && m.point_count > 0 && idle[m.body_a] && idle[m.body_b];
   };
@@ -283,8 +299,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   // most one of the lists: touching or apart.
   for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
     const std::size_t slot = thread_slot();
-    std::vector<Manifold>& added = mu.added[slot];
-    std::vector<SeparatedPair>& added_apart = su.added[slot];
+    ScratchVector<Manifold>& added = mu.added[slot];
+    ScratchVector<SeparatedPair>& added_apart = su.added[slot];
     const std::size_t first_added = added.size(), first_apart = added_apart.size();
     const std::size_t begin = std::min(n, part * kPairGrain);
     const std::size_t end = std::min(n, begin + kPairGrain);
@@ -392,6 +408,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   });
   // determinism: the two lists are joined apart (disjoint data), each in part order.
   tbb::parallel_invoke([&] { join(mu, contacts, parts); }, [&] { join(su, separated, parts); });
+  end_update(mu);
+  end_update(su);
 }
 
 }  // namespace elan::detail

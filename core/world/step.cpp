@@ -67,8 +67,9 @@ uint32_t run_step(WorldState& w, Real dt) {
   CollideSettings collide_settings;
   collide_settings.speculative_distance = kSpeculativeDistance;
   collide_settings.dt = dt;
+  w.scratch.begin_phase();
   collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.idle, w.contact_blocks, w.contacts,
-                w.separated);
+                w.separated, &w.scratch);
   const auto t3 = clock::now();
 
   SolveSettings solve_settings;
