@@ -157,7 +157,8 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   for (uint32_t g = 0; g < kGroups; ++g) st.group_start[g + 1] = st.group_start[g] + group_size[g];
   const uint32_t candidate_count = st.group_start[kGroups];
   grow_to(st.candidates, candidate_count);
-  grow_to(st.color_input, candidate_count);
+  take_from(st.color_input, scratch);
+  st.color_input.resize(candidate_count);
   uint32_t cursor[kGroups + 1] = {st.group_start[0], st.group_start[1], st.group_start[2], 0};
   for (std::size_t m = 0; m < contacts.size(); ++m) {
     ColorInput in;
@@ -171,7 +172,8 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     st.color_input[cursor[g]++] = in;
   }
   grow_to(st.order, candidate_count);
-  grow_to(st.order_scratch, candidate_count);
+  take_from(st.order_scratch, scratch);
+  st.order_scratch.resize(candidate_count);
   st.segment_start.resize(kSegments + 1);
   st.segment_start[kSegments] = candidate_count;
   st.bundle_start.resize(kSegments + 1);
@@ -215,6 +217,10 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   // bundle (its constraints may share bodies, so they cannot be lanes of one bundle). Each bundle
   // gets as many point rows as its first lane has points, the most of its lanes.
   auto lay_out_bundles = [&]() {
+    // The colouring is done: its arrays go back, the last taken first, so the bundles start
+    // where they did.
+    release(st.order_scratch);
+    release(st.color_input);
     st.bundle_start[0] = 0;
     for (uint32_t s = 0; s < kSegments; ++s) {
       const uint32_t size = st.segment_start[s + 1] - st.segment_start[s];

@@ -70,12 +70,14 @@ struct SolverState {
   std::vector<SolverBody> packets;  // 0 = static dummy; half 0, half 1, kinematic
   std::vector<SolverBodyParams> params;
   std::vector<SolverBodyMass> masses;
-  std::vector<uint32_t> candidates;        // contact indices that take part, group by group
-  std::vector<ColorInput> color_input;     // per candidate, packets as its group's colouring sees
+  std::vector<uint32_t> candidates;  // contact indices that take part, group by group
+  // Per candidate, packets as its group's colouring sees them. This and order_scratch are taken
+  // from the step's scratch and given back before the bundles are laid out, which reuse the bytes.
+  ScratchVector<ColorInput> color_input;
   uint32_t group_start[kGroups + 1] = {};  // group g: candidates [group_start[g], [g + 1])
   std::vector<uint32_t> order;             // candidate positions, segment by segment
   std::vector<uint32_t> segment_start;     // segment s is order[segment_start[s], [s + 1])
-  std::vector<uint32_t> order_scratch;
+  ScratchVector<uint32_t> order_scratch;
   // The bundles, their point rows and restitution inputs are taken from the step's scratch by
   // prepare_solve and given back by solve(): between steps they are empty.
   ScratchVector<ContactBundle> bundles;  // segment by segment

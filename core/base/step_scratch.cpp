@@ -22,7 +22,8 @@ void StepScratch::reallocate(std::size_t capacity) {
 void StepScratch::begin_phase() {
   assert(held_.load() == 0 && "StepScratch: a buffer of the last phase is still held");
   if (held_.load(std::memory_order_relaxed) != 0) return;
-  const std::size_t asked = top_.exchange(0, std::memory_order_relaxed);
+  top_.store(0, std::memory_order_relaxed);
+  const std::size_t asked = peak_.exchange(0, std::memory_order_relaxed);
   if (asked > capacity_) {
     reallocate(round_up(asked + asked / 4));
     return;
@@ -35,15 +36,26 @@ void* StepScratch::allocate(std::size_t bytes) {
   bytes = round_up(bytes);
   held_.fetch_add(bytes, std::memory_order_relaxed);
   const std::size_t at = top_.fetch_add(bytes, std::memory_order_relaxed);
-  if (at + bytes <= capacity_) return block_ + at;
+  const std::size_t end = at + bytes;
+  std::size_t peak = peak_.load(std::memory_order_relaxed);
+  while (end > peak && !peak_.compare_exchange_weak(peak, end, std::memory_order_relaxed)) {
+  }
+  if (end <= capacity_) return block_ + at;
   return ::operator new(bytes, std::align_val_t(kAlign));
 }
 
 void StepScratch::deallocate(void* p, std::size_t bytes) {
-  held_.fetch_sub(round_up(bytes), std::memory_order_relaxed);
+  bytes = round_up(bytes);
+  held_.fetch_sub(bytes, std::memory_order_relaxed);
   const auto at = reinterpret_cast<std::uintptr_t>(p);
   const auto first = reinterpret_cast<std::uintptr_t>(block_);
-  if (at >= first && at < first + capacity_) return;
+  if (at >= first && at < first + capacity_) {
+    // The last bytes taken: the next buffer starts where this one did. If another thread took
+    // bytes since, the exchange fails and they stay behind it.
+    std::size_t top = at - first + bytes;
+    top_.compare_exchange_strong(top, at - first, std::memory_order_relaxed);
+    return;
+  }
   ::operator delete(p, std::align_val_t(kAlign));
 }
 

@@ -6,6 +6,8 @@
 //
 // A buffer is a std::vector with a ScratchAllocator: it grows and is indexed as any vector, and
 // taking memory is a bump of an atomic offset, so the sweep's chunks may grow theirs in parallel.
+// Giving back the buffer taken last moves the offset back (a stack), so the solver's colouring
+// arrays, dead before its bundles are laid out, lend them their bytes within one phase.
 // What the block cannot hold comes from the heap; the next phase then starts with a block large
 // enough for what this one asked (a quarter more), so a scene allocates while it grows and then
 // never. Which thread took which bytes does not matter: no result depends on an address.
@@ -52,7 +54,8 @@ class StepScratch {
 
   std::byte* block_ = nullptr;
   std::size_t capacity_ = 0;
-  std::atomic<std::size_t> top_{0};   // bytes asked for in this phase, block or heap
+  std::atomic<std::size_t> top_{0};   // where the next buffer starts (past the block: heap)
+  std::atomic<std::size_t> peak_{0};  // the furthest top_ reached in this phase
   std::atomic<std::size_t> held_{0};  // bytes handed out and not yet given back
   SpikeTrim trim_;
 };
