@@ -78,7 +78,7 @@ class SweepAndPrune {
 
  private:
   bool choose_axis(const BroadphaseInput& in);
-  void sort_full(const BroadphaseInput& in);
+  void sort_full(const BroadphaseInput& in, StepScratch& scratch);
   bool sort_incremental();
   void deal_strips(const BroadphaseInput& in, StepScratch& scratch);
   void sweep_range(std::size_t begin, std::size_t end, ScratchVector<uint64_t>& out) const;

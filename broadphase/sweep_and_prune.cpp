@@ -255,7 +255,7 @@ bool SweepAndPrune::choose_axis(const BroadphaseInput& in) {
   return changed;
 }
 
-void SweepAndPrune::sort_full(const BroadphaseInput& in) {
+void SweepAndPrune::sort_full(const BroadphaseInput& in, StepScratch& scratch) {
   const std::size_t n = in.bounds->size();
   const Real* mins = axis_min(*in.bounds, axis_);
   order_.resize(n);
@@ -300,7 +300,7 @@ void SweepAndPrune::sort_full(const BroadphaseInput& in) {
       sort_keys_[i] = (rank << index_bits) | i;
     }
   });
-  sort_keys(sort_keys_, (kTopRank << index_bits) | index_mask, key_sort_);
+  sort_keys(sort_keys_, (kTopRank << index_bits) | index_mask, key_sort_, &scratch);
   // determinism: indexed writes (rule 1).
   for_blocks(n, kStatsGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t k = begin; k < end; ++k) {
@@ -543,7 +543,7 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
       --skip_incremental_;
     }
   }
-  if (!sorted) sort_full(in);
+  if (!sorted) sort_full(in, scratch);
 
   deal_strips(in, scratch);
 
@@ -606,7 +606,7 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
   // The sweep yields each pair once and the plane pass covers only pairs with a plane, so the
   // sorted list is already unique.
   const uint64_t max_key = n < 2 ? 0 : make_pair_key(uint32_t(n - 2), uint32_t(n - 1));
-  sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_);
+  sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_, &scratch);
   for (std::size_t t = 0; t < blocks; ++t) block_room_[t] = uint32_t(block_pairs_[t].size());
   release_update_buffers();
 }

@@ -110,15 +110,30 @@ void sort_bucket(uint64_t* src, uint64_t* dst, std::size_t m) {
   }
 }
 
+// scratch.keys with room for n keys: from the step scratch if given (given back by give_back).
+void size_keys(KeySortScratch& scratch, std::size_t n, StepScratch* step_scratch) {
+  if (step_scratch) {
+    take_from(scratch.keys, *step_scratch);
+    scratch.keys.resize(n);
+  } else {
+    grow_to(scratch.keys, n);
+  }
+}
+
+void give_back(KeySortScratch& scratch) {
+  for (auto it = scratch.bucket.rbegin(); it != scratch.bucket.rend(); ++it) release(*it);
+  release(scratch.keys);
+}
+
 // The parallel MSD pass over `sources` spans (source(b) gives span b) of `total` keys, into
 // out[0, total). out must not alias a source. With `direct`, the keys are scattered into `out`
 // and each bucket is sorted from a copy in its thread's scratch; otherwise they are scattered
 // into scratch.keys and each bucket sorted from there into `out`.
 template <class Source>
 void sort_sources(std::size_t sources, const Source& source, std::size_t total, uint64_t max_key,
-                  uint64_t* out, KeySortScratch& scratch, bool direct) {
+                  uint64_t* out, KeySortScratch& scratch, bool direct, StepScratch* step_scratch) {
   const int shift = std::max(0, int(std::bit_width(max_key)) - kTopBits);
-  if (!direct) grow_to(scratch.keys, total);
+  if (!direct) size_keys(scratch, total, step_scratch);
   scratch.counts.assign(sources * kTopBuckets + kTopBuckets + 1, 0);
   uint32_t* counts = scratch.counts.data();
   uint32_t* bucket_start = counts + sources * kTopBuckets;
@@ -147,14 +162,19 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
     for (std::size_t d = 0; d < kTopBuckets; ++d) {
       largest = std::max(largest, bucket_start[d + 1] - bucket_start[d]);
     }
-    for (std::vector<uint64_t>& copy : scratch.bucket) {
-      if (largest > copy.capacity()) copy.reserve(largest + largest / 4);
+    for (ScratchVector<uint64_t>& copy : scratch.bucket) {
+      if (step_scratch) {
+        take_from(copy, *step_scratch);
+        copy.reserve(largest);
+      } else if (largest > copy.capacity()) {
+        copy.reserve(largest + largest / 4);
+      }
     }
   }
   // determinism: a bucket's sorted keys are a function of its keys alone, whichever thread's
   // scratch held them.
   for_blocks(kTopBuckets, kBucketGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
-    std::vector<uint64_t>* copy = direct ? &scratch.bucket[thread_slot()] : nullptr;
+    ScratchVector<uint64_t>* copy = direct ? &scratch.bucket[thread_slot()] : nullptr;
     for (std::size_t d = begin; d < end; ++d) {
       const uint32_t lo = bucket_start[d], hi = bucket_start[d + 1];
       if (direct) {
@@ -165,15 +185,19 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
       }
     }
   });
+  if (step_scratch) give_back(scratch);
 }
 
 }  // namespace
 
-void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch) {
+void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch,
+               StepScratch* step_scratch) {
   const std::size_t n = keys.size();
   if (n < kSerialBelow) {
-    scratch.keys.assign(keys.begin(), keys.end());
+    size_keys(scratch, n, step_scratch);
+    std::copy(keys.begin(), keys.end(), scratch.keys.begin());
     sort_bucket(scratch.keys.data(), keys.data(), n);
+    if (step_scratch) give_back(scratch);
     return;
   }
   const uint64_t* data = keys.data();
@@ -181,21 +205,23 @@ void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& sc
     return std::span<const uint64_t>(data + b * kChunk, std::min(n, (b + 1) * kChunk) - b * kChunk);
   };
   // Sources read keys, the MSD pass writes scratch, the buckets are sorted back into keys.
-  sort_sources(block_count(n, kChunk), chunk, n, max_key, keys.data(), scratch, false);
+  sort_sources(block_count(n, kChunk), chunk, n, max_key, keys.data(), scratch, false,
+               step_scratch);
 }
 
 void sort_key_blocks(const std::vector<ScratchVector<uint64_t>>& blocks, uint64_t max_key,
-                     std::vector<uint64_t>& out, KeySortScratch& scratch) {
+                     std::vector<uint64_t>& out, KeySortScratch& scratch,
+                     StepScratch* step_scratch) {
   std::size_t total = 0;
   for (const auto& b : blocks) total += b.size();
   if (total < kSerialBelow || blocks.size() > kMaxSources) {
     concat_blocks(blocks, out);
-    sort_keys(out, max_key, scratch);
+    sort_keys(out, max_key, scratch, step_scratch);
     return;
   }
   grow_to(out, total);
   const auto block = [&](std::size_t b) { return std::span<const uint64_t>(blocks[b]); };
-  sort_sources(blocks.size(), block, total, max_key, out.data(), scratch, true);
+  sort_sources(blocks.size(), block, total, max_key, out.data(), scratch, true, step_scratch);
 }
 
 }  // namespace elan::detail

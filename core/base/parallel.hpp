@@ -110,10 +110,11 @@ inline uint32_t bin_major_offsets(uint32_t* counts, std::size_t blocks, std::siz
   return running;
 }
 
-// Reused buffers of sort_key_blocks / sort_keys, so a warm call allocates nothing.
+// Reused buffers of sort_key_blocks / sort_keys, so a warm call allocates nothing. Given a step
+// scratch, the sorts take the two large ones from it and give them back before returning.
 struct KeySortScratch {
-  std::vector<uint64_t> keys;                 // sort_keys: all the keys
-  std::vector<std::vector<uint64_t>> bucket;  // sort_key_blocks: per thread, one bucket
+  ScratchVector<uint64_t> keys;                 // sort_keys: all the keys
+  std::vector<ScratchVector<uint64_t>> bucket;  // sort_key_blocks: per thread, one bucket
   std::vector<uint32_t> counts;
 };
 
@@ -129,7 +130,9 @@ inline std::size_t heap_bytes(const KeySortScratch& s) {
 // directly (a thread's scratch holds one bucket at a time); sort_keys sorts in place, through a
 // scratch copy of all the keys.
 void sort_key_blocks(const std::vector<ScratchVector<uint64_t>>& blocks, uint64_t max_key,
-                     std::vector<uint64_t>& out, KeySortScratch& scratch);
-void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch);
+                     std::vector<uint64_t>& out, KeySortScratch& scratch,
+                     StepScratch* step_scratch = nullptr);
+void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch,
+               StepScratch* step_scratch = nullptr);
 
 }  // namespace elan::detail

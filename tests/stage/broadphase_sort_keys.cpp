@@ -87,6 +87,17 @@ TEST(SortKeys, MatchesStdSortOnEveryKeySetAndSize) {
             EXPECT_EQ(out, expected)
                 << "kind " << int(kind) << " count " << count << " blocks " << blocks;
           }
+          // The sweep's way: the sorts' buffers from a step scratch, all given back.
+          StepScratch step;
+          for (int phase = 0; phase < 2; ++phase) {
+            step.begin_phase();
+            std::vector<uint64_t> sorted_in_step = keys, out{42};
+            sort_keys(sorted_in_step, max_key, scratch, &step);
+            EXPECT_EQ(sorted_in_step, expected) << "kind " << int(kind) << " count " << count;
+            sort_key_blocks(split(keys, 40, rng), max_key, out, scratch, &step);
+            EXPECT_EQ(out, expected) << "kind " << int(kind) << " count " << count;
+            EXPECT_EQ(step.held_bytes(), 0u);
+          }
         });
       }
     }
