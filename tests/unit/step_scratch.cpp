@@ -22,19 +22,22 @@ bool inside(const StepScratch& s, const void* p, const void* first) {
   return at >= begin && at < begin + s.heap_bytes();
 }
 
+// One phase that takes a buffer of n entries and gives it back.
+template <class T>
+void phase(StepScratch& s, ScratchVector<T>& v, std::size_t n) {
+  s.begin_phase();
+  take_from(v, s);
+  v.resize(n);
+  release(v);
+}
+
 TEST(StepScratch, PhasesShareTheBlockAndItHoldsTheLargerNotTheSum) {
   StepScratch s;
   ScratchVector<uint32_t> small, large;
   // Warm-up: the first phases come from the heap and size the block.
   for (int step = 0; step < 3; ++step) {
-    s.begin_phase();
-    take_from(small, s);
-    small.resize(1000);
-    release(small);
-    s.begin_phase();
-    take_from(large, s);
-    large.resize(5000);
-    release(large);
+    phase(s, small, 1000);
+    phase(s, large, 5000);
   }
   s.begin_phase();
   take_from(small, s);
@@ -127,23 +130,17 @@ TEST(StepScratch, HandsBackWhatASpikeLeft) {
   // far less for a whole SpikeTrim window, the block is cut to a quarter past their high.
   StepScratch s;
   ScratchVector<uint64_t> v;
-  auto phase = [&](std::size_t keys) {
-    s.begin_phase();
-    take_from(v, s);
-    v.resize(keys);
-    release(v);
-  };
-  phase(200000);
-  phase(1000);
+  phase(s, v, 200000);
+  phase(s, v, 1000);
   const std::size_t spike = s.heap_bytes();
   EXPECT_GE(spike, 200000 * sizeof(uint64_t));
-  for (uint32_t k = 0; k < 2 * SpikeTrim::kWindow; ++k) phase(1000);
+  for (uint32_t k = 0; k < 2 * SpikeTrim::kWindow; ++k) phase(s, v, 1000);
   EXPECT_LT(s.heap_bytes(), spike / 10);
   EXPECT_GE(s.heap_bytes(), 1000 * sizeof(uint64_t));
   // A swing within a window is not cut and regrown in turn.
-  for (uint32_t k = 0; k < 2 * SpikeTrim::kWindow; ++k) phase(k % 2 ? 20000 : 1000);
+  for (uint32_t k = 0; k < 2 * SpikeTrim::kWindow; ++k) phase(s, v, k % 2 ? 20000 : 1000);
   const std::size_t swing = s.heap_bytes();
-  for (uint32_t k = 0; k < 2 * SpikeTrim::kWindow; ++k) phase(k % 2 ? 20000 : 1000);
+  for (uint32_t k = 0; k < 2 * SpikeTrim::kWindow; ++k) phase(s, v, k % 2 ? 20000 : 1000);
   EXPECT_EQ(s.heap_bytes(), swing);
 }
 
@@ -176,12 +173,7 @@ TEST(StepScratch, ABufferHeldAcrossAPhaseKeepsItsBytes) {
   // A misuse (a debug build asserts): the new phase must not start over the held buffer.
   StepScratch s;
   ScratchVector<uint32_t> held, next;
-  for (int warm = 0; warm < 2; ++warm) {
-    s.begin_phase();
-    take_from(held, s);
-    held.assign(256, 7);
-    release(held);
-  }
+  for (int warm = 0; warm < 2; ++warm) phase(s, held, 256);
   s.begin_phase();
   take_from(held, s);
   held.assign(256, 7);
