@@ -49,6 +49,9 @@ struct WorldState {
   std::vector<uint32_t> slot_generation;
   std::vector<uint32_t> free_slots;
 
+  // Per-step buffers of the sweep, the collide stage and the solver, which are never in use at
+  // once (StepScratch). Declared before the stages that take from it, so it is destroyed after.
+  StepScratch scratch;
   // Broadphase.
   BoundsColumns bounds;
   std::vector<uint8_t> broad_kind;
@@ -68,8 +71,6 @@ struct WorldState {
   CollideScratch contact_blocks;
 
   SolverState solver;
-  // Per-step buffers of the sweep and the solver, which are never in use at once (StepScratch).
-  StepScratch scratch;
   ApiState api;
   StepStats stats;
   uint32_t reported_status = 0;  // flags already reported once
