@@ -1,8 +1,9 @@
 // StepScratch: one block of memory that the stages of a step take their per-step buffers from,
-// in turn. The sweep's strip entries and pair blocks are dead by the time the solver lays out its
-// bundles and point rows, and those are dead once the step ends, so the two never need memory at
-// once: each phase starts again at the front of the block, and the block holds the larger of the
-// two, not their sum (Box2D v3's b2ArenaAllocator and Jolt's TempAllocator, per step).
+// in turn, one phase each: the sweep (its strip entries, pair blocks and sorts), the collide
+// stage (its threads' buffers of new keys), the solver (its bundles and point rows). Each is dead
+// before the next phase starts, so each phase starts again at the front of the block, and the
+// block holds the largest, not their sum (Box2D v3's b2ArenaAllocator and Jolt's TempAllocator,
+// per step).
 //
 // A buffer is a std::vector with a ScratchAllocator: it grows and is indexed as any vector, and
 // taking memory is a bump of an atomic offset, so the sweep's chunks may grow theirs in parallel.

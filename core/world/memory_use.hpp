@@ -16,8 +16,8 @@ struct MemoryUse {
   std::size_t contacts = 0;    // the contact list, the collide stage's blocks, event records
   std::size_t solver = 0;      // packets, colouring, bundles, rows, islands, executor
   std::size_t api = 0;         // events, pair filter answers, query bounds, id cache
-  // The step's scratch: the sweep's strip entries and pair blocks, then the solver's bundles and
-  // point rows, in the same bytes (StepScratch).
+  // The step's scratch: the sweep's buffers, then the collide stage's, then the solver's
+  // bundles and point rows, in the same bytes (StepScratch).
   std::size_t scratch = 0;
   std::size_t total() const {
     return bodies + shapes + broadphase + contacts + solver + api + scratch;
