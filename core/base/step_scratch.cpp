@@ -4,19 +4,29 @@
 #include <cstdint>
 #include <new>
 
+// No-ops unless built with AddressSanitizer.
+#include <sanitizer/asan_interface.h>
+
 namespace elan::detail {
 
 StepScratch::~StepScratch() {
-  if (block_) ::operator delete(block_, std::align_val_t(kAlign));
+  reallocate(0);
 }
 
 void StepScratch::reallocate(std::size_t capacity) {
-  if (block_) ::operator delete(block_, std::align_val_t(kAlign));
+  if (block_) {
+    ASAN_UNPOISON_MEMORY_REGION(block_, capacity_);
+    ::operator delete(block_, std::align_val_t(kAlign));
+  }
   block_ = nullptr;
   capacity_ = 0;
   if (capacity == 0) return;
   block_ = static_cast<std::byte*>(::operator new(capacity, std::align_val_t(kAlign)));
   capacity_ = capacity;
+  // Under AddressSanitizer the block is poisoned but for the buffers handed out, each to the byte
+  // it asked for: a write past a buffer's end, or into one given back, is caught as it would be
+  // in separate heap blocks.
+  ASAN_POISON_MEMORY_REGION(block_, capacity_);
 }
 
 void StepScratch::begin_phase() {
@@ -32,15 +42,18 @@ void StepScratch::begin_phase() {
   if (cut != 0) reallocate(round_up(cut));
 }
 
-void* StepScratch::allocate(std::size_t bytes) {
-  bytes = round_up(bytes);
+void* StepScratch::allocate(std::size_t asked) {
+  const std::size_t bytes = round_up(asked);
   held_.fetch_add(bytes, std::memory_order_relaxed);
   const std::size_t at = top_.fetch_add(bytes, std::memory_order_relaxed);
   const std::size_t end = at + bytes;
   std::size_t peak = peak_.load(std::memory_order_relaxed);
   while (end > peak && !peak_.compare_exchange_weak(peak, end, std::memory_order_relaxed)) {
   }
-  if (end <= capacity_) return block_ + at;
+  if (end <= capacity_) {
+    ASAN_UNPOISON_MEMORY_REGION(block_ + at, asked);
+    return block_ + at;
+  }
   return ::operator new(bytes, std::align_val_t(kAlign));
 }
 
@@ -50,6 +63,7 @@ void StepScratch::deallocate(void* p, std::size_t bytes) {
   const auto at = reinterpret_cast<std::uintptr_t>(p);
   const auto first = reinterpret_cast<std::uintptr_t>(block_);
   if (at >= first && at < first + capacity_) {
+    ASAN_POISON_MEMORY_REGION(p, bytes);
     // The last bytes taken: the next buffer starts where this one did. If another thread took
     // bytes since, the exchange fails and they stay behind it.
     std::size_t top = at - first + bytes;
