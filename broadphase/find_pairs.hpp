@@ -63,9 +63,9 @@ class SweepAndPrune {
   // Sentinels after each strip's entries: the sweep tests candidates this many at a time.
   static constexpr std::size_t kStripPad = 8;
 
-  // The buffers of one update (the boxes dealt into strips, the chunks' pairs) are taken from
-  // `scratch` in its current phase and given back before returning. The two-argument form uses
-  // a scratch of the sweep's own.
+  // The buffers of one update (the boxes dealt into strips, the chunks' pairs, the sorts' copies)
+  // are taken from `scratch` in its current phase and given back before returning. The two-argument
+  // form uses a scratch of the sweep's own.
   void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs,
                   StepScratch& scratch);
   void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs) {
@@ -92,8 +92,8 @@ class SweepAndPrune {
 
   std::vector<uint32_t> order_;   // body indices sorted by min on the sweep axis
   std::vector<Real> sorted_min_;  // min on the axis, in order_ (planes, NaN: +inf)
-  // The rest of each box, in order_: max on the axis and the two other axes. Like everything
-  // below up to planes_, rebuilt by every update and held only during it (scratch).
+  // The rest of each box, in order_: max on the axis and the two other axes. These, the entries
+  // and sorted_strips_ are rebuilt by every update and held only during it (scratch).
   ScratchVector<Real> sorted_max_, sorted_lo1_, sorted_hi1_, sorted_lo2_, sorted_hi2_;
   int axis_ = 0;
   int strip_axis_ = 1;  // 1 or 2: which of the other axes (lo1/lo2) the strips cut

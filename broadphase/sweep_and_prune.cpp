@@ -360,16 +360,12 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
   const Real *lo0 = axis_min(b, axis_), *hi0 = axis_max(b, axis_);
   const Real *lo1 = axis_min(b, a1), *hi1 = axis_max(b, a1);
   const Real *lo2 = axis_min(b, a2), *hi2 = axis_max(b, a2);
-  auto take = [&](auto& column, std::size_t size) {
-    take_from(column, scratch);
-    column.resize(size);
-  };
-  take(sorted_max_, n);
-  take(sorted_lo1_, n);
-  take(sorted_hi1_, n);
-  take(sorted_lo2_, n);
-  take(sorted_hi2_, n);
-  take(sorted_strips_, 2 * n);
+  take_from(sorted_max_, scratch, n);
+  take_from(sorted_lo1_, scratch, n);
+  take_from(sorted_hi1_, scratch, n);
+  take_from(sorted_lo2_, scratch, n);
+  take_from(sorted_hi2_, scratch, n);
+  take_from(sorted_strips_, scratch, 2 * n);
   deal_counts_.assign(blocks * strips, 0);
   // The rest of each box in sweep order, its strips, and per block the entries per strip.
   // determinism: indexed writes, and each block counts into its own row (rule 1).
@@ -399,17 +395,17 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
   strip_begin_.resize(strips + 1);
   const std::size_t entries = bin_major_offsets(deal_counts_.data(), blocks, strips,
                                                 strip_begin_.data(), uint32_t(kStripPad));
-  take(entry_min_, entries);
-  take(entry_max_, entries);
-  take(entry_lo1_, entries);
-  take(entry_hi1_, entries);
-  take(entry_lo2_, entries);
-  take(entry_hi2_, entries);
-  take(entry_body_, entries);
-  take(entry_first_, entries);
-  take(entry_kind_, entries);
-  take(entry_category_, entries);
-  take(entry_mask_, entries);
+  take_from(entry_min_, scratch, entries);
+  take_from(entry_max_, scratch, entries);
+  take_from(entry_lo1_, scratch, entries);
+  take_from(entry_hi1_, scratch, entries);
+  take_from(entry_lo2_, scratch, entries);
+  take_from(entry_hi2_, scratch, entries);
+  take_from(entry_body_, scratch, entries);
+  take_from(entry_first_, scratch, entries);
+  take_from(entry_kind_, scratch, entries);
+  take_from(entry_category_, scratch, entries);
+  take_from(entry_mask_, scratch, entries);
   // determinism: every block writes the entries its offsets reserve (rule 1).
   for_blocks(n, grain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
     uint32_t* cursor = deal_counts_.data() + blk * strips;

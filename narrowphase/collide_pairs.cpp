@@ -327,12 +327,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       // perf: the manifolds two ahead, for writing. The solver stored their impulses by half, so
       // at 2 threads about half were last written by the other core; fetched only when read,
       // each of their three lines cost a cross-core round trip on the chain of this loop.
-      if (prev_end - prev_it > 2) {
-        const char* ahead = reinterpret_cast<const char*>(prev_it + 2);
-        for (std::size_t line = 0; line < sizeof(Manifold); line += 64) {
-          __builtin_prefetch(ahead + line, 1);
-        }
-      }
+      if (prev_end - prev_it > 2) prefetch<true>(prev_it[2]);
       for (; prev_it != prev_end && prev_it->key() < key; ++prev_it) keep_if_carried(*prev_it);
       for (; apart_it != apart_end && apart_it->key < key; ++apart_it) end_apart(*apart_it);
       uint32_t a = pair_first(key), b = pair_second(key);

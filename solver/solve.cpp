@@ -157,8 +157,7 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   for (uint32_t g = 0; g < kGroups; ++g) st.group_start[g + 1] = st.group_start[g] + group_size[g];
   const uint32_t candidate_count = st.group_start[kGroups];
   grow_to(st.candidates, candidate_count);
-  take_from(st.color_input, scratch);
-  st.color_input.resize(candidate_count);
+  take_from(st.color_input, scratch, candidate_count);
   uint32_t cursor[kGroups + 1] = {st.group_start[0], st.group_start[1], st.group_start[2], 0};
   for (std::size_t m = 0; m < contacts.size(); ++m) {
     ColorInput in;
@@ -172,8 +171,7 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     st.color_input[cursor[g]++] = in;
   }
   grow_to(st.order, candidate_count);
-  take_from(st.order_scratch, scratch);
-  st.order_scratch.resize(candidate_count);
+  take_from(st.order_scratch, scratch, candidate_count);
   st.segment_start.resize(kSegments + 1);
   st.segment_start[kSegments] = candidate_count;
   st.bundle_start.resize(kSegments + 1);
@@ -237,12 +235,9 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
         st.row_start[j + 1] = st.row_start[j] + uint32_t(point_count(first));
       }
     }
-    take_from(st.bundles, scratch);
-    take_from(st.rows, scratch);
-    take_from(st.restitution, scratch);
-    st.bundles.resize(bundle_count);
-    st.rows.resize(st.row_start[bundle_count]);
-    st.restitution.resize(bouncy ? bundle_count : 0);
+    take_from(st.bundles, scratch, bundle_count);
+    take_from(st.rows, scratch, st.row_start[bundle_count]);
+    take_from(st.restitution, scratch, bouncy ? bundle_count : 0);
   };
 
   auto prepare_group = [&](uint32_t g) {
@@ -259,12 +254,7 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
         // collide blocks: at jolt_pyramid's 2 threads the first load of a lane's manifold took
         // a quarter of prepare_bundle.
         const uint32_t next_last = std::min(st.segment_start[s + 1], last + per_bundle);
-        for (uint32_t k = last; k < next_last; ++k) {
-          const char* m = reinterpret_cast<const char*>(&contacts[st.candidates[st.order[k]]]);
-          for (std::size_t line = 0; line < sizeof(Manifold); line += 64) {
-            __builtin_prefetch(m + line);
-          }
-        }
+        for (uint32_t k = last; k < next_last; ++k) prefetch(contacts[st.candidates[st.order[k]]]);
         prepare_bundle(ctx, bodies, contacts, st.packet_of, j,
                        std::span<const uint32_t>(lanes, last - first));
       }

@@ -101,7 +101,7 @@ struct SolveStats {
 };
 
 // Islands and sleep, packets for the awake bodies, colouring and constraint preparation. The
-// bundles and rows are taken from `scratch`, in its current phase.
+// colouring arrays, bundles and rows are taken from `scratch`, in its current phase.
 void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
                    SolverState& state, SolveStats& stats, StepScratch& scratch);
 

@@ -113,8 +113,7 @@ void sort_bucket(uint64_t* src, uint64_t* dst, std::size_t m) {
 // scratch.keys with room for n keys: from the step scratch if given (given back by give_back).
 void size_keys(KeySortScratch& scratch, std::size_t n, StepScratch* step_scratch) {
   if (step_scratch) {
-    take_from(scratch.keys, *step_scratch);
-    scratch.keys.resize(n);
+    take_from(scratch.keys, *step_scratch, n);
   } else {
     grow_to(scratch.keys, n);
   }

@@ -117,6 +117,13 @@ void take_from(ScratchVector<T>& v, StepScratch& scratch) {
   ScratchVector<T>(ScratchAllocator<T>(&scratch)).swap(v);
 }
 
+// As take_from, then sized to n elements, left unset (ScratchAllocator::construct).
+template <class T>
+void take_from(ScratchVector<T>& v, StepScratch& scratch, std::size_t n) {
+  take_from(v, scratch);
+  v.resize(n);
+}
+
 // Gives `v`'s bytes back (to the scratch or the heap): the end of its use in a phase.
 template <class T>
 void release(ScratchVector<T>& v) {
