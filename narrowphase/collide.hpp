@@ -69,16 +69,18 @@ struct ListUpdate {
     uint32_t thread = 0;
     std::size_t first = 0, count = 0;
   };
-  // Per thread: entries of new keys, block by block. Taken from the step's scratch for the
-  // stage, each with room for a quarter more than the largest held the step before.
+  // Per thread: entries of new keys, block by block. Each has room for a quarter more than the
+  // largest held the step before.
   std::vector<ScratchVector<T>> added;
   std::size_t room = 0;
-  std::vector<Run> added_run;        // per block: its new keys' run, in key order
-  std::vector<std::size_t> start;    // per block + 1: its range of the list on entry
-  std::vector<std::size_t> live;     // per block: entries of its range that stay
-  std::vector<std::size_t> at;       // per block + 1: its range of the list on return
-  std::vector<std::size_t> waiting;  // the join: blocks waiting for their right neighbour
-  std::vector<T> bounce;             // the join: one block's entries on their way
+  // The rest, per block, are taken from the step's scratch for the stage too.
+  ScratchVector<Run> added_run;        // per block: its new keys' run, in key order
+  ScratchVector<std::size_t> start;    // per block + 1: its range of the list on entry
+  ScratchVector<std::size_t> live;     // per block: entries of its range that stay
+  ScratchVector<std::size_t> at;       // per block + 1: its range of the list on return
+  ScratchVector<std::size_t> waiting;  // the join: blocks waiting for their right neighbour
+  // The join: one block's entries on their way, with room for the largest block that moves.
+  ScratchVector<T> bounce;
 
   std::size_t heap_bytes() const;
 };
@@ -86,6 +88,12 @@ struct ListUpdate {
 struct CollideScratch {
   ListUpdate<Manifold> contacts;
   ListUpdate<SeparatedPair> separated;
+  // Out: what changed in the contact list, each in key order. `ended`: the manifolds that were
+  // in it and are not any more; `began`: the keys new to it. Every manifold the list holds has
+  // points, so these are the pairs that stopped and started touching (the contact events).
+  std::vector<ContactRecord> ended;
+  std::vector<uint64_t> began;
+  SpikeTrim ended_trim, began_trim;  // a new pile begins every pair at once
   std::unique_ptr<StepScratch> own;  // for the new-key buffers when the caller gives no scratch
 };
 
@@ -118,8 +126,10 @@ struct CollideScratch {
 // from its first pair's up to the next block's first pair's. It rewrites the entries of its key
 // range where they are, marks those that end, and collects entries of keys new to a list in its
 // thread's buffer; a serial join then closes the gaps and merges the new ones in. Nothing depends
-// on the thread count. The threads' buffers are taken from `step_scratch` in its current phase
-// and given back before returning (none: from a scratch of `scratch`'s own).
+// on the thread count. The threads' buffers and the join's are taken from `step_scratch` in its
+// current phase and given back before returning (none: from a scratch of `scratch`'s own).
+//
+// On return scratch.ended and scratch.began hold the contact list's changes (see CollideScratch).
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,

@@ -167,9 +167,12 @@ void begin_update(ListUpdate<T>& u, const std::vector<T>& list, std::span<const 
     take_from(buffer, step_scratch);
     buffer.reserve(u.room);
   }
-  u.added_run.resize(parts);
-  u.start.resize(parts + 1);
-  u.live.resize(parts);
+  take_from(u.added_run, step_scratch, parts);
+  take_from(u.start, step_scratch, parts + 1);
+  take_from(u.live, step_scratch, parts);
+  take_from(u.at, step_scratch, parts + 1);
+  take_from(u.waiting, step_scratch);
+  u.waiting.reserve(parts);
   u.start[0] = 0;
   u.start[parts] = list.size();
   for (std::size_t part = 1; part < parts; ++part) {
@@ -186,6 +189,12 @@ void end_update(ListUpdate<T>& u) {
   std::size_t largest = 0;
   for (const ScratchVector<T>& buffer : u.added) largest = std::max(largest, buffer.size());
   u.room = largest + largest / 4;
+  release(u.bounce);
+  release(u.waiting);
+  release(u.at);
+  release(u.live);
+  release(u.start);
+  release(u.added_run);
   for (ScratchVector<T>& buffer : u.added) release(buffer);
 }
 
@@ -193,7 +202,7 @@ void end_update(ListUpdate<T>& u) {
 // their place from `at`. Through `bounce`, since the part's old and new places may overlap.
 template <class T>
 void place_part(std::vector<T>& list, std::size_t from, std::size_t to, std::span<const T> added,
-                std::vector<T>& bounce, std::size_t at) {
+                ScratchVector<T>& bounce, std::size_t at) {
   bounce.clear();
   auto next_added = added.begin();
   for (std::size_t i = from; i < to; ++i) {
@@ -214,12 +223,20 @@ void place_part(std::vector<T>& list, std::size_t from, std::size_t to, std::spa
 // right (at[p+1] > start[p+1]), so each boundary says which side goes first, and the order is a
 // chain: parts waiting for their right neighbour are stacked until it has moved.
 template <class T>
-void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts) {
-  std::vector<std::size_t>& at = u.at;
-  at.resize(parts + 1);
+void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts, StepScratch& step_scratch) {
+  ScratchVector<std::size_t>& at = u.at;
   at[0] = 0;
   for (std::size_t p = 0; p < parts; ++p) at[p + 1] = at[p] + u.live[p] + u.added_run[p].count;
   const std::size_t total = at[parts];
+  auto unchanged = [&](std::size_t p) {
+    return u.live[p] == u.start[p + 1] - u.start[p] && u.added_run[p].count == 0;
+  };
+  std::size_t largest = 0;  // of the parts that move through `bounce`
+  for (std::size_t p = 0; p < parts; ++p) {
+    if (!unchanged(p)) largest = std::max(largest, u.live[p] + u.added_run[p].count);
+  }
+  take_from(u.bounce, step_scratch);
+  u.bounce.reserve(largest);
   // Long enough for the old entries and the new while parts move, grown by a quarter (grow_to):
   // a list keeps its largest size for good, and doubling left up to half of it unused. Each growth
   // holds the old list and the new at once and leaves the freed one in the allocator's heap, which
@@ -230,12 +247,11 @@ void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts) {
   auto place = [&](std::size_t p) {
     const std::size_t from = u.start[p], to = u.start[p + 1];
     const auto& run = u.added_run[p];
-    const bool unchanged = u.live[p] == to - from && run.count == 0;
-    if (unchanged && at[p] == from) return;
+    if (unchanged(p) && at[p] == from) return;
     // perf: a part that only shifts (most of them: an entry added or ended early in the list
     // moves all after it) is copied once, in the direction that reads each entry before it is
     // overwritten, not through `bounce`: on pile10k the join took 1.3 ms a step, serially.
-    if (unchanged) {
+    if (unchanged(p)) {
       const auto first = list.begin() + std::ptrdiff_t(from),
                  last = list.begin() + std::ptrdiff_t(to);
       if (at[p] < from) {
@@ -248,8 +264,7 @@ void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts) {
     const std::span<const T> added(u.added[run.thread].data() + run.first, run.count);
     place_part(list, from, to, added, u.bounce, at[p]);
   };
-  std::vector<std::size_t>& waiting = u.waiting;
-  waiting.clear();
+  ScratchVector<std::size_t>& waiting = u.waiting;
   for (std::size_t p = 0; p < parts; ++p) {
     waiting.push_back(p);
     if (p + 1 < parts && at[p + 1] > u.start[p + 1]) continue;
@@ -262,9 +277,7 @@ void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts) {
 
 template <class T>
 std::size_t ListUpdate<T>::heap_bytes() const {
-  return detail::heap_bytes(added) + detail::heap_bytes(added_run) + detail::heap_bytes(start) +
-         detail::heap_bytes(live) + detail::heap_bytes(at) + detail::heap_bytes(waiting) +
-         detail::heap_bytes(bounce);
+  return detail::heap_bytes(added);
 }
 template struct ListUpdate<Manifold>;
 template struct ListUpdate<SeparatedPair>;
@@ -410,10 +423,35 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     su.live[part] = su.start[part + 1] - su.start[part] - dead_apart;
     su.added_run[part] = {uint32_t(slot), first_apart, added_apart.size() - first_apart};
   });
+  // The contact list's changes, before the join drops the ended manifolds: in part order, so in
+  // key order. perf: only the parts that lost a manifold are read again.
+  scratch.ended.clear();
+  scratch.began.clear();
+  for (std::size_t p = 0; p < parts; ++p) {
+    if (mu.live[p] < mu.start[p + 1] - mu.start[p]) {
+      for (std::size_t i = mu.start[p]; i < mu.start[p + 1]; ++i) {
+        if (ended(contacts[i])) scratch.ended.push_back({contacts[i].body_a, contacts[i].body_b});
+      }
+    }
+    const auto& run = mu.added_run[p];
+    const ScratchVector<Manifold>& added = mu.added[run.thread];
+    for (std::size_t i = run.first; i < run.first + run.count; ++i) {
+      scratch.began.push_back(added[i].key());
+    }
+  }
   // determinism: the two lists are joined apart (disjoint data), each in part order.
-  tbb::parallel_invoke([&] { join(mu, contacts, parts); }, [&] { join(su, separated, parts); });
+  tbb::parallel_invoke([&] { join(mu, contacts, parts, *step_scratch); },
+                       [&] { join(su, separated, parts, *step_scratch); });
   end_update(mu);
   end_update(su);
+  if (const std::size_t cut = scratch.ended_trim.note(
+          scratch.ended.size(), scratch.ended.capacity(), sizeof(ContactRecord))) {
+    cut_capacity(scratch.ended, cut);
+  }
+  if (const std::size_t cut = scratch.began_trim.note(scratch.began.size(),
+                                                      scratch.began.capacity(), sizeof(uint64_t))) {
+    cut_capacity(scratch.began, cut);
+  }
 }
 
 }  // namespace elan::detail

@@ -59,6 +59,12 @@ struct alignas(64) Manifold {
 };
 static_assert(sizeof(Real) != 4 || sizeof(Manifold) == 192, "Manifold: 192 bytes in float");
 
+// A manifold's two bodies, A and B as it had them: what a contact end event needs of it.
+struct ContactRecord {
+  uint32_t body_a = 0, body_b = 0;
+  uint64_t key() const { return make_pair_key(body_a, body_b); }
+};
+
 // Asks the cache for a manifold's three lines ahead of their use (kWrite: with ownership, for a
 // manifold about to be rewritten). A hint: no result depends on it.
 template <bool kWrite = false>

@@ -41,7 +41,7 @@ class SpikeTrim {
   std::size_t note(std::size_t used, std::size_t capacity, std::size_t element_bytes) {
     high_ = std::max(high_, used);
     if (++steps_ < kWindow) return 0;
-    const std::size_t keep = high_ + high_ / 4;
+    const std::size_t keep = std::max<std::size_t>(high_ + high_ / 4, 1);  // 0 would mean leave it
     high_ = 0;
     steps_ = 0;
     return capacity > 2 * keep + kFloorBytes / element_bytes ? keep : 0;

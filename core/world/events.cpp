@@ -1,6 +1,8 @@
-// Contact begin/end events by one merge of key-sorted lists (last step's touching pairs, this
-// step's manifolds), and the pair filter.
+// Contact begin/end events from the collide stage's changes to the contact list, and the pair
+// filter.
 #include "core/world/events.hpp"
+
+#include <algorithm>
 
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
@@ -46,34 +48,23 @@ void filter_pairs(WorldState& w) {
   w.pairs.resize(kept);
 }
 
-void remember_touching(WorldState& w) {
-  w.previous_touching.clear();
-  for (const Manifold& m : w.contacts) {
-    if (m.point_count > 0) w.previous_touching.push_back({m.body_a, m.body_b});
-  }
-}
-
 void compute_contact_events(WorldState& w) {
   std::vector<ContactBeginEvent>& begins = w.api.begin_events;
   std::vector<ContactEndEvent>& ends = w.api.end_events;
   begins.clear();
   ends.clear();
-  const std::vector<ContactRecord>& old_list = w.previous_touching;
-  const std::vector<Manifold>& new_list = w.contacts;
-  // determinism: a serial merge by key; events come out in pair-key order (rule 4).
-  std::size_t i = 0, j = 0;
-  while (i < old_list.size() || j < new_list.size()) {
-    const bool take_old =
-        j == new_list.size() || (i < old_list.size() && old_list[i].key() <= new_list[j].key());
-    const bool take_new =
-        i == old_list.size() || (j < new_list.size() && new_list[j].key() <= old_list[i].key());
-    const bool is = take_new && new_list[j].point_count > 0;
-    if (is && !take_old) begins.push_back(begin_event(w, new_list[j]));
-    if (take_old && !is) {
-      ends.push_back({body_id_at(w, old_list[i].body_a), body_id_at(w, old_list[i].body_b)});
-    }
-    if (take_old) ++i;
-    if (take_new) ++j;
+  // determinism: both lists are in pair-key order, so the events are too (rule 4). perf: each
+  // began key is looked up, not merged along the whole list: a settled pile of 27k manifolds
+  // begins and ends a few dozen a step.
+  const std::vector<Manifold>& contacts = w.contacts;
+  auto next = contacts.begin();
+  for (const uint64_t key : w.contact_blocks.began) {
+    next = std::lower_bound(next, contacts.end(), key,
+                            [](const Manifold& m, uint64_t k) { return m.key() < k; });
+    begins.push_back(begin_event(w, *next));
+  }
+  for (const ContactRecord& r : w.contact_blocks.ended) {
+    ends.push_back({body_id_at(w, r.body_a), body_id_at(w, r.body_b)});
   }
 }
 

@@ -16,13 +16,10 @@ inline BodyId body_id_at(const WorldState& w, uint32_t i) {
 // without a filter.
 void filter_pairs(WorldState& w);
 
-// Keeps the bodies (hence the key) of each touching manifold of w.contacts in w.previous_touching.
-// Call before the collide stage rewrites the list.
-void remember_touching(WorldState& w);
-
-// Fills w.api.begin_events / end_events (cleared first) by merging last step's touching pairs
-// (w.previous_touching) with this step's contacts (w.contacts), both sorted by key. Call after the
-// solve, before the body columns are updated (event points use the step's start pose).
+// Fills w.api.begin_events / end_events (cleared first) from the manifolds the collide stage
+// started and ended (w.contact_blocks.began, .ended): a manifold holds points, so a pair touches
+// while its key is in w.contacts. Call after the solve, before the body columns are updated
+// (event points use the step's start pose).
 void compute_contact_events(WorldState& w);
 
 }  // namespace elan::detail

@@ -390,7 +390,6 @@ void commit(WorldState& s, Decoded&& d) {
   s.free_slots = std::move(d.free_slots);
   s.contacts = std::move(d.contacts);
   s.separated.clear();
-  s.previous_touching.clear();
   s.contact_blocks = {};
   s.pairs.clear();
   s.sap = detail::SweepAndPrune{};
@@ -581,7 +580,6 @@ void restore_rollback(World& world, std::span<const uint8_t> bytes) {
   ByteReader apply(payload, "rollback");
   read_rollback<true>(apply, s);
   s.separated.clear();
-  s.previous_touching.clear();
   forget_api_caches(s);
 }
 

@@ -63,7 +63,6 @@ uint32_t run_step(WorldState& w, Real dt) {
   filter_pairs(w);
   const auto t2 = clock::now();
 
-  remember_touching(w);
   CollideSettings collide_settings;
   collide_settings.speculative_distance = kSpeculativeDistance;
   collide_settings.dt = dt;

@@ -30,12 +30,6 @@ inline constexpr Real kSpeculativeDistance = Real(0.02);
 // went from 5.03 to 4.61 ms a step (a pair found apart still costs a cache check).
 inline constexpr Real kBoundsMargin = Real(0.625) * kSpeculativeDistance;
 
-// A touching pair of last step: what contact events need of it (a whole manifold is 224 bytes).
-struct ContactRecord {
-  uint32_t body_a = 0, body_b = 0;
-  uint64_t key() const { return make_pair_key(body_a, body_b); }
-};
-
 struct WorldState {
   WorldDef def;
   int threads = 1;  // resolved worker count
@@ -63,11 +57,10 @@ struct WorldState {
 
   // Contacts, sorted by key: the one list, which collide_pairs reads as last step's and rewrites;
   // the pairs found apart with what proves them apart (a cache: cleared when bodies are removed
-  // or the world restored); the pairs that touched last step, for contact events; the collide
-  // stage's per-block buffers.
+  // or the world restored); the collide stage's per-block buffers, and what it changed in the
+  // list (the contact events).
   std::vector<Manifold> contacts;
   std::vector<SeparatedPair> separated;
-  std::vector<ContactRecord> previous_touching;
   CollideScratch contact_blocks;
 
   SolverState solver;

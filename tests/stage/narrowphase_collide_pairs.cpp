@@ -329,5 +329,53 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   EXPECT_GT(closed_in, 20) << "cached pairs that went on to touch";
 }
 
+// The contact events come from what collide_pairs reports it changed in the list: exactly the
+// keys that left it and the keys that joined it, each in key order, an ended manifold with A and
+// B as it had them (an end event names them so).
+TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
+  Pile p = make_pile(200, 17);
+  CollideSettings settings;
+  CollideScratch slots;
+  std::vector<SeparatedPair> apart;
+  std::vector<Manifold> list;
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, list, apart);
+  ASSERT_GT(list.size(), 100u);
+  EXPECT_TRUE(slots.ended.empty());
+  ASSERT_EQ(slots.began.size(), list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) EXPECT_EQ(slots.began[i], list[i].key());
+
+  // Every third pair dropped and every fourth body moved: some contacts end, others begin.
+  const std::vector<Manifold> before = list;
+  std::vector<uint64_t> kept;
+  for (std::size_t i = 0; i < p.pairs.size(); ++i) {
+    if (i % 3 != 0) kept.push_back(p.pairs[i]);
+  }
+  for (uint32_t b = 1; b < p.bodies.size(); b += 4) {
+    p.bodies.set_position(b, p.bodies.position(b) + Vec3(Real(0.15), Real(-0.1), Real(0.1)));
+  }
+  tbb::task_arena arena(2);
+  arena.execute([&] { collide_pairs(kept, p.bodies, p.shapes, settings, {}, slots, list, apart); });
+  std::vector<ContactRecord> ended;
+  std::vector<uint64_t> began;
+  std::size_t j = 0;
+  for (const Manifold& m : before) {
+    while (j < list.size() && list[j].key() < m.key()) began.push_back(list[j++].key());
+    if (j < list.size() && list[j].key() == m.key()) {
+      ++j;
+    } else {
+      ended.push_back({m.body_a, m.body_b});
+    }
+  }
+  for (; j < list.size(); ++j) began.push_back(list[j].key());
+  ASSERT_GT(ended.size(), 10u);
+  ASSERT_GT(began.size(), 0u);
+  ASSERT_EQ(slots.ended.size(), ended.size());
+  for (std::size_t i = 0; i < ended.size(); ++i) {
+    EXPECT_EQ(slots.ended[i].body_a, ended[i].body_a);
+    EXPECT_EQ(slots.ended[i].body_b, ended[i].body_b);
+  }
+  EXPECT_EQ(slots.began, began);
+}
+
 }  // namespace narrowphase_collide_pairs_test
 }  // namespace elan::detail
