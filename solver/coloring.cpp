@@ -10,7 +10,7 @@ namespace elan::detail {
 void build_colors(std::span<const ColorInput> constraints, std::size_t packet_count,
                   ColorScratch& s, std::span<uint32_t> order, std::span<uint32_t> start) {
   const std::size_t words = (packet_count + 63) / 64;
-  s.bits.assign(words * kColorCount, 0);
+  s.bits.assign(color_words(packet_count), 0);
   grow_to(s.color_of, constraints.size());
   std::fill(start.begin(), start.end(), 0);
   for (std::size_t i = 0; i < constraints.size(); ++i) {

@@ -10,7 +10,8 @@
 
 #include <cstdint>
 #include <span>
-#include <vector>
+
+#include "core/base/step_scratch.hpp"
 
 namespace elan::detail {
 
@@ -22,11 +23,16 @@ struct ColorInput {
   bool dynamic_a, dynamic_b;
 };
 
+// The caller may give each array its room beforehand (see solve.cpp): build_colors sizes them.
 struct ColorScratch {
-  std::vector<uint64_t> bits;  // kColorCount bitsets over packets
-  std::vector<uint8_t> color_of;
-  std::vector<uint32_t> cursor;
+  ScratchVector<uint64_t> bits;     // kColorCount bitsets over packets: color_words(packets)
+  ScratchVector<uint8_t> color_of;  // per constraint
+  ScratchVector<uint32_t> cursor;   // kColorCount + 1
 };
+
+inline std::size_t color_words(std::size_t packet_count) {
+  return (packet_count + 63) / 64 * kColorCount;
+}
 
 // `order` (one entry per constraint) gets the constraints' positions in `constraints`, grouped by
 // colour; `color_start` (kColorCount + 2 entries) the ranges: colour c is

@@ -112,8 +112,9 @@ void set_friction_mass(ContactBundle& c, const WideMass& ma, const WideMass& mb)
 
 void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
                     std::span<const Manifold> manifolds, std::span<const uint32_t> packet_of,
-                    uint32_t bundle, std::span<const uint32_t> lanes) {
+                    uint32_t bundle) {
   ContactBundle& c = ctx.bundles[bundle];
+  const std::span<const uint32_t> lanes = ctx.manifolds_of(bundle);
   WideContactPoint* rows = ctx.rows_of(bundle);
   const int row_count = ctx.row_count(bundle);
   BundleRestitution unused;
@@ -132,7 +133,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   WideVec3 b_from_a;
   for (int l = 0; l < kLanes; ++l) {
     if (l >= lane_count) {
-      c.packet_a[l] = c.packet_b[l] = c.manifold[l] = 0;
+      c.packet_a[l] = c.packet_b[l] = 0;
       continue;
     }
     const Manifold& m = manifolds[lanes[l]];
@@ -140,7 +141,6 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     const uint32_t packet_a = packet_of[a], packet_b = packet_of[b];
     c.packet_a[l] = packet_a;
     c.packet_b[l] = packet_b;
-    c.manifold[l] = lanes[l];
     const SolverBodyMass& mass_a = ctx.masses[packet_a];
     const SolverBodyMass& mass_b = ctx.masses[packet_b];
     ma.inv_mass[l] = mass_a.inv_mass;
@@ -250,9 +250,10 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     // point count and the contact points of the step's start.
     WideVec3 start_b, anchor_a[kMaxManifoldPoints];
     Wide count{};
+    const std::span<const uint32_t> lanes = ctx.manifolds_of(i);
     for (int l = 0; l < kLanes; ++l) {
       if (!refresh[l]) continue;  // unused lanes have no mass, so they are never refreshed
-      const Manifold& m = manifolds[c.manifold[l]];
+      const Manifold& m = manifolds[lanes[l]];
       set_lane(start_b, l, bodies.position(m.body_b) - bodies.position(m.body_a));
       count[l] = Real(m.point_count);
       for (int k = 0; k < m.point_count; ++k) {
@@ -455,9 +456,9 @@ void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t en
   for (uint32_t i = begin; i < end; ++i) {
     const ContactBundle& c = ctx.bundles[i];
     const WideContactPoint* rows = ctx.rows_of(i);
-    const int lanes = used_lanes(c);
-    for (int l = 0; l < lanes; ++l) {
-      Manifold& m = manifolds[c.manifold[l]];
+    const std::span<const uint32_t> lanes = ctx.manifolds_of(i);
+    for (std::size_t l = 0; l < lanes.size(); ++l) {
+      Manifold& m = manifolds[lanes[l]];
       for (int k = 0; k < m.point_count; ++k) {
         m.points[k].normal_impulse = rows[k].normal_impulse[l];
       }

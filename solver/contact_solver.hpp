@@ -24,9 +24,13 @@ namespace elan::detail {
 struct ContactSolverContext {
   std::span<SolverBody> bodies;  // packets (0 = static dummy)
   std::span<const SolverBodyMass> masses;
-  std::span<ContactBundle> bundles;          // grouped by colour
-  std::span<WideContactPoint> rows;          // the bundles' point rows
-  std::span<const uint32_t> row_start;       // bundle j's rows are [row_start[j], row_start[j + 1])
+  std::span<ContactBundle> bundles;     // grouped by colour
+  std::span<WideContactPoint> rows;     // the bundles' point rows
+  std::span<const uint32_t> row_start;  // bundle j's rows are [row_start[j], row_start[j + 1])
+  // Bundle j's lanes are the manifolds lane_manifolds[lane_start[j], lane_start[j + 1]) of the
+  // contact list (SolverState::order), lane l the l-th.
+  std::span<const uint32_t> lane_manifolds;
+  std::span<const uint32_t> lane_start;
   std::span<BundleRestitution> restitution;  // per bundle; empty when no body bounces
   uint32_t written_end = 1;                  // packets [1, written_end) are written back
   Real h = 0;                                // s, substep
@@ -39,15 +43,18 @@ struct ContactSolverContext {
   // Bundle j's point rows: as many as the most points of its lanes.
   WideContactPoint* rows_of(uint32_t j) const { return rows.data() + row_start[j]; }
   int row_count(uint32_t j) const { return int(row_start[j + 1] - row_start[j]); }
+  std::span<const uint32_t> manifolds_of(uint32_t j) const {
+    return lane_manifolds.subspan(lane_start[j], lane_start[j + 1] - lane_start[j]);
+  }
 };
 
-// Builds bundle `bundle` from the manifolds `lanes` (indices into `manifolds`, at most kLanes,
-// sharing no dynamic body), lane l from lanes[l]. Its rows (ctx.row_start) must be as many as
-// the most points of its manifolds; every field of it, of its rows and of its BundleRestitution
-// is written, unused lanes and points with zero mass so they apply nothing.
+// Builds bundle `bundle` from its manifolds (ctx.manifolds_of(bundle): at most kLanes, sharing
+// no dynamic body). Its rows (ctx.row_start) must be as many as the most points of its
+// manifolds; every field of it, of its rows and of its BundleRestitution is written, unused
+// lanes and points with zero mass so they apply nothing.
 void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
                     std::span<const Manifold> manifolds, std::span<const uint32_t> packet_of,
-                    uint32_t bundle, std::span<const uint32_t> lanes);
+                    uint32_t bundle);
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // Re-places the lever arms of every point between two dynamic bodies at one shared point: the

@@ -8,7 +8,7 @@
 namespace elan::detail {
 
 namespace {
-uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
+uint32_t find_root(ScratchVector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) {
     parent[i] = parent[parent[i]];  // path halving
     i = parent[i];
@@ -18,9 +18,10 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
 }  // namespace
 
 std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts,
-                           const IslandSettings& settings, IslandScratch& s) {
+                           const IslandSettings& settings, IslandScratch& s,
+                           StepScratch& step_scratch) {
   const std::size_t n = bodies.size();
-  s.parent.resize(n);
+  take_from(s.parent, step_scratch, n);
   for (std::size_t i = 0; i < n; ++i) s.parent[i] = uint32_t(i);
   for (const Manifold& m : contacts) {
     if (m.point_count == 0) continue;
@@ -35,7 +36,9 @@ std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts
       s.parent[ra] = rb;
   }
 
+  take_from(s.island_sleep_time, step_scratch);
   s.island_sleep_time.assign(n, std::numeric_limits<Real>::max());
+  take_from(s.island_awake, step_scratch);
   s.island_awake.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     if (!bodies.is_dynamic(i) || (bodies.flags[i] & kFrozen)) continue;
@@ -81,6 +84,10 @@ std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts
       bodies.sleep_time[i] = 0;
     }
   }
+  // The last taken first, so the block's next buffer starts where these did.
+  release(s.island_awake);
+  release(s.island_sleep_time);
+  release(s.parent);
   return islands;
 }
 

@@ -10,18 +10,19 @@
 
 #include <cstdint>
 #include <span>
-#include <vector>
 
 #include "core/base/body_store.hpp"
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
+#include "core/base/step_scratch.hpp"
 
 namespace elan::detail {
 
+// Taken from the step's scratch and given back within update_islands.
 struct IslandScratch {
-  std::vector<uint32_t> parent;
-  std::vector<Real> island_sleep_time;
-  std::vector<uint8_t> island_awake;
+  ScratchVector<uint32_t> parent;
+  ScratchVector<Real> island_sleep_time;
+  ScratchVector<uint8_t> island_awake;
 };
 
 struct IslandSettings {
@@ -30,8 +31,10 @@ struct IslandSettings {
 };
 
 // Returns the number of islands with more than one body (for the profile).
+// `scratch`'s arrays are taken from `step_scratch` in its current phase and given back.
 std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts,
-                           const IslandSettings& settings, IslandScratch& scratch);
+                           const IslandSettings& settings, IslandScratch& scratch,
+                           StepScratch& step_scratch);
 
 // Updates each awake dynamic body's sleep timer from its velocity after the step: the timer
 // grows by dt while max(|v|, |w| * bounding_radius) stays under `threshold` m/s (Box2D v3's

@@ -22,7 +22,7 @@ uint32_t order_key(Real x) {
 }  // namespace
 
 void split_in_halves(const BodyStore& bodies, std::span<const uint32_t> simulated,
-                     std::vector<uint64_t>& keys, std::span<uint8_t> side) {
+                     std::span<uint64_t> keys, std::span<uint8_t> side) {
   const std::size_t n = simulated.size();
   if (n == 0) return;
   // The axis of largest spread of the centres (min and max do not depend on the visiting order).
@@ -45,7 +45,6 @@ void split_in_halves(const BodyStore& bodies, std::span<const uint32_t> simulate
   }
   // determinism: (coordinate, index) keys are distinct, so the n / 2 smallest are one set
   // whatever the selection algorithm visits first.
-  keys.resize(n);
   const Column<Real>& x = *columns[axis];
   for (std::size_t k = 0; k < n; ++k) {
     keys[k] = (uint64_t(order_key(x[simulated[k]])) << 32) | uint64_t(k);

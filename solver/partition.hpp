@@ -17,7 +17,6 @@
 
 #include <cstdint>
 #include <span>
-#include <vector>
 
 #include "core/base/body_store.hpp"
 
@@ -25,8 +24,8 @@ namespace elan::detail {
 
 // Writes side[k] = 0 or 1 for every body simulated[k] (dense indices): the first n / 2 bodies in
 // the order of (centre along the axis of largest spread, index) go to side 0, the rest to side 1.
-// A non-finite coordinate sorts last. `keys` is scratch.
+// A non-finite coordinate sorts last. `keys` is scratch, one per simulated body.
 void split_in_halves(const BodyStore& bodies, std::span<const uint32_t> simulated,
-                     std::vector<uint64_t>& keys, std::span<uint8_t> side);
+                     std::span<uint64_t> keys, std::span<uint8_t> side);
 
 }  // namespace elan::detail

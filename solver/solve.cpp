@@ -39,6 +39,8 @@ ContactSolverContext make_context(const SolveSettings& settings, SolverState& st
   ctx.rows = state.rows;
   ctx.restitution = state.restitution;
   ctx.row_start = state.row_start;
+  ctx.lane_manifolds = state.order;
+  ctx.lane_start = state.lane_start;
   ctx.written_end = state.half_start[kHalves];
   ctx.h = settings.dt / Real(settings.substeps);
   ctx.inv_h = 1 / ctx.h;
@@ -58,7 +60,7 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
                    SolverState& st, SolveStats& stats, StepScratch& scratch) {
   auto t0 = std::chrono::steady_clock::now();
   update_islands(bodies, contacts, {settings.allow_sleep, settings.time_to_sleep},
-                 st.island_scratch);
+                 st.island_scratch, scratch);
   stats.islands_ms = ms_since(t0);
   t0 = std::chrono::steady_clock::now();
   // Restitution inputs are kept only in a world that has something to bounce: on a pile of
@@ -83,7 +85,9 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   const uint32_t dynamic = uint32_t(st.simulated.size());
   const std::size_t count = 1 + std::size_t(dynamic) + kinematic;
   st.side.resize(dynamic);
+  take_from(st.split_keys, scratch, dynamic);
   split_in_halves(bodies, st.simulated, st.split_keys, st.side);
+  release(st.split_keys);
   const uint32_t in_half_0 = uint32_t(std::count(st.side.begin(), st.side.end(), uint8_t(0)));
   st.half_start[0] = 1;
   st.half_start[1] = 1 + in_half_0;
@@ -156,7 +160,7 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   st.group_start[0] = 0;
   for (uint32_t g = 0; g < kGroups; ++g) st.group_start[g + 1] = st.group_start[g] + group_size[g];
   const uint32_t candidate_count = st.group_start[kGroups];
-  grow_to(st.candidates, candidate_count);
+  take_from(st.candidates, scratch, candidate_count);
   take_from(st.color_input, scratch, candidate_count);
   uint32_t cursor[kGroups + 1] = {st.group_start[0], st.group_start[1], st.group_start[2], 0};
   for (std::size_t m = 0; m < contacts.size(); ++m) {
@@ -172,11 +176,23 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   }
   grow_to(st.order, candidate_count);
   take_from(st.order_scratch, scratch, candidate_count);
+  // The colourings' arrays with their room, taken here in a fixed order so that they go back
+  // last taken first (lay_out_bundles), whichever thread colours which group.
+  for (uint32_t g = 0; g < kGroups; ++g) {
+    const std::size_t packets = g < kHalves ? st.half_start[g + 1] - st.half_start[g] : count;
+    ColorScratch& c = st.color_scratch[g];
+    take_from(c.bits, scratch);
+    c.bits.reserve(color_words(packets));
+    take_from(c.color_of, scratch);
+    c.color_of.reserve(st.group_start[g + 1] - st.group_start[g]);
+    take_from(c.cursor, scratch);
+    c.cursor.reserve(kColorCount + 1);
+  }
   st.segment_start.resize(kSegments + 1);
   st.segment_start[kSegments] = candidate_count;
   st.bundle_start.resize(kSegments + 1);
   auto is_overflow = [](std::size_t segment) { return segment % kSegmentsPerGroup == kColorCount; };
-  auto point_count = [&](uint32_t k) { return contacts[st.candidates[st.order[k]]].point_count; };
+  auto point_count = [&](uint32_t k) { return contacts[st.order[k]].point_count; };
 
   // Colours group g, then orders each of its segments by point count, most first. perf: within
   // a colour the order is free (its constraints share no dynamic body, so any order gives the
@@ -189,7 +205,8 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     uint32_t start[kColorCount + 2];
     build_colors(std::span(st.color_input).subspan(first, size), packets, st.color_scratch[g],
                  std::span(st.order).subspan(first, size), start);
-    for (uint32_t k = first; k < first + size; ++k) st.order[k] += first;
+    for (uint32_t k = first; k < first + size; ++k)
+      st.order[k] = st.candidates[first + st.order[k]];
     for (uint32_t c = 0; c <= kColorCount; ++c) {
       st.segment_start[g * kSegmentsPerGroup + c] = first + start[c];
     }
@@ -217,8 +234,14 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   auto lay_out_bundles = [&]() {
     // The colouring is done: its arrays go back, the last taken first, so the bundles start
     // where they did.
+    for (uint32_t g = kGroups; g-- > 0;) {
+      release(st.color_scratch[g].cursor);
+      release(st.color_scratch[g].color_of);
+      release(st.color_scratch[g].bits);
+    }
     release(st.order_scratch);
     release(st.color_input);
+    release(st.candidates);
     st.bundle_start[0] = 0;
     for (uint32_t s = 0; s < kSegments; ++s) {
       const uint32_t size = st.segment_start[s + 1] - st.segment_start[s];
@@ -227,14 +250,17 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     }
     const std::size_t bundle_count = st.bundle_start[kSegments];
     st.row_start.resize(bundle_count + 1);
+    st.lane_start.resize(bundle_count + 1);
     st.row_start[0] = 0;
     for (uint32_t s = 0; s < kSegments; ++s) {
       const uint32_t per_bundle = is_overflow(s) ? 1 : kLanes;
       for (uint32_t j = st.bundle_start[s]; j < st.bundle_start[s + 1]; ++j) {
         const uint32_t first = st.segment_start[s] + (j - st.bundle_start[s]) * per_bundle;
         st.row_start[j + 1] = st.row_start[j] + uint32_t(point_count(first));
+        st.lane_start[j] = first;
       }
     }
+    st.lane_start[bundle_count] = candidate_count;
     take_from(st.bundles, scratch, bundle_count);
     take_from(st.rows, scratch, st.row_start[bundle_count]);
     take_from(st.restitution, scratch, bouncy ? bundle_count : 0);
@@ -245,18 +271,14 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     for (uint32_t s = g * kSegmentsPerGroup; s < (g + 1) * kSegmentsPerGroup; ++s) {
       const uint32_t per_bundle = is_overflow(s) ? 1 : kLanes;
       for (uint32_t j = st.bundle_start[s]; j < st.bundle_start[s + 1]; ++j) {
-        const uint32_t first = st.segment_start[s] + (j - st.bundle_start[s]) * per_bundle;
-        const uint32_t last = std::min(st.segment_start[s + 1], first + per_bundle);
-        uint32_t lanes[kLanes];
-        for (uint32_t k = first; k < last; ++k) lanes[k - first] = st.candidates[st.order[k]];
+        const uint32_t last = st.lane_start[j + 1];
         // perf: the next bundle's manifolds, while this one is prepared. They are scattered over
         // the contact list, and at 2 threads about half were last written by the other core's
         // collide blocks: at jolt_pyramid's 2 threads the first load of a lane's manifold took
         // a quarter of prepare_bundle.
         const uint32_t next_last = std::min(st.segment_start[s + 1], last + per_bundle);
-        for (uint32_t k = last; k < next_last; ++k) prefetch(contacts[st.candidates[st.order[k]]]);
-        prepare_bundle(ctx, bodies, contacts, st.packet_of, j,
-                       std::span<const uint32_t>(lanes, last - first));
+        for (uint32_t k = last; k < next_last; ++k) prefetch(contacts[st.order[k]]);
+        prepare_bundle(ctx, bodies, contacts, st.packet_of, j);
       }
     }
   };

@@ -61,27 +61,29 @@ struct Impact {
 };
 
 struct SolverState {
-  std::vector<uint32_t> packet_of;  // per body: its packet, 0 when not simulated
-  std::vector<uint32_t> simulated;  // the awake dynamic bodies, ascending
-  std::vector<uint8_t> side;        // per awake dynamic body: its half
-  std::vector<uint64_t> split_keys;
+  std::vector<uint32_t> packet_of;     // per body: its packet, 0 when not simulated
+  std::vector<uint32_t> simulated;     // the awake dynamic bodies, ascending
+  std::vector<uint8_t> side;           // per awake dynamic body: its half
+  ScratchVector<uint64_t> split_keys;  // split_in_halves' keys, taken and given back around it
   // Half h: packets [half_start[h], half_start[h + 1]); the kinematic bodies' follow.
   uint32_t half_start[kHalves + 1] = {1, 1, 1};
   std::vector<SolverBody> packets;  // 0 = static dummy; half 0, half 1, kinematic
   std::vector<SolverBodyParams> params;
   std::vector<SolverBodyMass> masses;
-  std::vector<uint32_t> candidates;  // contact indices that take part, group by group
-  // Per candidate, packets as its group's colouring sees them. This and order_scratch are taken
-  // from the step's scratch and given back before the bundles are laid out, which reuse the bytes.
+  // Contact indices that take part, group by group, and per candidate its packets as its group's
+  // colouring sees them. These, order_scratch and the colourings' arrays are taken from the
+  // step's scratch and given back before the bundles are laid out, which reuse the bytes.
+  ScratchVector<uint32_t> candidates;
   ScratchVector<ColorInput> color_input;
   uint32_t group_start[kGroups + 1] = {};  // group g: candidates [group_start[g], [g + 1])
-  std::vector<uint32_t> order;             // candidate positions, segment by segment
+  std::vector<uint32_t> order;             // contact indices, segment by segment
   std::vector<uint32_t> segment_start;     // segment s is order[segment_start[s], [s + 1])
   ScratchVector<uint32_t> order_scratch;
   // The bundles, their point rows and restitution inputs are taken from the step's scratch by
   // prepare_solve and given back by solve(): between steps they are empty.
   ScratchVector<ContactBundle> bundles;  // segment by segment
   std::vector<uint32_t> row_start;       // bundle j's point rows are [row_start[j], row_start[j+1])
+  std::vector<uint32_t> lane_start;      // bundle j's lanes are order[lane_start[j], [j + 1])
   ScratchVector<WideContactPoint> rows;
   ScratchVector<BundleRestitution> restitution;  // per bundle; empty when no body bounces
   std::vector<uint32_t> bundle_start;  // segment s is bundles[bundle_start[s], bundle_start[s+1])

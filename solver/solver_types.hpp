@@ -118,12 +118,13 @@ struct WideContactPoint {
 // angular responses from the inverse inertias, the softness from whether B is written, the
 // masses from the packets (SolverBodyMass), and the restitution inputs, read once per step, live
 // apart (ContactSolverContext::restitution). Nor does it keep what its packets or the layout
-// tell: which sides are written (written_packet), how many lanes are used (used_lanes), where
-// its point rows are (SolverState::row_start). So its header is its three index arrays, 192
-// bytes, and the wide values start on the next cache line (a bundle was 1536 bytes, now 1472).
+// tell: which sides are written (written_packet), where its point rows are
+// (SolverState::row_start), which manifolds its lanes are and how many (SolverState::order and
+// lane_start, read by the refresh and the impulses' storage only). So its header is its two packet
+// arrays, 128 bytes, and the wide values start on the next cache line (a bundle was 1536 bytes,
+// then 1472, now 1408).
 struct ContactBundle {
   uint32_t packet_a[kLanes] = {}, packet_b[kLanes] = {};  // 0 = static dummy, and unused lanes
-  uint32_t manifold[kLanes] = {};  // index into the contact list, to store impulses back
   WideVec3 normal;
   WideVec3 tangent;  // first axis of tangent_basis(normal); the second is normal x tangent
   Wide friction{};
@@ -136,16 +137,8 @@ struct ContactBundle {
   Wide twist_impulse{};                  // N m s
 };
 
-static_assert(sizeof(Real) != 4 || kLanes != 16 || sizeof(ContactBundle) == 1472,
-              "ContactBundle: the index arrays, then 20 wide values");
-
-// Lanes in use: from the first, up to the first whose both packets are 0 (a used lane has an
-// awake dynamic body, so a packet that is not the static dummy).
-inline int used_lanes(const ContactBundle& c) {
-  int l = 0;
-  while (l < kLanes && (c.packet_a[l] | c.packet_b[l]) != 0) ++l;
-  return l;
-}
+static_assert(sizeof(Real) != 4 || kLanes != 16 || sizeof(ContactBundle) == 1408,
+              "ContactBundle: the packet arrays, then 20 wide values");
 
 // Read by the restitution pass only: the lane's restitution, and per row the approach speed and
 // the largest impulse any pass applied (Box2D v3: only points that pushed bounce). Kept only

@@ -21,7 +21,7 @@ BodyStore store_with(const std::vector<Vec3>& centres) {
 }
 
 std::vector<uint8_t> sides(const BodyStore& s, const std::vector<uint32_t>& simulated) {
-  std::vector<uint64_t> keys;
+  std::vector<uint64_t> keys(simulated.size());
   std::vector<uint8_t> side(simulated.size(), 9);
   split_in_halves(s, simulated, keys, side);
   return side;
