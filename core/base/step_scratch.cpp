@@ -35,7 +35,7 @@ void StepScratch::begin_phase() {
   top_.store(0, std::memory_order_relaxed);
   const std::size_t asked = peak_.exchange(0, std::memory_order_relaxed);
   if (asked > capacity_) {
-    reallocate(round_up(asked + asked / 4));
+    reallocate(round_up(asked + asked / 16));
     return;
   }
   const std::size_t cut = trim_.note(asked, capacity_, 1);

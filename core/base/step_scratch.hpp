@@ -10,8 +10,9 @@
 // Giving back the buffer taken last moves the offset back (a stack), so the solver's colouring
 // arrays, dead before its bundles are laid out, lend them their bytes within one phase.
 // What the block cannot hold comes from the heap; the next phase then starts with a block large
-// enough for what this one asked (a quarter more), so a scene allocates while it grows and then
-// never. Which thread took which bytes does not matter: no result depends on an address.
+// enough for what this one asked (a sixteenth more: growing it copies nothing, since nothing is
+// held then), so a scene allocates while it grows and then never. Which thread took which bytes
+// does not matter: no result depends on an address.
 #pragma once
 
 #include <atomic>
