@@ -40,7 +40,11 @@ Bodies make_bodies(std::size_t n, bool anisotropic) {
     p.body = uint32_t(k);
     b.masses[k + 1].inv_mass = 1;
     p.delta_v_per_s = Vec3(0, Real(-9.81), 0);
-    p.inertia = anisotropic ? Vec3(Real(0.15), Real(0.12), Real(0.03)) : Vec3::Constant(Real(0.1));
+    const Vec3 moments =
+        anisotropic ? Vec3(Real(0.15), Real(0.12), Real(0.03)) : Vec3::Constant(Real(0.1));
+    b.store.inv_ix[k] = 1 / moments.x();
+    b.store.inv_iy[k] = 1 / moments.y();
+    b.store.inv_iz[k] = 1 / moments.z();
     p.gyroscopic = anisotropic;
     b.packets[k + 1].w = Vec3(u(rng), u(rng), u(rng)) * Real(5);
   }

@@ -148,7 +148,7 @@ void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBo
       set_lane(dq, l, b.dq);
       if (p.gyroscopic) {
         gyroscopic[l] = 1;
-        set_lane(d, l, p.inertia);
+        set_lane(d, l, principal_moments(bodies, p.body));
         set_lane(q0, l, bodies.orientation(p.body));
       }
     }

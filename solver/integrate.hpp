@@ -26,6 +26,11 @@ void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBo
                          std::span<SolverBodyMass> masses, const BodyStore& bodies, Real h,
                          uint32_t begin, uint32_t end);
 
+// A body's principal moments of inertia, kg m^2, from its inverses (the body store keeps those).
+inline Vec3 principal_moments(const BodyStore& bodies, uint32_t i) {
+  return Vec3(bodies.inv_ix[i], bodies.inv_iy[i], bodies.inv_iz[i]).cwiseInverse();
+}
+
 // Rotation by angle |w| h about w, as a unit quaternion (the exponential map): one body through
 // the map integrate_positions applies to its lanes, to within float rounding of the closed form.
 Quat rotation_from_angular_velocity(const Vec3& w, Real h);

@@ -135,7 +135,6 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
       prm.delta_w_per_s = dynamic ? Vec3(mass.inv_inertia * torque) : Vec3::Zero();
       prm.linear_damping = bodies.linear_damping[i];
       prm.angular_damping = bodies.angular_damping[i];
-      prm.inertia = inv_i.cwiseInverse();
       // Bodies with equal principal moments (spheres, cubes) have no gyroscopic term.
       prm.gyroscopic = dynamic && !(inv_i.x() == inv_i.y() && inv_i.y() == inv_i.z());
     }

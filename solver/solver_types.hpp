@@ -58,8 +58,9 @@ struct SolverBodyParams {
   Vec3 delta_w_per_s = Vec3::Zero();  // rad/s^2: inv_inertia * torque
   Real linear_damping = 0;            // 1/s
   Real angular_damping = 0;           // 1/s
-  Vec3 inertia = Vec3::Zero();        // kg m^2, principal moments (gyroscopic bodies)
-  bool gyroscopic = false;            // anisotropic inertia: keep L = I w through rotation
+  // Anisotropic inertia: keep L = I w through rotation (integrate_positions reads the principal
+  // moments from the body store then, for these bodies only).
+  bool gyroscopic = false;
 };
 
 // Soft constraint coefficients (Box2D v3 "soft step", b2MakeSoft): a spring-damper of the
