@@ -95,6 +95,24 @@ void plane_bounds(const Shape& s, const Quat& q, const Vec3& pos, Real margin, B
 
 }  // namespace
 
+void BoundsColumns::take_from(StepScratch& scratch) {
+  detail::take_from(min_x, scratch);
+  detail::take_from(min_y, scratch);
+  detail::take_from(min_z, scratch);
+  detail::take_from(max_x, scratch);
+  detail::take_from(max_y, scratch);
+  detail::take_from(max_z, scratch);
+}
+
+void BoundsColumns::release() {
+  detail::release(max_z);
+  detail::release(max_y);
+  detail::release(max_x);
+  detail::release(min_z);
+  detail::release(min_y);
+  detail::release(min_x);
+}
+
 void BoundsColumns::resize(std::size_t n) {
   min_x.resize(n);
   min_y.resize(n);

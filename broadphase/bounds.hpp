@@ -7,15 +7,20 @@
 #include <span>
 
 #include "core/base/body_store.hpp"
-#include "core/base/column.hpp"
 #include "core/base/shape.hpp"
+#include "core/base/step_scratch.hpp"
 
 namespace elan::detail {
 
+// The step's boxes are read by the broadphase and by nothing after it, so the world takes their
+// columns from the step scratch for the sweep's phase (take_from, release); other holders (the
+// queries' boxes, tests) keep them on the heap, each column on a cache line either way.
 struct BoundsColumns {
-  Column<Real> min_x, min_y, min_z, max_x, max_y, max_z;  // m, world
+  ScratchVector<Real> min_x, min_y, min_z, max_x, max_y, max_z;  // m, world
   void resize(std::size_t n);
   std::size_t size() const { return min_x.size(); }
+  void take_from(StepScratch& scratch);
+  void release();
 };
 
 // Box of the shape at its current pose, united with the box at the pose it reaches moving for

@@ -3,6 +3,7 @@
 #include "core/world/events.hpp"
 
 #include <algorithm>
+#include <cassert>
 
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
@@ -61,6 +62,7 @@ void compute_contact_events(WorldState& w) {
   for (const uint64_t key : w.contact_blocks.began) {
     next = std::lower_bound(next, contacts.end(), key,
                             [](const Manifold& m, uint64_t k) { return m.key() < k; });
+    assert(next != contacts.end() && next->key() == key && "a began key is in the list");
     begins.push_back(begin_event(w, *next));
   }
   for (const ContactRecord& r : w.contact_blocks.ended) {

@@ -39,6 +39,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   const std::size_t n = bodies.size();
   const auto t0 = clock::now();
 
+  w.scratch.begin_phase();
+  w.bounds.take_from(w.scratch);
   compute_bounds(bodies, w.shapes, dt, kBoundsMargin, w.bounds);
   const auto t1 = clock::now();
 
@@ -54,12 +56,12 @@ uint32_t run_step(WorldState& w, Real dt) {
         kind == BroadKind::Static || (kind == BroadKind::Sleeping && !(bodies.flags[i] & kFrozen));
   }
   BroadphaseInput input{&w.bounds, w.broad_kind, bodies.category, bodies.mask, w.is_plane};
-  w.scratch.begin_phase();
   if (w.def.broadphase == BroadphaseType::AllPairs) {
     w.all_pairs.find_pairs(input, w.pairs);
   } else {
     w.sap.find_pairs(input, w.pairs, w.scratch);
   }
+  w.bounds.release();
   filter_pairs(w);
   const auto t2 = clock::now();
 

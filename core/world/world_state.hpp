@@ -46,7 +46,7 @@ struct WorldState {
   // Per-step buffers of the sweep, the collide stage and the solver, which are never in use at
   // once (StepScratch). Declared before the stages that take from it, so it is destroyed after.
   StepScratch scratch;
-  // Broadphase.
+  // Broadphase. The boxes are the scratch's only for the sweep.
   BoundsColumns bounds;
   std::vector<uint8_t> broad_kind;
   std::vector<uint8_t> is_plane;
