@@ -152,10 +152,13 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
     return half_of(in.dynamic_a ? pa : pb);
   };
   uint32_t group_size[kGroups + 1] = {};
+  std::size_t points = 0;
   for (const Manifold& mf : contacts) {
     ColorInput in;
     ++group_size[group_of(mf, in)];
+    points += mf.point_count;
   }
+  stats.points = points;
   st.group_start[0] = 0;
   for (uint32_t g = 0; g < kGroups; ++g) st.group_start[g + 1] = st.group_start[g] + group_size[g];
   const uint32_t candidate_count = st.group_start[kGroups];

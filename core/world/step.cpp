@@ -94,8 +94,8 @@ uint32_t run_step(WorldState& w, Real dt) {
 
   stats.pairs = w.pairs.size();
   stats.manifolds = w.contacts.size();
-  stats.contacts = 0;
-  for (const Manifold& m : w.contacts) stats.contacts += std::size_t(m.point_count);
+  // perf: counted by prepare_solve's pass over the list, not by one more (pile10k: 5 MB a step).
+  stats.contacts = solve_stats.points;
   stats.awake = solve_stats.awake;
   stats.colors = solve_stats.colors;
   stats.overflow = solve_stats.overflow;
