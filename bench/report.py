@@ -254,9 +254,9 @@ def main():
              f"Bullet {fmt(heap_bullet, 0)} B/body (glibc mallinfo2, in process)")
     if all(v == v for _, v in mem_parts):
         L.append("- elan's by part (buffer capacities, B/body; the contacts part holds the contact list, the separation "
-                 "cache and the collide stage's join buffers; scratch is the step's scratch, which the "
-                 "sweep's buffers, the collide stage's buffers of new keys and then the solver's bundles "
-                 "and rows use in turn): " +
+                 "cache and the step's changes to the list (the contact events); scratch is the step's "
+                 "scratch, which the bounding boxes and the sweep's buffers, the collide stage's buffers "
+                 "and then the solver's islands, colourings, bundles and rows use in turn): " +
                  ", ".join(f"{part} {fmt(v, 0)}" for part, v in mem_parts) +
                  f"; sum {fmt(sum(v for _, v in mem_parts), 0)}")
     L.append(f"- peak RSS, separate processes, {a.rss_steps} steps, 1 thread, both parsing the scene with "
