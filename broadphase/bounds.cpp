@@ -96,30 +96,15 @@ void plane_bounds(const Shape& s, const Quat& q, const Vec3& pos, Real margin, B
 }  // namespace
 
 void BoundsColumns::take_from(StepScratch& scratch) {
-  detail::take_from(min_x, scratch);
-  detail::take_from(min_y, scratch);
-  detail::take_from(min_z, scratch);
-  detail::take_from(max_x, scratch);
-  detail::take_from(max_y, scratch);
-  detail::take_from(max_z, scratch);
+  for (ScratchVector<Real>* c : columns()) detail::take_from(*c, scratch);
 }
 
 void BoundsColumns::release() {
-  detail::release(max_z);
-  detail::release(max_y);
-  detail::release(max_x);
-  detail::release(min_z);
-  detail::release(min_y);
-  detail::release(min_x);
+  for (ScratchVector<Real>* c : columns()) detail::release(*c);
 }
 
 void BoundsColumns::resize(std::size_t n) {
-  min_x.resize(n);
-  min_y.resize(n);
-  min_z.resize(n);
-  max_x.resize(n);
-  max_y.resize(n);
-  max_z.resize(n);
+  for (ScratchVector<Real>* c : columns()) c->resize(n);
 }
 
 void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,

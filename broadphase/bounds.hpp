@@ -4,6 +4,7 @@
 // Parallel over fixed blocks of bodies; indexed writes only (determinism rule 1).
 #pragma once
 
+#include <array>
 #include <span>
 
 #include "core/base/body_store.hpp"
@@ -17,6 +18,9 @@ namespace elan::detail {
 // queries' boxes, tests) keep them on the heap, each column on a cache line either way.
 struct BoundsColumns {
   ScratchVector<Real> min_x, min_y, min_z, max_x, max_y, max_z;  // m, world
+  std::array<ScratchVector<Real>*, 6> columns() {
+    return {&min_x, &min_y, &min_z, &max_x, &max_y, &max_z};
+  }
   void resize(std::size_t n);
   std::size_t size() const { return min_x.size(); }
   void take_from(StepScratch& scratch);

@@ -163,16 +163,12 @@ void begin_update(ListUpdate<T>& u, const std::vector<T>& list, std::span<const 
   // largest needed: none grows (inside the scratch, leaving its old bytes unused) because the
   // schedule changed.
   if (u.added.size() < thread_slots()) u.added.resize(thread_slots());
-  for (ScratchVector<T>& buffer : u.added) {
-    take_from(buffer, step_scratch);
-    buffer.reserve(u.room);
-  }
+  for (ScratchVector<T>& buffer : u.added) take_room(buffer, step_scratch, u.room);
   take_from(u.added_run, step_scratch, parts);
   take_from(u.start, step_scratch, parts + 1);
   take_from(u.live, step_scratch, parts);
   take_from(u.at, step_scratch, parts + 1);
-  take_from(u.waiting, step_scratch);
-  u.waiting.reserve(parts);
+  take_room(u.waiting, step_scratch, parts);
   u.start[0] = 0;
   u.start[parts] = list.size();
   for (std::size_t part = 1; part < parts; ++part) {
@@ -235,8 +231,7 @@ void join(ListUpdate<T>& u, std::vector<T>& list, std::size_t parts, StepScratch
   for (std::size_t p = 0; p < parts; ++p) {
     if (!unchanged(p)) largest = std::max(largest, u.live[p] + u.added_run[p].count);
   }
-  take_from(u.bounce, step_scratch);
-  u.bounce.reserve(largest);
+  take_room(u.bounce, step_scratch, largest);
   // Long enough for the old entries and the new while parts move, grown by a quarter (grow_to):
   // a list keeps its largest size for good, and doubling left up to half of it unused. Each growth
   // holds the old list and the new at once and leaves the freed one in the allocator's heap, which
@@ -444,14 +439,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                        [&] { join(su, separated, parts, *step_scratch); });
   end_update(mu);
   end_update(su);
-  if (const std::size_t cut = scratch.ended_trim.note(
-          scratch.ended.size(), scratch.ended.capacity(), sizeof(ContactRecord))) {
-    cut_capacity(scratch.ended, cut);
-  }
-  if (const std::size_t cut = scratch.began_trim.note(scratch.began.size(),
-                                                      scratch.began.capacity(), sizeof(uint64_t))) {
-    cut_capacity(scratch.began, cut);
-  }
+  trim_spike(scratch.ended, scratch.ended_trim);
+  trim_spike(scratch.began, scratch.began_trim);
 }
 
 }  // namespace elan::detail

@@ -183,12 +183,9 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   for (uint32_t g = 0; g < kGroups; ++g) {
     const std::size_t packets = g < kHalves ? st.half_start[g + 1] - st.half_start[g] : count;
     ColorScratch& c = st.color_scratch[g];
-    take_from(c.bits, scratch);
-    c.bits.reserve(color_words(packets));
-    take_from(c.color_of, scratch);
-    c.color_of.reserve(st.group_start[g + 1] - st.group_start[g]);
-    take_from(c.cursor, scratch);
-    c.cursor.reserve(kColorCount + 1);
+    take_room(c.bits, scratch, color_words(packets));
+    take_room(c.color_of, scratch, st.group_start[g + 1] - st.group_start[g]);
+    take_room(c.cursor, scratch, kColorCount + 1);
   }
   st.segment_start.resize(kSegments + 1);
   st.segment_start[kSegments] = candidate_count;
@@ -271,14 +268,13 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   auto prepare_group = [&](uint32_t g) {
     const ContactSolverContext ctx = make_context(settings, st);
     for (uint32_t s = g * kSegmentsPerGroup; s < (g + 1) * kSegmentsPerGroup; ++s) {
-      const uint32_t per_bundle = is_overflow(s) ? 1 : kLanes;
       for (uint32_t j = st.bundle_start[s]; j < st.bundle_start[s + 1]; ++j) {
         const uint32_t last = st.lane_start[j + 1];
         // perf: the next bundle's manifolds, while this one is prepared. They are scattered over
         // the contact list, and at 2 threads about half were last written by the other core's
         // collide blocks: at jolt_pyramid's 2 threads the first load of a lane's manifold took
         // a quarter of prepare_bundle.
-        const uint32_t next_last = std::min(st.segment_start[s + 1], last + per_bundle);
+        const uint32_t next_last = j + 1 < st.bundle_start[s + 1] ? st.lane_start[j + 2] : last;
         for (uint32_t k = last; k < next_last; ++k) prefetch(contacts[st.order[k]]);
         prepare_bundle(ctx, bodies, contacts, st.packet_of, j);
       }

@@ -61,4 +61,11 @@ void cut_capacity(V& v, std::size_t capacity) {
   v.swap(kept);
 }
 
+// Notes this step's use of `v` with `trim`, and cuts its capacity when the rule says so.
+template <class V>
+void trim_spike(V& v, SpikeTrim& trim) {
+  const std::size_t cut = trim.note(v.size(), v.capacity(), sizeof(typename V::value_type));
+  if (cut != 0) cut_capacity(v, cut);
+}
+
 }  // namespace elan::detail

@@ -163,8 +163,7 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
     }
     for (ScratchVector<uint64_t>& copy : scratch.bucket) {
       if (step_scratch) {
-        take_from(copy, *step_scratch);
-        copy.reserve(largest);
+        take_room(copy, *step_scratch, largest);
       } else if (largest > copy.capacity()) {
         copy.reserve(largest + largest / 4);
       }

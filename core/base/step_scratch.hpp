@@ -1,7 +1,8 @@
 // StepScratch: one block of memory that the stages of a step take their per-step buffers from,
-// in turn, one phase each: the sweep (its strip entries, pair blocks and sorts), the collide
-// stage (its threads' buffers of new keys), the solver (its bundles and point rows). Each is dead
-// before the next phase starts, so each phase starts again at the front of the block, and the
+// in turn, one phase each: the sweep (the bounding boxes, its strip entries, pair blocks and
+// sorts), the collide stage (its threads' buffers of new keys, its per-block arrays and join),
+// the solver (its islands, median cut and colourings, then its bundles and point rows). Each is
+// dead before the next phase starts, so each phase starts again at the front of the block, and the
 // block holds the largest, not their sum (Box2D v3's b2ArenaAllocator and Jolt's TempAllocator,
 // per step).
 //
@@ -123,6 +124,14 @@ template <class T>
 void take_from(ScratchVector<T>& v, StepScratch& scratch, std::size_t n) {
   take_from(v, scratch);
   v.resize(n);
+}
+
+// As take_from, with room for n elements and none in it: a buffer filled by push_back that must
+// not grow (a grown one leaves its old bytes unused in the block until the phase ends).
+template <class T>
+void take_room(ScratchVector<T>& v, StepScratch& scratch, std::size_t n) {
+  take_from(v, scratch);
+  v.reserve(n);
 }
 
 // Gives `v`'s bytes back (to the scratch or the heap): the end of its use in a phase.
