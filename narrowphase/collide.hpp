@@ -88,6 +88,7 @@ struct ListUpdate {
 struct CollideScratch {
   ListUpdate<Manifold> contacts;
   ListUpdate<SeparatedPair> separated;
+  ListUpdate<PairCache> cached;
   // Out: what changed in the contact list, each in key order. `ended`: the manifolds that were
   // in it and are not any more; `began`: the keys new to it. Every manifold the list holds has
   // points, so these are the pairs that stopped and started touching (the contact events).
@@ -105,8 +106,10 @@ struct CollideScratch {
 // other). Each new point takes the impulses of last step's point of the same key and feature id
 // (warm start). A pair whose relative pose moved less than 1 mm and 2 degrees since its
 // points were computed reuses them, carried with the bodies (the body pair cache of Jolt),
-// without running collide(). On return `contacts` holds the touching manifolds and the carried
-// ones, in key order.
+// without running collide(); `cached` holds those poses, sorted by key, for each manifold whose
+// points may be reused (neither body round: see rolls()). On return `contacts` holds the touching
+// manifolds and the carried ones, in key order, and `cached` the poses of those that may be
+// reused.
 //
 // Separation cache: `separated` holds, sorted by key, the pairs found apart with what their
 // rejection measured (Separation), but for those whose exact test is a closed form (two round
@@ -121,7 +124,7 @@ struct CollideScratch {
 // so a sleeping island keeps its contacts and wakes warm-started (the broadphase does not report
 // pairs of two idle bodies). An empty `idle` carries nothing.
 //
-// Both lists are updated in place, so no second copy of either is ever held (Box2D v3 and Jolt
+// The lists are updated in place, so no second copy of any is ever held (Box2D v3 and Jolt
 // keep their contacts in place too). Parallel over fixed blocks of pairs: block b owns the keys
 // from its first pair's up to the next block's first pair's. It rewrites the entries of its key
 // range where they are, marks those that end, and collects entries of keys new to a list in its
@@ -134,7 +137,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,
                    std::vector<Manifold>& contacts, std::vector<SeparatedPair>& separated,
-                   StepScratch* step_scratch = nullptr);
+                   std::vector<PairCache>& cached, StepScratch* step_scratch = nullptr);
 
 // Time of impact by conservative advancement on the GJK distance: the earliest t in [0, 1] at
 // which A moving linearly from xa0 to xa1 (rotation slerped) comes within `target` of B moving

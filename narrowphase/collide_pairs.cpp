@@ -77,25 +77,26 @@ bool rolls(const Shape& s) {
 }
 
 // `relative`: B's centre of mass minus A's, in A's frame, now.
-bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& xb,
+// On success `m` is the manifold carried along and `cache` holds the poses of now.
+bool reuse_manifold(const Manifold& old, PairCache& cache, const Transform& xa, const Transform& xb,
                     const Vec3& relative, Manifold& m) {
-  if ((relative - old.exact_position).squaredNorm() > kCacheDistance * kCacheDistance) {
+  if ((relative - cache.exact_position).squaredNorm() > kCacheDistance * kCacheDistance) {
     return false;
   }
   const Quat rel_now = xa.rotation.conjugate() * xb.rotation;
-  if (std::abs(rel_now.dot(old.exact_rotation.unpack())) < kCacheCosHalfAngle) return false;
-  const Quat turn_a = xa.rotation * old.orientation_a.conjugate();  // since the last update
-  const Quat turn_b = xb.rotation * old.orientation_b.conjugate();
-  const Vec3 normal_in_a = old.orientation_a.conjugate() * old.normal;
+  if (std::abs(rel_now.dot(cache.exact_rotation.unpack())) < kCacheCosHalfAngle) return false;
+  const Quat turn_a = xa.rotation * cache.orientation_a.conjugate();  // since the last update
+  const Quat turn_b = xb.rotation * cache.orientation_b.conjugate();
+  const Vec3 normal_in_a = cache.orientation_a.conjugate() * old.normal;
   const Vec3 centres = xb.position - xa.position;
-  m = old;  // key, bodies, impulses for the warm start, the exact test's pose
+  m = old;  // key, bodies, impulses for the warm start
   m.normal = (xa.rotation * normal_in_a).normalized();
   carry_tangent_impulse(old.normal, old.tangent_impulse, m.normal, m.tangent_impulse);
   for (int k = 0; k < m.point_count; ++k) {
     ContactPoint& p = m.points[k];
     const ContactPoint& q = old.points[k];
     const Vec3 on_a = turn_a * q.anchor_a;  // the material points, from each centre now
-    const Vec3 on_b = turn_b * old.anchor_b(k);
+    const Vec3 on_b = turn_b * cache.anchor_b(q);
     // Seen from A, the two material points' gap along A's normal changed by as much as their
     // separation vector did; it was zero: they were one point.
     const Vec3 gap_now = relative + xa.rotation.conjugate() * (on_b - on_a);
@@ -105,9 +106,9 @@ bool reuse_manifold(const Manifold& old, const Transform& xa, const Transform& x
     // the two halves of an impulse acting at different points would form a couple.
     p.anchor_a = Real(0.5) * (on_a + centres + on_b);
   }
-  m.orientation_a = xa.rotation;
-  m.orientation_b = xb.rotation;
-  m.relative_position = relative;
+  cache.orientation_a = xa.rotation;
+  cache.orientation_b = xb.rotation;
+  cache.relative_position = relative;
   return true;
 }
 
@@ -146,12 +147,20 @@ uint64_t list_key(const Manifold& m) {
 uint64_t list_key(const SeparatedPair& s) {
   return s.key;
 }
+uint64_t list_key(const PairCache& c) {
+  return c.key;
+}
 
 bool ended(const Manifold& m) {
   return m.point_count == 0;
 }
 bool ended(const SeparatedPair& s) {
   return s.kind == Separation::Kind::Unknown;
+}
+// No pair has this key (its first index is the lower).
+constexpr uint64_t kEndedCacheKey = ~uint64_t{0};
+bool ended(const PairCache& c) {
+  return c.key == kEndedCacheKey;
 }
 
 // Before the blocks run: per-thread buffers emptied, and each block's range of the list found
@@ -276,12 +285,13 @@ std::size_t ListUpdate<T>::heap_bytes() const {
 }
 template struct ListUpdate<Manifold>;
 template struct ListUpdate<SeparatedPair>;
+template struct ListUpdate<PairCache>;
 
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,
                    std::vector<Manifold>& contacts, std::vector<SeparatedPair>& separated,
-                   StepScratch* step_scratch) {
+                   std::vector<PairCache>& cached, StepScratch* step_scratch) {
   if (step_scratch == nullptr) {
     if (!scratch.own) scratch.own = std::make_unique<StepScratch>();
     step_scratch = scratch.own.get();
@@ -294,10 +304,12 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   // one run in its thread's buffer, so only a step's new keys are held, not each block's most.
   ListUpdate<Manifold>& mu = scratch.contacts;
   ListUpdate<SeparatedPair>& su = scratch.separated;
+  ListUpdate<PairCache>& cu = scratch.cached;
   begin_update(mu, contacts, pairs, parts, *step_scratch);
   begin_update(su, separated, pairs, parts, *step_scratch);
-  auto carried = [&](const Manifold& m) {
-    return !idle.empty() && m.point_count > 0 && idle[m.body_a] && idle[m.body_b];
+  begin_update(cu, cached, pairs, parts, *step_scratch);
+  auto carried = [&](uint64_t key) {
+    return !idle.empty() && idle[pair_first(key)] && idle[pair_second(key)];
   };
   // determinism: part p writes only its ranges of the two lists and one run of each of its
   // thread's buffers. An entry whose key is in a list is updated where it is; a key new to a list
@@ -309,20 +321,33 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     const std::size_t slot = thread_slot();
     ScratchVector<Manifold>& added = mu.added[slot];
     ScratchVector<SeparatedPair>& added_apart = su.added[slot];
-    const std::size_t first_added = added.size(), first_apart = added_apart.size();
+    ScratchVector<PairCache>& added_cache = cu.added[slot];
+    const std::size_t first_added = added.size(), first_apart = added_apart.size(),
+                      first_cache = added_cache.size();
     const std::size_t begin = std::min(n, part * kPairGrain);
     const std::size_t end = std::min(n, begin + kPairGrain);
     Manifold* prev_it = contacts.data() + mu.start[part];
     Manifold* const prev_end = contacts.data() + mu.start[part + 1];
     SeparatedPair* apart_it = separated.data() + su.start[part];
     SeparatedPair* const apart_end = separated.data() + su.start[part + 1];
-    std::size_t dead = 0, dead_apart = 0;
+    PairCache* cache_it = cached.data() + cu.start[part];
+    PairCache* const cache_end = cached.data() + cu.start[part + 1];
+    std::size_t dead = 0, dead_apart = 0, dead_cache = 0;
     PolyhedronCache polyhedron_cache;
+    // A manifold and its cached poses are carried together: a manifold with points is in the
+    // list with its key's poses if it may reuse them.
     auto keep_if_carried = [&](Manifold& old) {
-      if (!carried(old)) {
+      if (old.point_count == 0 || !carried(old.key())) {
         old.point_count = 0;
         ++dead;
       }
+    };
+    auto end_cache = [&](PairCache& c) {
+      c.key = kEndedCacheKey;
+      ++dead_cache;
+    };
+    auto keep_cache_if_carried = [&](PairCache& c) {
+      if (!carried(c.key)) end_cache(c);
     };
     auto end_apart = [&](SeparatedPair& s) {
       s.kind = Separation::Kind::Unknown;
@@ -338,6 +363,9 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       if (prev_end - prev_it > 2) prefetch<true>(prev_it[2]);
       for (; prev_it != prev_end && prev_it->key() < key; ++prev_it) keep_if_carried(*prev_it);
       for (; apart_it != apart_end && apart_it->key < key; ++apart_it) end_apart(*apart_it);
+      for (; cache_it != cache_end && cache_it->key < key; ++cache_it) {
+        keep_cache_if_carried(*cache_it);
+      }
       uint32_t a = pair_first(key), b = pair_second(key);
       // The static or kinematic body, if any, is B (architecture rule 4).
       if (!bodies.is_dynamic(a) && bodies.is_dynamic(b)) std::swap(a, b);
@@ -352,9 +380,10 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       Manifold* same_key = (prev_it != prev_end && prev_it->key() == key) ? prev_it++ : nullptr;
       const Manifold* old = (same_key != nullptr && same_key->body_a == a) ? same_key : nullptr;
       SeparatedPair* apart = (apart_it != apart_end && apart_it->key == key) ? apart_it++ : nullptr;
+      PairCache* cache = (cache_it != cache_end && cache_it->key == key) ? cache_it++ : nullptr;
       const bool cacheable = !rolls(shape_a) && !rolls(shape_b);
-      if (old != nullptr && old->point_count > 0 && cacheable &&
-          reuse_manifold(*old, xa, xb, relative, m)) {
+      if (old != nullptr && cache != nullptr && cacheable &&
+          reuse_manifold(*old, *cache, xa, xb, relative, m)) {
         *same_key = m;
         continue;
       }
@@ -374,6 +403,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation);
       if (m.point_count == 0) {
         if (same_key != nullptr) keep_if_carried(*same_key);
+        if (cache != nullptr) keep_cache_if_carried(*cache);
         // A closed-form test costs about what checking a cached separation does, so its pairs
         // keep none: on pile10k the separated list went from 49k pairs to 40k, 40 bytes each.
         if (separation.kind == Separation::Kind::Unknown ||
@@ -398,13 +428,23 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       for (int k = 0; k < m.point_count; ++k) m.points[k].normal_impulse = 0;
       m.tangent_impulse[0] = m.tangent_impulse[1] = 0;
       m.twist_impulse = 0;
-      m.orientation_a = xa.rotation;
-      m.orientation_b = xb.rotation;
-      m.relative_position = relative;
-      // Only a pair whose manifold may be reused reads it.
-      m.exact_rotation = cacheable ? PackedRotation::pack(rotation) : PackedRotation();
-      m.exact_position = relative;
       if (old != nullptr) warm_start(*old, m);
+      if (cacheable) {
+        PairCache c;
+        c.key = key;
+        c.orientation_a = xa.rotation;
+        c.orientation_b = xb.rotation;
+        c.relative_position = relative;
+        c.exact_position = relative;
+        c.exact_rotation = PackedRotation::pack(rotation);
+        if (cache != nullptr) {
+          *cache = c;
+        } else {
+          added_cache.push_back(c);
+        }
+      } else if (cache != nullptr) {
+        end_cache(*cache);
+      }
       if (same_key == nullptr) {
         added.push_back(m);
       } else {
@@ -413,10 +453,13 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     }
     for (; prev_it != prev_end; ++prev_it) keep_if_carried(*prev_it);
     for (; apart_it != apart_end; ++apart_it) end_apart(*apart_it);
+    for (; cache_it != cache_end; ++cache_it) keep_cache_if_carried(*cache_it);
     mu.live[part] = mu.start[part + 1] - mu.start[part] - dead;
     mu.added_run[part] = {uint32_t(slot), first_added, added.size() - first_added};
     su.live[part] = su.start[part + 1] - su.start[part] - dead_apart;
     su.added_run[part] = {uint32_t(slot), first_apart, added_apart.size() - first_apart};
+    cu.live[part] = cu.start[part + 1] - cu.start[part] - dead_cache;
+    cu.added_run[part] = {uint32_t(slot), first_cache, added_cache.size() - first_cache};
   });
   // The contact list's changes, before the join drops the ended manifolds: in part order, so in
   // key order. perf: only the parts that lost a manifold are read again.
@@ -434,11 +477,13 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       scratch.began.push_back(added[i].key());
     }
   }
-  // determinism: the two lists are joined apart (disjoint data), each in part order.
+  // determinism: the lists are joined apart (disjoint data), each in part order.
   tbb::parallel_invoke([&] { join(mu, contacts, parts, *step_scratch); },
-                       [&] { join(su, separated, parts, *step_scratch); });
+                       [&] { join(su, separated, parts, *step_scratch); },
+                       [&] { join(cu, cached, parts, *step_scratch); });
   end_update(mu);
   end_update(su);
+  end_update(cu);
   trim_spike(scratch.ended, scratch.ended_trim);
   trim_spike(scratch.began, scratch.began_trim);
 }

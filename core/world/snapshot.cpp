@@ -19,6 +19,7 @@ using detail::ByteWriter;
 using detail::Column;
 using detail::ContactPoint;
 using detail::Manifold;
+using detail::PairCache;
 using detail::Shape;
 using detail::WorldState;
 
@@ -225,28 +226,43 @@ ContactPoint read_point(ByteReader& r) {
 }
 
 // The manifold's friction impulses, carried to the next step like the normal impulses, and the
-// poses its points were computed at (they decide whether the next step reuses them).
-void write_friction(ByteWriter& w, const Manifold& m) {
+// poses its points were computed at if it may reuse them (they decide whether the next step
+// does). `cache` walks the pair cache, which holds a subset of the manifolds' keys in the same
+// order.
+void write_friction(ByteWriter& w, const Manifold& m, std::vector<PairCache>::const_iterator& cache,
+                    std::vector<PairCache>::const_iterator cache_end) {
   w.real(m.tangent_impulse[0]);
   w.real(m.tangent_impulse[1]);
   w.real(m.twist_impulse);
-  write_quat(w, m.orientation_a);
-  write_quat(w, m.orientation_b);
-  w.vec3(m.relative_position);
-  w.vec3(m.exact_position);
-  for (uint8_t byte : m.exact_rotation.bytes) w.u8(byte);
+  while (cache != cache_end && cache->key < m.key()) ++cache;
+  const bool cached = cache != cache_end && cache->key == m.key();
+  w.u8(cached ? 1 : 0);
+  if (!cached) return;
+  write_quat(w, cache->orientation_a);
+  write_quat(w, cache->orientation_b);
+  w.vec3(cache->relative_position);
+  w.vec3(cache->exact_position);
+  for (uint8_t byte : cache->exact_rotation.bytes) w.u8(byte);
+  ++cache;
 }
 
-void read_friction(ByteReader& r, Manifold& m) {
+// Reads what write_friction wrote; the manifold's poses, if it has them, are appended to `cache`.
+void read_friction(ByteReader& r, Manifold& m, std::vector<PairCache>* cache) {
   m.tangent_impulse[0] = r.real();
   m.tangent_impulse[1] = r.real();
   m.twist_impulse = r.real();
-  m.orientation_a = read_quat(r);
-  m.orientation_b = read_quat(r);
-  m.relative_position = r.vec3();
-  m.exact_position = r.vec3();
-  for (uint8_t& byte : m.exact_rotation.bytes) byte = r.u8();
-  if (!m.exact_rotation.valid()) r.fail("manifold exact rotation is not a packed rotation");
+  const uint8_t cached = r.u8();
+  if (cached > 1) r.fail("bad manifold pair cache flag");
+  if (cached == 0) return;
+  PairCache c;
+  c.key = m.key();
+  c.orientation_a = read_quat(r);
+  c.orientation_b = read_quat(r);
+  c.relative_position = r.vec3();
+  c.exact_position = r.vec3();
+  for (uint8_t& byte : c.exact_rotation.bytes) byte = r.u8();
+  if (!c.exact_rotation.valid()) r.fail("manifold exact rotation is not a packed rotation");
+  if (cache != nullptr) cache->push_back(c);
 }
 
 // Everything a snapshot holds, decoded and checked before any of it reaches a world.
@@ -259,6 +275,7 @@ struct Decoded {
   BodyStore bodies;
   std::vector<uint32_t> slot_index, slot_generation, free_slots;
   std::vector<Manifold> contacts;
+  std::vector<PairCache> pair_cache;
 };
 
 void check_def(ByteReader& r, const WorldDef& d) {
@@ -293,16 +310,15 @@ void check_bodies(ByteReader& r, const Decoded& d) {
   }
 }
 
-void check_manifold(ByteReader& r, const Manifold& m, uint64_t key, std::size_t n,
-                    uint64_t previous_key, bool first) {
-  if (m.body_a >= n || m.body_b >= n || m.body_a == m.body_b) {
+// Before the values go into a Manifold, whose bit-fields would cut them short.
+void check_manifold(ByteReader& r, uint32_t body_a, uint32_t body_b, uint32_t point_count,
+                    uint64_t key, std::size_t n, uint64_t previous_key, bool first) {
+  if (body_a >= n || body_b >= n || body_a == body_b) {
     r.fail("manifold body index out of range");
   }
-  if (key != m.key()) r.fail("manifold key does not match");
+  if (key != detail::make_pair_key(body_a, body_b)) r.fail("manifold key does not match");
   if (!first && key <= previous_key) r.fail("manifolds are not sorted by key");
-  if (m.point_count > detail::kMaxManifoldPoints) {
-    r.fail("manifold point count out of range");
-  }
+  if (point_count > detail::kMaxManifoldPoints) r.fail("manifold point count out of range");
 }
 
 Decoded decode_snapshot(std::span<const uint8_t> bytes) {
@@ -346,18 +362,20 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
   check_bodies(r, d);
 
   constexpr std::size_t kManifoldBytes =
-      16 + 6 * sizeof(Real) + 1 + detail::kMaxManifoldPoints * (kPointReals * sizeof(Real) + 4);
+      16 + 6 * sizeof(Real) + 2 + detail::kMaxManifoldPoints * (kPointReals * sizeof(Real) + 4);
   d.contacts.resize(r.count(kManifoldBytes, "manifold"));
   for (std::size_t k = 0; k < d.contacts.size(); ++k) {
     Manifold& m = d.contacts[k];
     const uint64_t key = r.u64();
-    m.body_a = r.u32();
-    m.body_b = r.u32();
+    const uint32_t a = r.u32(), b = r.u32();
     m.normal = r.vec3();
-    m.point_count = r.u8();
+    const uint8_t point_count = r.u8();
+    check_manifold(r, a, b, point_count, key, n, k > 0 ? d.contacts[k - 1].key() : 0, k == 0);
+    m.body_a = a;
+    m.body_b = b;
+    m.point_count = point_count;
     for (ContactPoint& p : m.points) p = read_point(r);
-    read_friction(r, m);
-    check_manifold(r, m, key, n, k > 0 ? d.contacts[k - 1].key() : 0, k == 0);
+    read_friction(r, m, &d.pair_cache);
   }
   if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
   return d;
@@ -389,6 +407,7 @@ void commit(WorldState& s, Decoded&& d) {
   s.slot_generation = std::move(d.slot_generation);
   s.free_slots = std::move(d.free_slots);
   s.contacts = std::move(d.contacts);
+  s.pair_cache = std::move(d.pair_cache);
   s.separated.clear();
   s.contact_blocks = {};
   s.pairs.clear();
@@ -440,23 +459,28 @@ void read_rollback(ByteReader& r, WorldState& s) {
       r.u8();
     }
   }
-  const uint32_t count = r.count(8 + 1 + 6 * sizeof(Real) + 1, "manifold");
-  if constexpr (Apply) s.contacts.resize(count);
+  const uint32_t count = r.count(8 + 1 + 6 * sizeof(Real) + 2, "manifold");
+  if constexpr (Apply) {
+    s.contacts.resize(count);
+    s.pair_cache.clear();
+  }
   uint64_t previous_key = 0;
   for (uint32_t k = 0; k < count; ++k) {
     Manifold m;
     const uint64_t key = r.u64();
     const uint8_t swapped = r.u8();
-    m.body_a = detail::pair_first(key);
-    m.body_b = detail::pair_second(key);
+    uint32_t a = detail::pair_first(key), b = detail::pair_second(key);
     if (swapped > 1) r.fail("bad manifold order flag");
-    if (swapped) std::swap(m.body_a, m.body_b);
+    if (swapped) std::swap(a, b);
     m.normal = r.vec3();
-    m.point_count = r.u8();
-    check_manifold(r, m, key, n, previous_key, k == 0);
+    const uint8_t point_count = r.u8();
+    check_manifold(r, a, b, point_count, key, n, previous_key, k == 0);
+    m.body_a = a;
+    m.body_b = b;
+    m.point_count = point_count;
     previous_key = key;
     for (int p = 0; p < m.point_count; ++p) m.points[p] = read_point(r);
-    read_friction(r, m);
+    read_friction(r, m, Apply ? &s.pair_cache : nullptr);
     if constexpr (Apply) s.contacts[k] = m;
   }
   if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
@@ -511,6 +535,7 @@ std::vector<uint8_t> save_snapshot(const World& world) {
   for (uint32_t v : s.free_slots) w.u32(v);
 
   w.u32(uint32_t(s.contacts.size()));
+  auto cache = s.pair_cache.cbegin();
   for (const Manifold& m : s.contacts) {
     w.u64(m.key());
     w.u32(m.body_a);
@@ -518,7 +543,7 @@ std::vector<uint8_t> save_snapshot(const World& world) {
     w.vec3(m.normal);
     w.u8(uint8_t(m.point_count));
     for (const ContactPoint& p : m.points) write_point(w, p);
-    write_friction(w, m);
+    write_friction(w, m, cache, s.pair_cache.cend());
   }
   seal(out);
   return out;
@@ -554,13 +579,14 @@ void save_rollback(const World& world, std::vector<uint8_t>& out) {
     w.u8(b.flags[i]);
   }
   w.u32(uint32_t(s.contacts.size()));
+  auto cache = s.pair_cache.cbegin();
   for (const Manifold& m : s.contacts) {
     w.u64(m.key());
     w.u8(m.body_a > m.body_b ? 1 : 0);
     w.vec3(m.normal);
     w.u8(uint8_t(m.point_count));
     for (int p = 0; p < m.point_count; ++p) write_point(w, m.points[p]);
-    write_friction(w, m);
+    write_friction(w, m, cache, s.pair_cache.cend());
   }
   seal(out);
 }

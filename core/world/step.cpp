@@ -70,7 +70,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   collide_settings.dt = dt;
   w.scratch.begin_phase();
   collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.idle, w.contact_blocks, w.contacts,
-                w.separated, &w.scratch);
+                w.separated, w.pair_cache, &w.scratch);
   const auto t3 = clock::now();
 
   SolveSettings solve_settings;

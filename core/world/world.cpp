@@ -90,6 +90,8 @@ bool World::is_valid(ShapeId id) const {
 
 BodyId World::create_body(const BodyDef& def) {
   WorldState& s = *state_;
+  check_arg(s.bodies.size() < detail::kMaxBodyCount, "body",
+            "too many bodies: a world holds at most " + std::to_string(detail::kMaxBodyCount));
   check_arg(detail::shape_live(s, def.shape), "shape", "invalid or destroyed shape id");
   const detail::Shape& shape = s.shapes[def.shape.index];
   check_arg(finite(def.position), "position", "must be finite");
@@ -188,6 +190,19 @@ void World::destroy_body(BodyId id) {
     contacts[kept++] = m;
   }
   contacts.resize(kept);
+  // The body pair cache goes with the manifolds: the same keys, dropped and renamed alike (its
+  // poses are A's and B's, which keep their roles).
+  std::vector<detail::PairCache>& cache = s.pair_cache;
+  std::size_t kept_cache = 0;
+  for (detail::PairCache c : cache) {
+    uint32_t a = detail::pair_first(c.key), b = detail::pair_second(c.key);
+    if (a == i || b == i) continue;
+    if (a == last) a = i;
+    if (b == last) b = i;
+    c.key = detail::make_pair_key(a, b);
+    cache[kept_cache++] = c;
+  }
+  cache.resize(kept_cache);
   // The separation cache names bodies by index too; it is only a cache, so it starts over.
   s.separated.clear();
   if (resort) {
@@ -195,6 +210,8 @@ void World::destroy_body(BodyId id) {
     std::sort(
         contacts.begin(), contacts.end(),
         [](const detail::Manifold& x, const detail::Manifold& y) { return x.key() < y.key(); });
+    std::sort(cache.begin(), cache.end(),
+              [](const detail::PairCache& x, const detail::PairCache& y) { return x.key < y.key; });
   }
   // The sweep-and-prune's kept order is a permutation of 0..n-1 re-sorted every update (a full
   // sort when the count changes), and its output is canonical, so it needs no fix-up.

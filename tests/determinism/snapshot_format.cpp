@@ -114,9 +114,10 @@ TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
   const detail::WorldState& s = world.state();
   const std::size_t n = s.bodies.size();
   constexpr std::size_t kR = sizeof(Real);
-  // Per manifold: key and bodies, normal, point count, points, friction, the cache poses.
-  const std::size_t contacts =
-      4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (5 * kR + 4) + 14 * kR + 7);
+  // Per manifold: key and bodies, normal, point count, points, friction, whether it has cache
+  // poses; then the poses of those that have them.
+  const std::size_t contacts = 4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (5 * kR + 4) + 1) +
+                               s.pair_cache.size() * (14 * kR + 7);
   const std::size_t slots = 4 + 8 * s.slot_index.size() + 4 + 4 * s.free_slots.size();
   const std::size_t last_shape = bytes.size() - 8 - contacts - slots - 14 * n - 4;
   ASSERT_EQ(bytes[last_shape], s.bodies.shape[n - 1]);
@@ -128,11 +129,16 @@ TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
 }
 
 TEST(SnapshotFormat, ResealedBadPackedRotationIsRefused) {
-  // The last manifold ends the contents, and its packed exact rotation ends it: the byte before
-  // the checksum says which component was left out, 0..3.
+  // The last manifold ends the contents and, with its pair cache poses, its packed exact rotation
+  // ends it: the byte before the checksum says which component was left out, 0..3. Before the
+  // poses, a byte says whether they follow.
   World world = small_world();
-  ASSERT_FALSE(world.state().contacts.empty());
-  std::vector<uint8_t> bytes = save_snapshot(world);
+  const detail::WorldState& s = world.state();
+  ASSERT_FALSE(s.contacts.empty());
+  ASSERT_FALSE(s.pair_cache.empty());
+  ASSERT_EQ(s.pair_cache.back().key, s.contacts.back().key()) << "the last manifold has poses";
+  const std::vector<uint8_t> saved = save_snapshot(world);
+  std::vector<uint8_t> bytes = saved;
   uint8_t& dropped = bytes[bytes.size() - 9];
   ASSERT_LE(dropped, 3);
   dropped = 4;
@@ -140,6 +146,13 @@ TEST(SnapshotFormat, ResealedBadPackedRotationIsRefused) {
   World target;
   EXPECT_NE(error_of(target, bytes).find("manifold exact rotation is not a packed rotation"),
             std::string::npos)
+      << error_of(target, bytes);
+  bytes = saved;
+  uint8_t& has_poses = bytes[bytes.size() - 8 - (14 * sizeof(Real) + 7) - 1];
+  ASSERT_EQ(has_poses, 1);
+  has_poses = 2;
+  reseal(bytes);
+  EXPECT_NE(error_of(target, bytes).find("bad manifold pair cache flag"), std::string::npos)
       << error_of(target, bytes);
 }
 
@@ -153,22 +166,26 @@ TEST(SnapshotFormat, SavesEveryColumnOfTheBodyStore) {
 }
 
 TEST(SnapshotFormat, SavesEveryFieldOfAManifold) {
-  // Tripwire: a field added to ContactPoint or Manifold must be saved in snapshot.cpp (and in
-  // rollback states); these sizes are those of the fields saved today, padded as the compiler
-  // pads them.
+  // Tripwire: a field added to ContactPoint, Manifold or PairCache must be saved in snapshot.cpp
+  // (and in rollback states); these sizes are those of the fields saved today, padded as the
+  // compiler pads them.
   constexpr auto padded = [](std::size_t bytes, std::size_t align) {
     return (bytes + align - 1) / align * align;
   };
   constexpr std::size_t kR = sizeof(Real);
   using detail::ContactPoint;
   using detail::Manifold;
+  using detail::PairCache;
   EXPECT_EQ(sizeof(ContactPoint), padded(5 * kR + 4, alignof(ContactPoint)));
-  // The cache's two rotations, two offsets and packed rotation, the bodies, normal and point
-  // count, the points, the friction impulses.
+  // The bodies and point count (one word with body b), the normal, the points, the friction
+  // impulses.
   EXPECT_EQ(sizeof(Manifold),
-            padded(2 * sizeof(Quat) + 6 * kR + sizeof(detail::PackedRotation) + 4 + 4 + 3 * kR + 1 +
-                       detail::kMaxManifoldPoints * sizeof(ContactPoint) + 3 * kR,
+            padded(4 + 4 + 3 * kR + detail::kMaxManifoldPoints * sizeof(ContactPoint) + 3 * kR,
                    alignof(Manifold)));
+  // The key, two rotations, two offsets and the packed rotation.
+  EXPECT_EQ(
+      sizeof(PairCache),
+      padded(8 + 2 * sizeof(Quat) + 6 * kR + sizeof(detail::PackedRotation), alignof(PairCache)));
 }
 
 TEST(SnapshotFormat, RestoresIdsAndTheirGenerations) {

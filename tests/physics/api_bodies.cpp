@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "core/world/world_state.hpp"
 #include "elan/elan.hpp"
 
 namespace elan {
@@ -107,6 +108,12 @@ TEST(WorldApi, DestroyingATouchingBodyDropsItsContactsWithEndEvents) {
     EXPECT_TRUE(e.body_a == low || e.body_b == low);
     EXPECT_TRUE(e.body_a == floor || e.body_b == floor || e.body_a == high || e.body_b == high);
   }
+  // The body pair cache went with the manifolds: only floor-other is left, renamed with `other`,
+  // which took `low`'s index (boxes only, so every manifold keeps its poses).
+  const detail::WorldState& s = w.state();
+  ASSERT_EQ(s.contacts.size(), 1u);
+  ASSERT_EQ(s.pair_cache.size(), 1u);
+  EXPECT_EQ(s.pair_cache[0].key, s.contacts[0].key());
   // `high` now falls 1 m onto the floor; `other` keeps resting on it; nothing refers to `low`.
   for (int k = 0; k < 60; ++k) w.step(kDt);
   EXPECT_NEAR(w.position(high).y(), 0.5, 0.02);

@@ -62,8 +62,9 @@ std::vector<Manifold> run(const Scene& s, std::vector<uint64_t> pairs,
   CollideScratch scratch;
   std::vector<Manifold> out = previous;
   std::vector<SeparatedPair> apart;
+  std::vector<PairCache> poses;
   tbb::task_arena(threads).execute([&] {
-    collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, scratch, out, apart);
+    collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, scratch, out, apart, poses);
   });
   return out;
 }

@@ -83,11 +83,14 @@ TEST(CollidePairs, BitIdenticalUnderOneAndTwoThreads) {
   CollideSettings settings;
   CollideScratch slots1, slots2;
   std::vector<SeparatedPair> apart1, apart2;
+  std::vector<PairCache> poses1, poses2;
   std::vector<Manifold> out1, out2;
-  tbb::task_arena(1).execute(
-      [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots1, out1, apart1); });
-  tbb::task_arena(2).execute(
-      [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots2, out2, apart2); });
+  tbb::task_arena(1).execute([&] {
+    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots1, out1, apart1, poses1);
+  });
+  tbb::task_arena(2).execute([&] {
+    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots2, out2, apart2, poses2);
+  });
   ASSERT_GT(out1.size(), 50u);
   expect_identical(out1, out2);
   // Keys sorted and unique; static ground is always B; the normal is unit.
@@ -105,10 +108,12 @@ TEST(CollidePairs, BitIdenticalUnderOneAndTwoThreads) {
       m.points[k].normal_impulse = Real(m.points[k].feature_id % 97);
   }
   out2 = out1;
-  tbb::task_arena(1).execute(
-      [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots1, out1, apart1); });
-  tbb::task_arena(2).execute(
-      [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots2, out2, apart2); });
+  tbb::task_arena(1).execute([&] {
+    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots1, out1, apart1, poses1);
+  });
+  tbb::task_arena(2).execute([&] {
+    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots2, out2, apart2, poses2);
+  });
   expect_identical(out1, out2);
 }
 
@@ -128,17 +133,18 @@ TEST(CollidePairs, CarriedManifoldsAgreeWithTheExactTest) {
   CollideSettings settings;
   CollideScratch slots;
   std::vector<SeparatedPair> apart;
+  std::vector<PairCache> carried_poses, exact_poses;
   std::vector<Manifold> carried, exact;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, carried, apart);
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, carried, apart, carried_poses);
   // 0.047 mm per move for every other body: four moves stay inside the cache's 1 mm.
   const Vec3 move(Real(3e-5), Real(-3e-5), Real(2e-5));
   for (int k = 0; k < 4; ++k) {
     for (uint32_t b = 1; b < p.bodies.size(); b += 2) {
       p.bodies.set_position(b, p.bodies.position(b) + move);
     }
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, carried, apart);
+    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, carried, apart, carried_poses);
   }
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, exact, apart);
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, exact, apart, exact_poses);
   std::size_t j = 0;
   int compared = 0;
   for (const Manifold& m : carried) {
@@ -156,8 +162,9 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
   CollideSettings settings;
   CollideScratch slots;
   std::vector<SeparatedPair> apart;
+  std::vector<PairCache> poses;
   std::vector<Manifold> first, second;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, first, apart);
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, first, apart, poses);
   int points = 0;
   for (Manifold& m : first) {
     for (int k = 0; k < m.point_count; ++k) {
@@ -175,7 +182,7 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
     p.bodies.set_position(b, p.bodies.position(b) + Vec3(Real(1e-4), 0, Real(-1e-4)));
   }
   second = first;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, second, apart);
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, second, apart, poses);
   std::size_t j = 0;
   int matched = 0, total = 0;
   for (const Manifold& m : second) {
@@ -229,8 +236,9 @@ TEST(CollidePairs, InPlaceUpdateGivesEveryTouchingPairWhateverTheListHeld) {
   CollideSettings settings;
   CollideScratch slots;
   std::vector<SeparatedPair> apart;
+  std::vector<PairCache> poses;
   std::vector<Manifold> fresh;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, fresh, apart);
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, fresh, apart, poses);
   ASSERT_GT(p.pairs.size(), 8 * 64u) << "enough blocks of pairs to shift across";
   std::vector<uint64_t> stale;
   for (uint32_t i = 1; i < p.bodies.size(); ++i) {
@@ -259,11 +267,15 @@ TEST(CollidePairs, InPlaceUpdateGivesEveryTouchingPairWhateverTheListHeld) {
       while (s < stale.size() && stale[s] < fresh[i].key()) ++s;
       if (!drop_run || rng() % 8 == 0) start.push_back(fresh[i]);
     }
+    // The poses of fresh's pairs, some now without a manifold, which collide_pairs must drop.
     std::vector<Manifold> one = start, two = start;
-    tbb::task_arena(1).execute(
-        [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, one, apart); });
-    tbb::task_arena(2).execute(
-        [&] { collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, two, apart); });
+    std::vector<PairCache> poses_one = poses, poses_two = poses;
+    tbb::task_arena(1).execute([&] {
+      collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, one, apart, poses_one);
+    });
+    tbb::task_arena(2).execute([&] {
+      collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, two, apart, poses_two);
+    });
     ASSERT_EQ(one.size(), fresh.size()) << "trial " << trial;
     for (std::size_t i = 0; i < one.size(); ++i) {
       ASSERT_EQ(one[i].key(), fresh[i].key()) << "trial " << trial << ", manifold " << i;
@@ -282,14 +294,16 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   CollideScratch slots_cached, slots_exact;
   std::vector<Manifold> cached, exact;
   std::vector<SeparatedPair> apart, none;
+  std::vector<PairCache> cached_poses, exact_poses;
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1, 1);
   int kept = 0, closed_in = 0, closed_form_pairs = 0;
   std::vector<SeparatedPair> before;
   for (int step = 0; step < 24; ++step) {
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots_cached, cached, apart);
+    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots_cached, cached, apart,
+                  cached_poses);
     none.clear();
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots_exact, exact, none);
+    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots_exact, exact, none, exact_poses);
     expect_identical(cached, exact);
     if (HasFatalFailure()) return;
     for (const Manifold& m : cached) {
@@ -337,8 +351,9 @@ TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
   CollideSettings settings;
   CollideScratch slots;
   std::vector<SeparatedPair> apart;
+  std::vector<PairCache> poses;
   std::vector<Manifold> list;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, list, apart);
+  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, list, apart, poses);
   ASSERT_GT(list.size(), 100u);
   EXPECT_TRUE(slots.ended.empty());
   ASSERT_EQ(slots.began.size(), list.size());
@@ -354,7 +369,8 @@ TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
     p.bodies.set_position(b, p.bodies.position(b) + Vec3(Real(0.15), Real(-0.1), Real(0.1)));
   }
   tbb::task_arena arena(2);
-  arena.execute([&] { collide_pairs(kept, p.bodies, p.shapes, settings, {}, slots, list, apart); });
+  arena.execute(
+      [&] { collide_pairs(kept, p.bodies, p.shapes, settings, {}, slots, list, apart, poses); });
   std::vector<ContactRecord> ended;
   std::vector<uint64_t> began;
   std::size_t j = 0;
@@ -375,6 +391,81 @@ TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
     EXPECT_EQ(slots.ended[i].body_b, ended[i].body_b);
   }
   EXPECT_EQ(slots.began, began);
+}
+
+// The body pair cache holds the poses of exactly the manifolds that may reuse their points
+// (neither body round), in key order: new ones get them, ended ones lose them, and carried ones
+// (two idle bodies, no pair this step) keep theirs unchanged. Small moves between steps make
+// pairs reuse their points, so the poses are updated in place as well as replaced.
+TEST(CollidePairs, KeepsThePosesOfEveryManifoldThatMayReuseThemAndNoOthers) {
+  Pile p = make_pile(300, 23);
+  CollideSettings settings;
+  CollideScratch slots;
+  std::vector<SeparatedPair> apart;
+  std::vector<PairCache> poses;
+  std::vector<Manifold> list;
+  auto round = [&](uint32_t body) {
+    const ShapeType t = p.shapes[p.bodies.shape[body]].type;
+    return t == ShapeType::Sphere || t == ShapeType::Capsule || t == ShapeType::Cylinder;
+  };
+  // Bodies 1-60 fall asleep after the first step: their pairs with each other and the ground
+  // leave the pair list, as the broadphase leaves them out, and their manifolds are carried.
+  std::vector<uint8_t> idle(p.bodies.size(), 0);
+  idle[0] = 1;
+  std::vector<PairCache> carried_before;
+  int reused = 0, carried = 0;
+  for (int step = 0; step < 6; ++step) {
+    std::vector<uint64_t> pairs;
+    for (uint64_t key : p.pairs) {
+      if (!(step > 0 && idle[pair_first(key)] && idle[pair_second(key)])) pairs.push_back(key);
+    }
+    tbb::task_arena(2).execute([&] {
+      collide_pairs(pairs, p.bodies, p.shapes, settings, idle, slots, list, apart, poses);
+    });
+    std::vector<uint64_t> expected;
+    for (const Manifold& m : list) {
+      if (!round(m.body_a) && !round(m.body_b)) expected.push_back(m.key());
+    }
+    std::vector<uint64_t> keys;
+    for (const PairCache& c : poses) keys.push_back(c.key);
+    ASSERT_EQ(keys, expected) << "step " << step;
+    for (const PairCache& c : poses) {
+      reused += std::memcmp(c.exact_position.data(), c.relative_position.data(), sizeof(Vec3)) != 0;
+      for (const PairCache& b : carried_before) {
+        if (b.key != c.key) continue;
+        // Field by field: the padding byte need not be copied.
+        const bool same =
+            std::memcmp(b.orientation_a.coeffs().data(), c.orientation_a.coeffs().data(),
+                        4 * sizeof(Real)) == 0 &&
+            std::memcmp(b.orientation_b.coeffs().data(), c.orientation_b.coeffs().data(),
+                        4 * sizeof(Real)) == 0 &&
+            std::memcmp(b.relative_position.data(), c.relative_position.data(), sizeof(Vec3)) ==
+                0 &&
+            std::memcmp(b.exact_position.data(), c.exact_position.data(), sizeof(Vec3)) == 0 &&
+            std::memcmp(b.exact_rotation.bytes, c.exact_rotation.bytes, 7) == 0;
+        EXPECT_TRUE(same) << "carried poses changed";
+        ++carried;
+      }
+    }
+    if (step == 0) {
+      for (uint32_t b = 1; b <= 60; ++b) idle[b] = 1;
+      for (const PairCache& c : poses) {
+        if (idle[pair_first(c.key)] && idle[pair_second(c.key)]) carried_before.push_back(c);
+      }
+    }
+    // The awake bodies move 0.1 mm and turn 0.1 degree, inside the cache's tolerance; every
+    // fourth moves 5 cm, outside it.
+    for (uint32_t b = 61; b < p.bodies.size(); ++b) {
+      const Real d = b % 4 == 0 ? Real(0.05) : Real(1e-4);
+      p.bodies.set_position(b, p.bodies.position(b) + Vec3(d, -d, 0));
+      const Quat turn(Eigen::AngleAxis<Real>(Real(0.1 * 3.14159265 / 180), Vec3::UnitY()));
+      p.bodies.set_orientation(b, (turn * p.bodies.orientation(b)).normalized());
+    }
+  }
+  EXPECT_GT(poses.size(), 50u);
+  EXPECT_LT(poses.size(), list.size()) << "the pile has round bodies, which keep no poses";
+  EXPECT_GT(reused, 100) << "poses updated by a reuse";
+  EXPECT_GT(carried, 10) << "poses carried with their manifolds";
 }
 
 }  // namespace narrowphase_collide_pairs_test

@@ -14,7 +14,7 @@
 namespace elan {
 
 /// Format version written by save_snapshot and save_rollback; other versions are refused.
-inline constexpr uint32_t kSnapshotVersion = 5;
+inline constexpr uint32_t kSnapshotVersion = 6;
 
 /// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built
 /// (hull vertices, faces and edges in the principal frame, frames, mass properties), every body
@@ -36,12 +36,14 @@ inline constexpr uint32_t kSnapshotVersion = 5;
 ///     | u32 slots m, m x u32 slot index, m x u32 generation | u32 f, f x u32 free slots
 ///     | u32 manifolds, each: u64 key, u32 body a, u32 body b, 3R normal, u8 point count,
 ///       4 points x (3R anchor a, R separation, u32 feature id, R normal impulse),
-///       2R tangent impulses, R twist impulse, 4R orientation a,
+///       2R tangent impulses, R twist impulse, u8 has poses (1 for a manifold that may reuse
+///       its points: neither body a sphere, capsule or cylinder), then if 1: 4R orientation a,
 ///       4R orientation b (w x y z), 3R relative position, 3R exact position, 7-byte exact
 ///       rotation (3 x i16 components and u8 index of the fourth, the largest, which is left
 ///       out: core/base/packed_rotation.hpp)
 ///       (version 2 added the poses, 3 the exact ones; 4 dropped anchor b, derived from
-///       a, and the max normal impulse, which nothing read; 5 packed the exact rotation)
+///       a, and the max normal impulse, which nothing read; 5 packed the exact rotation; 6
+///       kept the poses only where they are read)
 ///     | u64 checksum: 64-bit FNV-1a over 8-byte little-endian words of every byte before it
 ///       (the tail zero-padded), so any single changed byte changes it.
 ///
@@ -74,7 +76,7 @@ World load_snapshot(std::span<const uint8_t> bytes);
 /// in index order: px py pz qw qx qy qz vx vy vz wx wy wz fx fy fz tx ty tz sleep_time (R each),
 /// u8 flags | u32 manifolds, each: u64 key, u8 (1 when body A is the higher index), 3R normal,
 /// u8 point count, per point: 3R anchor a, R separation, u32 feature id,
-/// R normal impulse; then 2R tangent impulses, R twist impulse,
+/// R normal impulse; then 2R tangent impulses, R twist impulse, u8 has poses and, if 1,
 /// 4R orientation a, 4R orientation b, 3R relative position, 3R exact position, 7-byte exact
 /// rotation (as in the snapshot) | u64 checksum as above.
 std::vector<uint8_t> save_rollback(const World& world);
