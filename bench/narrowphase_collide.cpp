@@ -134,18 +134,20 @@ void BM_CollidePairsPile(benchmark::State& state) {
   tbb::task_arena arena(int(state.range(0)));
   CollideSettings settings;
   CollideScratch slots;
-  std::vector<Manifold> out;
+  std::vector<ManifoldHead> out;
+  std::vector<ManifoldTail> tails;
   std::vector<SeparatedPair> apart;
   std::vector<PairCache> poses;
-  arena.execute(
-      [&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, slots, out, apart, poses); });
+  arena.execute([&] {
+    collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, slots, out, tails, apart, poses);
+  });
   for (auto _ : state) {
     // The poses stay, so each pass updates the list the pass before left, as a step would. The
     // separation cache starts empty each pass: with poses that stay it would skip every pair
     // apart, and this measures the exact tests.
     apart.clear();
     arena.execute([&] {
-      collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, slots, out, apart, poses);
+      collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, slots, out, tails, apart, poses);
     });
     benchmark::ClobberMemory();
   }

@@ -86,7 +86,8 @@ struct ListUpdate {
 };
 
 struct CollideScratch {
-  ListUpdate<Manifold> contacts;
+  ListUpdate<ManifoldHead> contacts;
+  ListUpdate<ManifoldTail> tails;
   ListUpdate<SeparatedPair> separated;
   ListUpdate<PairCache> cached;
   // Out: what changed in the contact list, each in key order. `ended`: the manifolds that were
@@ -98,7 +99,8 @@ struct CollideScratch {
   std::unique_ptr<StepScratch> own;  // for the new-key buffers when the caller gives no scratch
 };
 
-// The stage. `contacts` holds last step's manifolds, sorted by key, and receives this step's. For
+// The stage. `contacts` holds last step's manifolds, sorted by key, and receives this step's, each
+// as its head; `tails` holds, sorted by key too, the points past the first of those with more. For
 // each pair of `pairs` (sorted keys): key, body_a and body_b (the static or kinematic body, if
 // any, as B; otherwise the lower index as A), and the manifold from collide() with speculative
 // distance settings.speculative_distance plus the pair's approach over the step (|relative
@@ -121,8 +123,8 @@ struct CollideScratch {
 //
 // Carrying: a manifold whose two bodies are both flagged in `idle` (per body; the world flags
 // static and sleeping bodies) and whose key has no touching manifold this step is kept as it is,
-// so a sleeping island keeps its contacts and wakes warm-started (the broadphase does not report
-// pairs of two idle bodies). An empty `idle` carries nothing.
+// with its tail and poses, so a sleeping island keeps its contacts and wakes warm-started (the
+// broadphase does not report pairs of two idle bodies). An empty `idle` carries nothing.
 //
 // The lists are updated in place, so no second copy of any is ever held (Box2D v3 and Jolt
 // keep their contacts in place too). Parallel over fixed blocks of pairs: block b owns the keys
@@ -136,8 +138,9 @@ struct CollideScratch {
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,
-                   std::vector<Manifold>& contacts, std::vector<SeparatedPair>& separated,
-                   std::vector<PairCache>& cached, StepScratch* step_scratch = nullptr);
+                   std::vector<ManifoldHead>& contacts, std::vector<ManifoldTail>& tails,
+                   std::vector<SeparatedPair>& separated, std::vector<PairCache>& cached,
+                   StepScratch* step_scratch = nullptr);
 
 // Time of impact by conservative advancement on the GJK distance: the earliest t in [0, 1] at
 // which A moving linearly from xa0 to xa1 (rotation slerped) comes within `target` of B moving

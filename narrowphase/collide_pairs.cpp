@@ -4,6 +4,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -141,7 +142,7 @@ Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& 
   return s.kind == Separation::Kind::FaceOfB ? in_b : std::min(in_a, in_b);
 }
 
-uint64_t list_key(const Manifold& m) {
+uint64_t list_key(const ManifoldHead& m) {
   return m.key();
 }
 uint64_t list_key(const SeparatedPair& s) {
@@ -150,17 +151,24 @@ uint64_t list_key(const SeparatedPair& s) {
 uint64_t list_key(const PairCache& c) {
   return c.key;
 }
+uint64_t list_key(const ManifoldTail& t) {
+  return t.key;
+}
 
-bool ended(const Manifold& m) {
+bool ended(const ManifoldHead& m) {
   return m.point_count == 0;
 }
 bool ended(const SeparatedPair& s) {
   return s.kind == Separation::Kind::Unknown;
 }
-// No pair has this key (its first index is the lower).
-constexpr uint64_t kEndedCacheKey = ~uint64_t{0};
+// The lists kept beside the manifolds' (their tails, their poses) mark an entry that ended with
+// a key no pair has (its first index is the lower).
+constexpr uint64_t kEndedKey = ~uint64_t{0};
 bool ended(const PairCache& c) {
-  return c.key == kEndedCacheKey;
+  return c.key == kEndedKey;
+}
+bool ended(const ManifoldTail& t) {
+  return t.key == kEndedKey;
 }
 
 // Before the blocks run: per-thread buffers emptied, and each block's range of the list found
@@ -283,15 +291,17 @@ template <class T>
 std::size_t ListUpdate<T>::heap_bytes() const {
   return detail::heap_bytes(added);
 }
-template struct ListUpdate<Manifold>;
+template struct ListUpdate<ManifoldHead>;
+template struct ListUpdate<ManifoldTail>;
 template struct ListUpdate<SeparatedPair>;
 template struct ListUpdate<PairCache>;
 
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,
-                   std::vector<Manifold>& contacts, std::vector<SeparatedPair>& separated,
-                   std::vector<PairCache>& cached, StepScratch* step_scratch) {
+                   std::vector<ManifoldHead>& contacts, std::vector<ManifoldTail>& tails,
+                   std::vector<SeparatedPair>& separated, std::vector<PairCache>& cached,
+                   StepScratch* step_scratch) {
   if (step_scratch == nullptr) {
     if (!scratch.own) scratch.own = std::make_unique<StepScratch>();
     step_scratch = scratch.own.get();
@@ -302,10 +312,12 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   const std::size_t parts = std::max<std::size_t>(block_count(n, kPairGrain), 1);
   // One buffer of new keys per thread of the arena, not per block: a block's new entries are
   // one run in its thread's buffer, so only a step's new keys are held, not each block's most.
-  ListUpdate<Manifold>& mu = scratch.contacts;
+  ListUpdate<ManifoldHead>& mu = scratch.contacts;
+  ListUpdate<ManifoldTail>& tu = scratch.tails;
   ListUpdate<SeparatedPair>& su = scratch.separated;
   ListUpdate<PairCache>& cu = scratch.cached;
   begin_update(mu, contacts, pairs, parts, *step_scratch);
+  begin_update(tu, tails, pairs, parts, *step_scratch);
   begin_update(su, separated, pairs, parts, *step_scratch);
   begin_update(cu, cached, pairs, parts, *step_scratch);
   auto carried = [&](uint64_t key) {
@@ -319,49 +331,57 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   // most one of the lists: touching or apart.
   for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
     const std::size_t slot = thread_slot();
-    ScratchVector<Manifold>& added = mu.added[slot];
+    ScratchVector<ManifoldHead>& added = mu.added[slot];
+    ScratchVector<ManifoldTail>& added_tail = tu.added[slot];
     ScratchVector<SeparatedPair>& added_apart = su.added[slot];
     ScratchVector<PairCache>& added_cache = cu.added[slot];
-    const std::size_t first_added = added.size(), first_apart = added_apart.size(),
-                      first_cache = added_cache.size();
+    const std::size_t first_added = added.size(), first_tail = added_tail.size(),
+                      first_apart = added_apart.size(), first_cache = added_cache.size();
     const std::size_t begin = std::min(n, part * kPairGrain);
     const std::size_t end = std::min(n, begin + kPairGrain);
-    Manifold* prev_it = contacts.data() + mu.start[part];
-    Manifold* const prev_end = contacts.data() + mu.start[part + 1];
+    ManifoldHead* prev_it = contacts.data() + mu.start[part];
+    ManifoldHead* const prev_end = contacts.data() + mu.start[part + 1];
+    ManifoldTail* tail_it = tails.data() + tu.start[part];
+    ManifoldTail* const tail_end = tails.data() + tu.start[part + 1];
     SeparatedPair* apart_it = separated.data() + su.start[part];
     SeparatedPair* const apart_end = separated.data() + su.start[part + 1];
     PairCache* cache_it = cached.data() + cu.start[part];
     PairCache* const cache_end = cached.data() + cu.start[part + 1];
-    std::size_t dead = 0, dead_apart = 0, dead_cache = 0;
+    std::size_t dead = 0, dead_tail = 0, dead_apart = 0, dead_cache = 0;
     PolyhedronCache polyhedron_cache;
-    // A manifold and its cached poses are carried together: a manifold with points is in the
-    // list with its key's poses if it may reuse them.
-    auto keep_if_carried = [&](Manifold& old) {
+    // A manifold, its tail and its cached poses are carried together: a manifold with points is
+    // in the list with its key's tail if it has more than one and its poses if it may reuse them.
+    auto keep_if_carried = [&](ManifoldHead& old) {
       if (old.point_count == 0 || !carried(old.key())) {
         old.point_count = 0;
         ++dead;
       }
     };
-    auto end_cache = [&](PairCache& c) {
-      c.key = kEndedCacheKey;
-      ++dead_cache;
+    auto end_side = [&](auto& entry, std::size_t& dead_count) {
+      entry.key = kEndedKey;
+      ++dead_count;
+    };
+    auto keep_tail_if_carried = [&](ManifoldTail& t) {
+      if (!carried(t.key)) end_side(t, dead_tail);
     };
     auto keep_cache_if_carried = [&](PairCache& c) {
-      if (!carried(c.key)) end_cache(c);
+      if (!carried(c.key)) end_side(c, dead_cache);
     };
     auto end_apart = [&](SeparatedPair& s) {
       s.kind = Separation::Kind::Unknown;
       ++dead_apart;
     };
-    Manifold m;
+    Manifold m, old;
     Separation separation;
     for (std::size_t i = begin; i < end; ++i) {
       const uint64_t key = pairs[i];
-      // perf: the manifolds two ahead, for writing. The solver stored their impulses by half, so
-      // at 2 threads about half were last written by the other core; fetched only when read,
-      // each of their three lines cost a cross-core round trip on the chain of this loop.
+      // perf: the manifolds and tails two ahead, for writing. The solver stored their impulses by
+      // half, so at 2 threads about half were last written by the other core; fetched only when
+      // read, each of their lines cost a cross-core round trip on the chain of this loop.
       if (prev_end - prev_it > 2) prefetch<true>(prev_it[2]);
+      if (tail_end - tail_it > 2) prefetch<true>(tail_it[2]);
       for (; prev_it != prev_end && prev_it->key() < key; ++prev_it) keep_if_carried(*prev_it);
+      for (; tail_it != tail_end && tail_it->key < key; ++tail_it) keep_tail_if_carried(*tail_it);
       for (; apart_it != apart_end && apart_it->key < key; ++apart_it) end_apart(*apart_it);
       for (; cache_it != cache_end && cache_it->key < key; ++cache_it) {
         keep_cache_if_carried(*cache_it);
@@ -377,14 +397,35 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       const Transform xa{bodies.position(a), bodies.orientation(a)};
       const Transform xb{bodies.position(b), bodies.orientation(b)};
       const Vec3 relative = xa.rotation.conjugate() * (xb.position - xa.position);
-      Manifold* same_key = (prev_it != prev_end && prev_it->key() == key) ? prev_it++ : nullptr;
-      const Manifold* old = (same_key != nullptr && same_key->body_a == a) ? same_key : nullptr;
+      ManifoldHead* same_key = (prev_it != prev_end && prev_it->key() == key) ? prev_it++ : nullptr;
+      ManifoldTail* tail = (tail_it != tail_end && tail_it->key == key) ? tail_it++ : nullptr;
+      // Last step's manifold of the pair, whole, if A and B are as they were.
+      const bool has_old = same_key != nullptr && same_key->body_a == a;
+      assert(same_key == nullptr || (same_key->point_count > 1) == (tail != nullptr));
+      if (has_old) load_whole(*same_key, tail, old);
+      // This step's manifold, `m`, in the lists.
+      auto store = [&] {
+        if (same_key == nullptr) {
+          added.push_back(head_of(m));
+        } else {
+          store_head(m, *same_key);
+        }
+        if (m.point_count > 1) {
+          if (tail == nullptr) {
+            added_tail.push_back(tail_of(m));
+          } else {
+            store_tail(m, *tail);
+          }
+        } else if (tail != nullptr) {
+          end_side(*tail, dead_tail);
+        }
+      };
       SeparatedPair* apart = (apart_it != apart_end && apart_it->key == key) ? apart_it++ : nullptr;
       PairCache* cache = (cache_it != cache_end && cache_it->key == key) ? cache_it++ : nullptr;
       const bool cacheable = !rolls(shape_a) && !rolls(shape_b);
-      if (old != nullptr && cache != nullptr && cacheable &&
-          reuse_manifold(*old, *cache, xa, xb, relative, m)) {
-        *same_key = m;
+      if (has_old && old.point_count > 0 && cache != nullptr && cacheable &&
+          reuse_manifold(old, *cache, xa, xb, relative, m)) {
+        store();
         continue;
       }
       const Real approach =
@@ -403,6 +444,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation);
       if (m.point_count == 0) {
         if (same_key != nullptr) keep_if_carried(*same_key);
+        if (tail != nullptr) keep_tail_if_carried(*tail);
         if (cache != nullptr) keep_cache_if_carried(*cache);
         // A closed-form test costs about what checking a cached separation does, so its pairs
         // keep none: on pile10k the separated list went from 49k pairs to 40k, 40 bytes each.
@@ -428,7 +470,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       for (int k = 0; k < m.point_count; ++k) m.points[k].normal_impulse = 0;
       m.tangent_impulse[0] = m.tangent_impulse[1] = 0;
       m.twist_impulse = 0;
-      if (old != nullptr) warm_start(*old, m);
+      if (has_old) warm_start(old, m);
       if (cacheable) {
         PairCache c;
         c.key = key;
@@ -443,19 +485,18 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
           added_cache.push_back(c);
         }
       } else if (cache != nullptr) {
-        end_cache(*cache);
+        end_side(*cache, dead_cache);
       }
-      if (same_key == nullptr) {
-        added.push_back(m);
-      } else {
-        *same_key = m;
-      }
+      store();
     }
     for (; prev_it != prev_end; ++prev_it) keep_if_carried(*prev_it);
+    for (; tail_it != tail_end; ++tail_it) keep_tail_if_carried(*tail_it);
     for (; apart_it != apart_end; ++apart_it) end_apart(*apart_it);
     for (; cache_it != cache_end; ++cache_it) keep_cache_if_carried(*cache_it);
     mu.live[part] = mu.start[part + 1] - mu.start[part] - dead;
     mu.added_run[part] = {uint32_t(slot), first_added, added.size() - first_added};
+    tu.live[part] = tu.start[part + 1] - tu.start[part] - dead_tail;
+    tu.added_run[part] = {uint32_t(slot), first_tail, added_tail.size() - first_tail};
     su.live[part] = su.start[part + 1] - su.start[part] - dead_apart;
     su.added_run[part] = {uint32_t(slot), first_apart, added_apart.size() - first_apart};
     cu.live[part] = cu.start[part + 1] - cu.start[part] - dead_cache;
@@ -472,16 +513,18 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       }
     }
     const auto& run = mu.added_run[p];
-    const ScratchVector<Manifold>& added = mu.added[run.thread];
+    const ScratchVector<ManifoldHead>& added = mu.added[run.thread];
     for (std::size_t i = run.first; i < run.first + run.count; ++i) {
       scratch.began.push_back(added[i].key());
     }
   }
   // determinism: the lists are joined apart (disjoint data), each in part order.
   tbb::parallel_invoke([&] { join(mu, contacts, parts, *step_scratch); },
+                       [&] { join(tu, tails, parts, *step_scratch); },
                        [&] { join(su, separated, parts, *step_scratch); },
                        [&] { join(cu, cached, parts, *step_scratch); });
   end_update(mu);
+  end_update(tu);
   end_update(su);
   end_update(cu);
   trim_spike(scratch.ended, scratch.ended_trim);

@@ -111,8 +111,8 @@ void set_friction_mass(ContactBundle& c, const WideMass& ma, const WideMass& mb)
 }  // namespace
 
 void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
-                    std::span<const Manifold> manifolds, std::span<const uint32_t> packet_of,
-                    uint32_t bundle) {
+                    std::span<const ManifoldHead> manifolds, std::span<const ManifoldTail> tails,
+                    std::span<const uint32_t> packet_of, uint32_t bundle) {
   ContactBundle& c = ctx.bundles[bundle];
   const std::span<const uint32_t> lanes = ctx.manifolds_of(bundle);
   WideContactPoint* rows = ctx.rows_of(bundle);
@@ -136,7 +136,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
       c.packet_a[l] = c.packet_b[l] = 0;
       continue;
     }
-    const Manifold& m = manifolds[lanes[l]];
+    const ManifoldHead& m = manifolds[lanes[l]];
     const uint32_t a = m.body_a, b = m.body_b;
     const uint32_t packet_a = packet_of[a], packet_b = packet_of[b];
     c.packet_a[l] = packet_a;
@@ -175,11 +175,12 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     p.separation = p.normal_impulse = Wide{};
     // Arms of lanes without this point, and of unused lanes, stay zero.
     for (int l = 0; l < lane_count; ++l) {
-      const Manifold& m = manifolds[lanes[l]];
+      const ManifoldHead& m = manifolds[lanes[l]];
       if (k >= m.point_count) continue;
-      set_lane(ra[k], l, m.points[k].anchor_a);
-      p.separation[l] = m.points[k].separation;
-      p.normal_impulse[l] = m.points[k].normal_impulse;
+      const ContactPoint& q = point_of(m, tails, k);
+      set_lane(ra[k], l, q.anchor_a);
+      p.separation[l] = q.separation;
+      p.normal_impulse[l] = q.normal_impulse;
     }
     // Lanes with fewer points leave this row empty: zero arms and zero mass apply no impulse.
     const auto used = point_count > splat(Real(k));
@@ -214,7 +215,8 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
 }
 
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
-                      std::span<const Manifold> manifolds, uint32_t begin, uint32_t end) {
+                      std::span<const ManifoldHead> manifolds, std::span<const ManifoldTail> tails,
+                      uint32_t begin, uint32_t end) {
   const Wide zero{};
   const Wide one = splat(1);
   const Wide half = splat(Real(0.5));
@@ -253,11 +255,11 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     const std::span<const uint32_t> lanes = ctx.manifolds_of(i);
     for (int l = 0; l < kLanes; ++l) {
       if (!refresh[l]) continue;  // unused lanes have no mass, so they are never refreshed
-      const Manifold& m = manifolds[lanes[l]];
+      const ManifoldHead& m = manifolds[lanes[l]];
       set_lane(start_b, l, bodies.position(m.body_b) - bodies.position(m.body_a));
       count[l] = Real(m.point_count);
       for (int k = 0; k < m.point_count; ++k) {
-        set_lane(anchor_a[k], l, m.points[k].anchor_a);
+        set_lane(anchor_a[k], l, point_of(m, tails, k).anchor_a);
       }
     }
     // Centres now, relative to A's centre at the step's start (keeps the numbers small).
@@ -452,15 +454,15 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
 }
 
 void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t end,
-                    std::span<Manifold> manifolds) {
+                    std::span<ManifoldHead> manifolds, std::span<ManifoldTail> tails) {
   for (uint32_t i = begin; i < end; ++i) {
     const ContactBundle& c = ctx.bundles[i];
     const WideContactPoint* rows = ctx.rows_of(i);
     const std::span<const uint32_t> lanes = ctx.manifolds_of(i);
     for (std::size_t l = 0; l < lanes.size(); ++l) {
-      Manifold& m = manifolds[lanes[l]];
+      ManifoldHead& m = manifolds[lanes[l]];
       for (int k = 0; k < m.point_count; ++k) {
-        m.points[k].normal_impulse = rows[k].normal_impulse[l];
+        point_of(m, tails, k).normal_impulse = rows[k].normal_impulse[l];
       }
       m.tangent_impulse[0] = c.tangent_impulse[0][l];
       m.tangent_impulse[1] = c.tangent_impulse[1][l];

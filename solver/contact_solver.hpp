@@ -52,9 +52,11 @@ struct ContactSolverContext {
 // no dynamic body). Its rows (ctx.row_start) must be as many as the most points of its
 // manifolds; every field of it, of its rows and of its BundleRestitution is written, unused
 // lanes and points with zero mass so they apply nothing.
+// The manifolds' points past the first are read from `tails` (ManifoldHead::tail), here and in
+// the refresh and the impulses' storage.
 void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
-                    std::span<const Manifold> manifolds, std::span<const uint32_t> packet_of,
-                    uint32_t bundle);
+                    std::span<const ManifoldHead> manifolds, std::span<const ManifoldTail> tails,
+                    std::span<const uint32_t> packet_of, uint32_t bundle);
 
 void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // Re-places the lever arms of every point between two dynamic bodies at one shared point: the
@@ -67,11 +69,12 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
 // their current inverse inertias, the bodies' positions and the manifolds' anchors; writes
 // the bundles [begin, end) only, so it may run inside a constraint pass of the same colour.
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
-                      std::span<const Manifold> manifolds, uint32_t begin, uint32_t end);
+                      std::span<const ManifoldHead> manifolds, std::span<const ManifoldTail> tails,
+                      uint32_t begin, uint32_t end);
 void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, bool use_bias);
 void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // Copies accumulated impulses back into the manifolds (for next step's warm start and events).
 void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t end,
-                    std::span<Manifold> manifolds);
+                    std::span<ManifoldHead> manifolds, std::span<ManifoldTail> tails);
 
 }  // namespace elan::detail

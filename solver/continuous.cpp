@@ -47,8 +47,8 @@ Transform end_pose(const BodyStore& bodies, uint32_t i, const SolverBody& p) {
 }  // namespace
 
 std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> shapes,
-                             std::span<const uint64_t> pairs, std::span<const Manifold> contacts,
-                             SolverState& st) {
+                             std::span<const uint64_t> pairs,
+                             std::span<const ManifoldHead> contacts, SolverState& st) {
   const std::size_t count = st.packets.size();
   std::vector<uint8_t>& fast = st.fast;
   fast.assign(count, 0);
@@ -81,7 +81,7 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
       // manifolds, a cache line each, read for a handful of falling bodies).
       const auto contact =
           std::lower_bound(contacts.begin(), contacts.end(), pairs[n],
-                           [](const Manifold& m, uint64_t key) { return m.key() < key; });
+                           [](const ManifoldHead& m, uint64_t key) { return m.key() < key; });
       if (contact != contacts.end() && contact->key() == pairs[n]) continue;
       const uint32_t mover = fast_a ? a : b, other = fast_a ? b : a;
       const uint32_t other_packet = fast_a ? pb : pa;

@@ -27,7 +27,7 @@ inline constexpr Real kContinuousTarget = Real(0.005);
 
 // Returns the number of bodies moved back.
 std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> shapes,
-                             std::span<const uint64_t> pairs, std::span<const Manifold> contacts,
-                             SolverState& state);
+                             std::span<const uint64_t> pairs,
+                             std::span<const ManifoldHead> contacts, SolverState& state);
 
 }  // namespace elan::detail

@@ -17,13 +17,13 @@ uint32_t find_root(ScratchVector<uint32_t>& parent, uint32_t i) {
 }
 }  // namespace
 
-std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts,
+std::size_t update_islands(BodyStore& bodies, std::span<const ManifoldHead> contacts,
                            const IslandSettings& settings, IslandScratch& s,
                            StepScratch& step_scratch) {
   const std::size_t n = bodies.size();
   take_from(s.parent, step_scratch, n);
   for (std::size_t i = 0; i < n; ++i) s.parent[i] = uint32_t(i);
-  for (const Manifold& m : contacts) {
+  for (const ManifoldHead& m : contacts) {
     if (m.point_count == 0) continue;
     if (!bodies.is_dynamic(m.body_a) || !bodies.is_dynamic(m.body_b)) continue;
     const uint32_t ra = find_root(s.parent, m.body_a);
@@ -60,7 +60,7 @@ std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts
   };
   bool any_moving = false;
   for (std::size_t k = 0; k < n && !any_moving; ++k) any_moving = moving(uint32_t(k));
-  for (const Manifold& m : any_moving ? contacts : std::span<const Manifold>()) {
+  for (const ManifoldHead& m : any_moving ? contacts : std::span<const ManifoldHead>()) {
     if (m.point_count == 0) continue;
     // A kinematic body of a pair is B.
     if (!moving(m.body_b) || !bodies.is_dynamic(m.body_a)) continue;

@@ -32,7 +32,7 @@ struct IslandSettings {
 
 // Returns the number of islands with more than one body (for the profile).
 // `scratch`'s arrays are taken from `step_scratch` in its current phase and given back.
-std::size_t update_islands(BodyStore& bodies, std::span<const Manifold> contacts,
+std::size_t update_islands(BodyStore& bodies, std::span<const ManifoldHead> contacts,
                            const IslandSettings& settings, IslandScratch& scratch,
                            StepScratch& step_scratch);
 

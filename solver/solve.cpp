@@ -2,6 +2,7 @@
 #include "solver/solve.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 
@@ -56,7 +57,8 @@ ContactSolverContext make_context(const SolveSettings& settings, SolverState& st
 
 }  // namespace
 
-void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
+void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
+                   std::span<const ManifoldTail> tails, const SolveSettings& settings,
                    SolverState& st, SolveStats& stats, StepScratch& scratch) {
   auto t0 = std::chrono::steady_clock::now();
   update_islands(bodies, contacts, {settings.allow_sleep, settings.time_to_sleep},
@@ -144,7 +146,7 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   // half's own, then the cut's), in key order within each. A half's colouring sees its packets
   // from the half's first, so its bitsets cover that half only.
   auto half_of = [&](uint32_t packet) { return packet >= st.half_start[1] ? 1u : 0u; };
-  auto group_of = [&](const Manifold& mf, ColorInput& in) {
+  auto group_of = [&](const ManifoldHead& mf, ColorInput& in) {
     const uint32_t pa = st.packet_of[mf.body_a], pb = st.packet_of[mf.body_b];
     in = {pa, pb, pa != 0 && bodies.is_dynamic(mf.body_a), pb != 0 && bodies.is_dynamic(mf.body_b)};
     if (mf.point_count == 0 || !(in.dynamic_a || in.dynamic_b)) return kGroups;
@@ -153,11 +155,17 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   };
   uint32_t group_size[kGroups + 1] = {};
   std::size_t points = 0;
-  for (const Manifold& mf : contacts) {
+  uint32_t next_tail = 0;
+  for (ManifoldHead& mf : contacts) {
     ColorInput in;
     ++group_size[group_of(mf, in)];
     points += mf.point_count;
+    if (mf.point_count > 1) {
+      assert(next_tail < tails.size() && tails[next_tail].key == mf.key() && "its tail is next");
+      mf.tail = next_tail++;
+    }
   }
+  assert(next_tail == tails.size() && "every tail has its head");
   stats.points = points;
   st.group_start[0] = 0;
   for (uint32_t g = 0; g < kGroups; ++g) st.group_start[g + 1] = st.group_start[g] + group_size[g];
@@ -276,7 +284,12 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
         // a quarter of prepare_bundle.
         const uint32_t next_last = j + 1 < st.bundle_start[s + 1] ? st.lane_start[j + 2] : last;
         for (uint32_t k = last; k < next_last; ++k) prefetch(contacts[st.order[k]]);
-        prepare_bundle(ctx, bodies, contacts, st.packet_of, j);
+        // This bundle's tails: its heads, fetched while the last bundle was prepared, say where.
+        for (uint32_t k = st.lane_start[j]; k < last; ++k) {
+          const ManifoldHead& head = contacts[st.order[k]];
+          if (head.point_count > 1) prefetch(tails[head.tail]);
+        }
+        prepare_bundle(ctx, bodies, contacts, tails, st.packet_of, j);
       }
     }
   };
@@ -318,8 +331,8 @@ void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveS
   stats.color_ms = ms_since(t0);
 }
 
-void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
-           SolverState& st) {
+void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<ManifoldTail> tails,
+           const SolveSettings& settings, SolverState& st) {
   ContactSolverContext ctx = make_context(settings, st);
 
   // The schedule: every pass is a stage of the two halves (block h solves half h) and then, if
@@ -385,12 +398,12 @@ void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSet
         // perf: refreshing a bundle reads only the poses, which no constraint pass changes, and
         // writes only the bundle, so it is done in the relax pass rather than as a pass of its
         // own: one sweep of the bundles' memory and one sync fewer a substep.
-        refresh_contacts(ctx, bodies, contacts, begin, end);
+        refresh_contacts(ctx, bodies, contacts, tails, begin, end);
         solve_contacts(ctx, begin, end, false);
         break;
       case kRestitution:
         apply_restitution(ctx, begin, end);
-        store_impulses(ctx, begin, end, contacts);
+        store_impulses(ctx, begin, end, contacts, tails);
         break;
       default:
         break;

@@ -104,14 +104,17 @@ struct SolveStats {
 };
 
 // Islands and sleep, packets for the awake bodies, colouring and constraint preparation. The
-// colouring arrays, bundles and rows are taken from `scratch`, in its current phase.
-void prepare_solve(BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
+// colouring arrays, bundles and rows are taken from `scratch`, in its current phase. `tails`
+// holds the points past the first of each manifold with more, in key order (collide_pairs);
+// each such head gets its tail's index (ManifoldHead::tail).
+void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
+                   std::span<const ManifoldTail> tails, const SolveSettings& settings,
                    SolverState& state, SolveStats& stats, StepScratch& scratch);
 
 // The substeps, restitution and impulse storage. Results stay in state.packets; the bundles and
 // rows go back to the scratch.
-void solve(const BodyStore& bodies, std::span<Manifold> contacts, const SolveSettings& settings,
-           SolverState& state);
+void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<ManifoldTail> tails,
+           const SolveSettings& settings, SolverState& state);
 
 // Writes the packets back into the body columns; quarantines bodies whose state went non-finite
 // (restored to the step's start pose, velocities zeroed, flagged frozen); updates sleep timers;

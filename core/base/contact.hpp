@@ -1,10 +1,13 @@
 // Contact manifolds: the narrowphase's output and the solver's input, one per touching or near
-// pair, kept sorted by pair key.
+// pair, kept sorted by pair key: the contact list of heads, and beside it, by key too, the tails
+// of those with more than one point and the body pair cache's poses of those that reuse them.
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <vector>
 
 #include "core/base/packed_rotation.hpp"
 #include "core/base/pair_key.hpp"
@@ -29,13 +32,9 @@ struct ContactPoint {
 inline constexpr uint32_t kManifoldBodyBits = 29;
 inline constexpr std::size_t kMaxBodyCount = std::size_t{1} << kManifoldBodyBits;
 
-// 128 bytes in float, two cache lines. A pile keeps about 2.7 manifolds a body and the collide
-// stage rewrites each every step, so what can be derived is: the pair key from the bodies, B's
-// arms from A's. The solver reads every byte of it, in colour order, one manifold here and one
-// there: aligned, that is two lines. The poses of the body pair cache are apart (PairCache), kept
-// only for the pairs that reuse their points: in a pile most manifolds have a sphere or capsule
-// in them, and those 64 bytes were never read (pile10k: 1547 -> 1415 B/body of engine state).
-struct alignas(64) Manifold {
+// A whole manifold: what the exact tests make and the collide stage works on. The contact list
+// keeps it as a ManifoldHead and, past its first point, a ManifoldTail (below).
+struct Manifold {
   uint32_t body_a = 0;  // dense index; the static body, if any, is always B
   uint32_t body_b : kManifoldBodyBits = 0;
   // A bit-field of unsigned, not a uint8_t: a char-typed field may alias any store, so every
@@ -52,8 +51,120 @@ struct alignas(64) Manifold {
   // The list's sort key.
   uint64_t key() const { return make_pair_key(body_a, body_b); }
 };
-static_assert(sizeof(Real) != 4 || sizeof(Manifold) == 128, "Manifold: 128 bytes in float");
 static_assert((kMaxManifoldPoints >> (32 - kManifoldBodyBits)) == 0, "point_count's bits");
+
+// The contact list's entry: a manifold but for its points past the first. 64 bytes in float, one
+// cache line. A pile keeps about 2.7 manifolds a body and the collide stage rewrites each every
+// step, so what can be derived is: the pair key from the bodies, B's arms from A's. Most have one
+// point (a sphere or capsule on something: 77 % on pile10k, 1.39 points a manifold), so four
+// point slots each (128 bytes) left most of the list unused. The solver reads heads in colour
+// order, one here and one there: aligned, each is one line. The body pair cache's poses are apart
+// too (PairCache), kept only for the pairs that reuse their points.
+struct alignas(64) ManifoldHead {
+  uint32_t body_a = 0;
+  uint32_t body_b : kManifoldBodyBits = 0;
+  uint32_t point_count : 32 - kManifoldBodyBits = 0;
+  Vec3 normal = Vec3::UnitY();
+  Real tangent_impulse[2] = {0, 0};
+  Real twist_impulse = 0;
+  ContactPoint first;  // points[0]
+  // With more than one point: where its tail is in the list of tails. Set by prepare_solve for
+  // the solver's stages; stale once the lists change.
+  uint32_t tail = 0;
+
+  uint64_t key() const { return make_pair_key(body_a, body_b); }
+};
+static_assert(sizeof(Real) != 4 || sizeof(ManifoldHead) == 64, "ManifoldHead: 64 bytes in float");
+
+// The points past the first of a manifold that has more than one, in a list of their own sorted
+// by key (a box face on a box: four). 80 bytes in float.
+struct ManifoldTail {
+  uint64_t key = 0;
+  ContactPoint points[kMaxManifoldPoints - 1];
+};
+static_assert(sizeof(Real) != 4 || sizeof(ManifoldTail) == 80, "ManifoldTail: 80 bytes in float");
+
+// A manifold's head and tail (the tail only for a manifold with more than one point), written in
+// place: the collide stage stores one for every touching pair every step.
+inline void store_head(const Manifold& m, ManifoldHead& h) {
+  h.body_a = m.body_a;
+  h.body_b = m.body_b;
+  h.point_count = m.point_count;
+  h.normal = m.normal;
+  h.tangent_impulse[0] = m.tangent_impulse[0];
+  h.tangent_impulse[1] = m.tangent_impulse[1];
+  h.twist_impulse = m.twist_impulse;
+  h.first = m.points[0];
+}
+inline void store_tail(const Manifold& m, ManifoldTail& t) {
+  t.key = m.key();
+  for (int k = 1; k < kMaxManifoldPoints; ++k) t.points[k - 1] = m.points[k];
+}
+inline ManifoldHead head_of(const Manifold& m) {
+  ManifoldHead h;
+  store_head(m, h);
+  return h;
+}
+inline ManifoldTail tail_of(const Manifold& m) {
+  ManifoldTail t;
+  store_tail(m, t);
+  return t;
+}
+
+// The whole manifold of a head and its tail (null for one point or none), into `m`; the points
+// past its count are left as they were.
+inline void load_whole(const ManifoldHead& h, const ManifoldTail* t, Manifold& m) {
+  m.body_a = h.body_a;
+  m.body_b = h.body_b;
+  m.point_count = h.point_count;
+  m.normal = h.normal;
+  m.tangent_impulse[0] = h.tangent_impulse[0];
+  m.tangent_impulse[1] = h.tangent_impulse[1];
+  m.twist_impulse = h.twist_impulse;
+  m.points[0] = h.first;
+  if (t != nullptr) {
+    for (int k = 1; k < kMaxManifoldPoints; ++k) m.points[k] = t->points[k - 1];
+  }
+}
+inline Manifold whole(const ManifoldHead& h, const ManifoldTail* t) {
+  Manifold m;
+  load_whole(h, t, m);
+  return m;
+}
+
+// Point k of a head whose tail index is set (ManifoldHead::tail).
+inline ContactPoint& point_of(ManifoldHead& h, std::span<ManifoldTail> tails, int k) {
+  return k == 0 ? h.first : tails[h.tail].points[k - 1];
+}
+inline const ContactPoint& point_of(const ManifoldHead& h, std::span<const ManifoldTail> tails,
+                                    int k) {
+  return k == 0 ? h.first : tails[h.tail].points[k - 1];
+}
+
+// Every whole manifold of a list of heads and its tails, in key order.
+inline std::vector<Manifold> whole_list(std::span<const ManifoldHead> heads,
+                                        std::span<const ManifoldTail> tails) {
+  std::vector<Manifold> out;
+  out.reserve(heads.size());
+  std::size_t t = 0;
+  for (const ManifoldHead& h : heads) {
+    while (t < tails.size() && tails[t].key < h.key()) ++t;
+    const bool has_tail = h.point_count > 1 && t < tails.size() && tails[t].key == h.key();
+    out.push_back(whole(h, has_tail ? &tails[t] : nullptr));
+  }
+  return out;
+}
+
+// The heads and tails of a list of whole manifolds in key order.
+inline void split_list(std::span<const Manifold> list, std::vector<ManifoldHead>& heads,
+                       std::vector<ManifoldTail>& tails) {
+  heads.clear();
+  tails.clear();
+  for (const Manifold& m : list) {
+    heads.push_back(head_of(m));
+    if (m.point_count > 1) tails.push_back(tail_of(m));
+  }
+}
 
 // Jolt's body pair cache, for the manifold of the same key: the poses when its points were last
 // updated (by the exact test or by carrying them along), the reference of the next update; and
@@ -84,12 +195,12 @@ struct ContactRecord {
   uint64_t key() const { return make_pair_key(body_a, body_b); }
 };
 
-// Asks the cache for a manifold's three lines ahead of their use (kWrite: with ownership, for a
-// manifold about to be rewritten). A hint: no result depends on it.
-template <bool kWrite = false>
-inline void prefetch(const Manifold& m) {
-  const char* bytes = reinterpret_cast<const char*>(&m);
-  for (std::size_t line = 0; line < sizeof(Manifold); line += 64) {
+// Asks the cache for an entry's lines ahead of their use (kWrite: with ownership, for an entry
+// about to be rewritten). A hint: no result depends on it.
+template <bool kWrite = false, class T>
+inline void prefetch(const T& entry) {
+  const char* bytes = reinterpret_cast<const char*>(&entry);
+  for (std::size_t line = 0; line < sizeof(T); line += 64) {
     __builtin_prefetch(bytes + line, kWrite ? 1 : 0);
   }
 }

@@ -14,6 +14,7 @@ namespace {
 constexpr std::size_t kFilterGrain = 1024;
 
 ContactBeginEvent begin_event(const WorldState& w, const Manifold& m) {
+  assert(m.point_count > 0);
   ContactBeginEvent e;
   e.body_a = body_id_at(w, m.body_a);
   e.body_b = body_id_at(w, m.body_b);
@@ -57,13 +58,22 @@ void compute_contact_events(WorldState& w) {
   // determinism: both lists are in pair-key order, so the events are too (rule 4). perf: each
   // began key is looked up, not merged along the whole list: a settled pile of 27k manifolds
   // begins and ends a few dozen a step.
-  const std::vector<Manifold>& contacts = w.contacts;
+  const std::vector<ManifoldHead>& contacts = w.contacts;
+  const std::vector<ManifoldTail>& tails = w.contact_tails;
   auto next = contacts.begin();
+  auto next_tail = tails.begin();
   for (const uint64_t key : w.contact_blocks.began) {
     next = std::lower_bound(next, contacts.end(), key,
-                            [](const Manifold& m, uint64_t k) { return m.key() < k; });
+                            [](const ManifoldHead& m, uint64_t k) { return m.key() < k; });
     assert(next != contacts.end() && next->key() == key && "a began key is in the list");
-    begins.push_back(begin_event(w, *next));
+    const ManifoldTail* tail = nullptr;
+    if (next->point_count > 1) {
+      next_tail = std::lower_bound(next_tail, tails.end(), key,
+                                   [](const ManifoldTail& t, uint64_t k) { return t.key < k; });
+      assert(next_tail != tails.end() && next_tail->key == key && "its tail is in the list");
+      tail = &*next_tail;
+    }
+    begins.push_back(begin_event(w, whole(*next, tail)));
   }
   for (const ContactRecord& r : w.contact_blocks.ended) {
     ends.push_back({body_id_at(w, r.body_a), body_id_at(w, r.body_b)});

@@ -19,6 +19,8 @@ using detail::ByteWriter;
 using detail::Column;
 using detail::ContactPoint;
 using detail::Manifold;
+using detail::ManifoldHead;
+using detail::ManifoldTail;
 using detail::PairCache;
 using detail::Shape;
 using detail::WorldState;
@@ -246,6 +248,15 @@ void write_friction(ByteWriter& w, const Manifold& m, std::vector<PairCache>::co
   ++cache;
 }
 
+// The whole manifold of `head`, its tail found by `tail`, which walks the list of tails in key
+// order alongside the heads.
+Manifold whole_at(const ManifoldHead& head, std::vector<ManifoldTail>::const_iterator& tail,
+                  std::vector<ManifoldTail>::const_iterator tail_end) {
+  while (tail != tail_end && tail->key < head.key()) ++tail;
+  const bool has_tail = head.point_count > 1 && tail != tail_end && tail->key == head.key();
+  return detail::whole(head, has_tail ? &*tail : nullptr);
+}
+
 // Reads what write_friction wrote; the manifold's poses, if it has them, are appended to `cache`.
 void read_friction(ByteReader& r, Manifold& m, std::vector<PairCache>* cache) {
   m.tangent_impulse[0] = r.real();
@@ -406,7 +417,7 @@ void commit(WorldState& s, Decoded&& d) {
   s.slot_index = std::move(d.slot_index);
   s.slot_generation = std::move(d.slot_generation);
   s.free_slots = std::move(d.free_slots);
-  s.contacts = std::move(d.contacts);
+  detail::split_list(d.contacts, s.contacts, s.contact_tails);
   s.pair_cache = std::move(d.pair_cache);
   s.separated.clear();
   s.contact_blocks = {};
@@ -462,6 +473,7 @@ void read_rollback(ByteReader& r, WorldState& s) {
   const uint32_t count = r.count(8 + 1 + 6 * sizeof(Real) + 2, "manifold");
   if constexpr (Apply) {
     s.contacts.resize(count);
+    s.contact_tails.clear();
     s.pair_cache.clear();
   }
   uint64_t previous_key = 0;
@@ -481,7 +493,10 @@ void read_rollback(ByteReader& r, WorldState& s) {
     previous_key = key;
     for (int p = 0; p < m.point_count; ++p) m.points[p] = read_point(r);
     read_friction(r, m, Apply ? &s.pair_cache : nullptr);
-    if constexpr (Apply) s.contacts[k] = m;
+    if constexpr (Apply) {
+      s.contacts[k] = detail::head_of(m);
+      if (m.point_count > 1) s.contact_tails.push_back(detail::tail_of(m));
+    }
   }
   if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
 }
@@ -536,7 +551,9 @@ std::vector<uint8_t> save_snapshot(const World& world) {
 
   w.u32(uint32_t(s.contacts.size()));
   auto cache = s.pair_cache.cbegin();
-  for (const Manifold& m : s.contacts) {
+  auto tail = s.contact_tails.cbegin();
+  for (const ManifoldHead& head : s.contacts) {
+    const Manifold m = whole_at(head, tail, s.contact_tails.cend());
     w.u64(m.key());
     w.u32(m.body_a);
     w.u32(m.body_b);
@@ -580,7 +597,9 @@ void save_rollback(const World& world, std::vector<uint8_t>& out) {
   }
   w.u32(uint32_t(s.contacts.size()));
   auto cache = s.pair_cache.cbegin();
-  for (const Manifold& m : s.contacts) {
+  auto tail = s.contact_tails.cbegin();
+  for (const ManifoldHead& head : s.contacts) {
+    const Manifold m = whole_at(head, tail, s.contact_tails.cend());
     w.u64(m.key());
     w.u8(m.body_a > m.body_b ? 1 : 0);
     w.vec3(m.normal);

@@ -70,7 +70,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   collide_settings.dt = dt;
   w.scratch.begin_phase();
   collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.idle, w.contact_blocks, w.contacts,
-                w.separated, w.pair_cache, &w.scratch);
+                w.contact_tails, w.separated, w.pair_cache, &w.scratch);
   const auto t3 = clock::now();
 
   SolveSettings solve_settings;
@@ -82,9 +82,10 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve_settings.participants = w.threads;
   SolveStats solve_stats;
   w.scratch.begin_phase();
-  prepare_solve(bodies, w.contacts, solve_settings, w.solver, solve_stats, w.scratch);
+  prepare_solve(bodies, w.contacts, w.contact_tails, solve_settings, w.solver, solve_stats,
+                w.scratch);
   const auto t4 = clock::now();
-  solve(bodies, w.contacts, solve_settings, w.solver);
+  solve(bodies, w.contacts, w.contact_tails, solve_settings, w.solver);
   compute_contact_events(w);
   const auto t5 = clock::now();
   solve_continuous(bodies, w.shapes, w.pairs, w.contacts, w.solver);

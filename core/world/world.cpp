@@ -38,6 +38,26 @@ int resolve_threads(int threads) {
   return threads > 0 ? threads : std::max(1, tbb::info::default_concurrency());
 }
 
+// A list kept beside the contact list, by key (manifold tails, pair cache poses), after body i
+// is destroyed and the last body takes its index: its entries of i dropped, the last body's
+// renamed, and the list sorted again if `resort` (some were).
+template <class T>
+void rename_beside(std::vector<T>& list, uint32_t i, uint32_t last, bool resort) {
+  std::size_t kept = 0;
+  for (T entry : list) {
+    uint32_t a = detail::pair_first(entry.key), b = detail::pair_second(entry.key);
+    if (a == i || b == i) continue;
+    if (a == last) a = i;
+    if (b == last) b = i;
+    entry.key = detail::make_pair_key(a, b);
+    list[kept++] = entry;
+  }
+  list.resize(kept);
+  if (resort) {
+    std::sort(list.begin(), list.end(), [](const T& x, const T& y) { return x.key < y.key; });
+  }
+}
+
 }  // namespace
 
 World::World(const WorldDef& def) : state_(std::make_unique<WorldState>()) {
@@ -56,9 +76,10 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
 void World::reserve(std::size_t bodies, std::size_t shapes) {
-  // Dense indices and shape indices are 32-bit, UINT32_MAX marking "none".
+  // Shape indices are 32-bit, UINT32_MAX marking "none"; dense body indices fit in a manifold's
+  // 29 bits.
   constexpr std::size_t kMax = std::size_t(UINT32_MAX) - 1;
-  check_arg(bodies <= kMax, "bodies", "more than 2^32 - 2");
+  check_arg(bodies <= detail::kMaxBodyCount, "bodies", "more than 2^29");
   check_arg(shapes <= kMax, "shapes", "more than 2^32 - 2");
   WorldState& s = *state_;
   s.bodies.reserve(bodies);
@@ -168,11 +189,11 @@ void World::destroy_body(BodyId id) {
   const uint32_t last = uint32_t(s.bodies.size() - 1);
   // Contacts: drop the body's own (an end event for each touching one, partners woken); the
   // last body takes index i, so its manifolds get new keys and the list is re-sorted by key.
-  std::vector<detail::Manifold>& contacts = s.contacts;
+  std::vector<detail::ManifoldHead>& contacts = s.contacts;
   std::size_t kept = 0;
   bool resort = false;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
-    detail::Manifold m = contacts[k];
+    detail::ManifoldHead m = contacts[k];
     if (m.body_a == i || m.body_b == i) {
       if (m.point_count > 0) {
         s.api.end_events.push_back(
@@ -190,28 +211,18 @@ void World::destroy_body(BodyId id) {
     contacts[kept++] = m;
   }
   contacts.resize(kept);
-  // The body pair cache goes with the manifolds: the same keys, dropped and renamed alike (its
-  // poses are A's and B's, which keep their roles).
-  std::vector<detail::PairCache>& cache = s.pair_cache;
-  std::size_t kept_cache = 0;
-  for (detail::PairCache c : cache) {
-    uint32_t a = detail::pair_first(c.key), b = detail::pair_second(c.key);
-    if (a == i || b == i) continue;
-    if (a == last) a = i;
-    if (b == last) b = i;
-    c.key = detail::make_pair_key(a, b);
-    cache[kept_cache++] = c;
-  }
-  cache.resize(kept_cache);
+  // The manifolds' tails and body pair cache poses go with them: the same keys, dropped and
+  // renamed alike (the poses are A's and B's, which keep their roles).
+  rename_beside(s.contact_tails, i, last, resort);
+  rename_beside(s.pair_cache, i, last, resort);
   // The separation cache names bodies by index too; it is only a cache, so it starts over.
   s.separated.clear();
   if (resort) {
     // determinism: keys are unique, so the sorted order is a function of the keys alone.
-    std::sort(
-        contacts.begin(), contacts.end(),
-        [](const detail::Manifold& x, const detail::Manifold& y) { return x.key() < y.key(); });
-    std::sort(cache.begin(), cache.end(),
-              [](const detail::PairCache& x, const detail::PairCache& y) { return x.key < y.key; });
+    std::sort(contacts.begin(), contacts.end(),
+              [](const detail::ManifoldHead& x, const detail::ManifoldHead& y) {
+                return x.key() < y.key();
+              });
   }
   // The sweep-and-prune's kept order is a permutation of 0..n-1 re-sorted every update (a full
   // sort when the count changes), and its output is canonical, so it needs no fix-up.

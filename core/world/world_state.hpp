@@ -55,12 +55,13 @@ struct WorldState {
   SweepAndPrune sap;
   std::vector<uint64_t> pairs;
 
-  // Contacts, sorted by key: the one list, which collide_pairs reads as last step's and rewrites;
-  // the poses of the body pair cache of those that may reuse their points (kept with them); the
-  // pairs found apart with what proves them apart (a cache: cleared when bodies are removed or
-  // the world restored); the collide stage's per-block buffers, and what it changed in the list
-  // (the contact events).
-  std::vector<Manifold> contacts;
+  // Contacts, sorted by key: the one list, which collide_pairs reads as last step's and rewrites,
+  // of each manifold's head; the tails of those with more than one point and the poses of the body
+  // pair cache of those that may reuse their points (kept with them); the pairs found apart with
+  // what proves them apart (a cache: cleared when bodies are removed or the world restored); the
+  // collide stage's per-block buffers, and what it changed in the list (the contact events).
+  std::vector<ManifoldHead> contacts;
+  std::vector<ManifoldTail> contact_tails;
   std::vector<PairCache> pair_cache;
   std::vector<SeparatedPair> separated;
   CollideScratch contact_blocks;

@@ -166,9 +166,9 @@ TEST(SnapshotFormat, SavesEveryColumnOfTheBodyStore) {
 }
 
 TEST(SnapshotFormat, SavesEveryFieldOfAManifold) {
-  // Tripwire: a field added to ContactPoint, Manifold or PairCache must be saved in snapshot.cpp
-  // (and in rollback states); these sizes are those of the fields saved today, padded as the
-  // compiler pads them.
+  // Tripwire: a field added to ContactPoint, Manifold (and the list's ManifoldHead and
+  // ManifoldTail) or PairCache must be saved in snapshot.cpp (and in rollback states); these
+  // sizes are those of the fields saved today, padded as the compiler pads them.
   constexpr auto padded = [](std::size_t bytes, std::size_t align) {
     return (bytes + align - 1) / align * align;
   };
@@ -182,6 +182,13 @@ TEST(SnapshotFormat, SavesEveryFieldOfAManifold) {
   EXPECT_EQ(sizeof(Manifold),
             padded(4 + 4 + 3 * kR + detail::kMaxManifoldPoints * sizeof(ContactPoint) + 3 * kR,
                    alignof(Manifold)));
+  // A head: the same but for the points past the first, and the solver's index of its tail.
+  EXPECT_EQ(sizeof(detail::ManifoldHead), padded(4 + 4 + 3 * kR + sizeof(ContactPoint) + 3 * kR + 4,
+                                                 alignof(detail::ManifoldHead)));
+  // A tail: the key and the points past the first.
+  EXPECT_EQ(sizeof(detail::ManifoldTail),
+            padded(8 + (detail::kMaxManifoldPoints - 1) * sizeof(ContactPoint),
+                   alignof(detail::ManifoldTail)));
   // The key, two rotations, two offsets and the packed rotation.
   EXPECT_EQ(
       sizeof(PairCache),

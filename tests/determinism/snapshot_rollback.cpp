@@ -56,7 +56,7 @@ TEST(Rollback, SizeIsEightyOneBytesPerMovingBodyPlusContacts) {
   std::size_t moving = 0;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) moving += !s.bodies.is_static(i);
   std::size_t contact_bytes = 4;
-  for (const detail::Manifold& m : s.contacts) {
+  for (const detail::ManifoldHead& m : s.contacts) {
     contact_bytes += 8 + 1 + 6 * sizeof(Real) + 1 + m.point_count * (5 * sizeof(Real) + 4) + 1;
   }
   // The pair cache's rotations and offsets, for the manifolds that have them.

@@ -108,10 +108,14 @@ TEST(WorldApi, DestroyingATouchingBodyDropsItsContactsWithEndEvents) {
     EXPECT_TRUE(e.body_a == low || e.body_b == low);
     EXPECT_TRUE(e.body_a == floor || e.body_b == floor || e.body_a == high || e.body_b == high);
   }
-  // The body pair cache went with the manifolds: only floor-other is left, renamed with `other`,
-  // which took `low`'s index (boxes only, so every manifold keeps its poses).
+  // The manifolds' tails and body pair cache went with them: only floor-other is left, renamed
+  // with `other`, which took `low`'s index (a box resting on a face has four points, and boxes
+  // keep their poses).
   const detail::WorldState& s = w.state();
   ASSERT_EQ(s.contacts.size(), 1u);
+  ASSERT_EQ(s.contacts[0].point_count, 4u);
+  ASSERT_EQ(s.contact_tails.size(), 1u);
+  EXPECT_EQ(s.contact_tails[0].key, s.contacts[0].key());
   ASSERT_EQ(s.pair_cache.size(), 1u);
   EXPECT_EQ(s.pair_cache[0].key, s.contacts[0].key());
   // `high` now falls 1 m onto the floor; `other` keeps resting on it; nothing refers to `low`.

@@ -60,13 +60,16 @@ std::vector<Manifold> run(const Scene& s, std::vector<uint64_t> pairs,
                           const std::vector<Manifold>& previous, int threads = 1) {
   std::sort(pairs.begin(), pairs.end());
   CollideScratch scratch;
-  std::vector<Manifold> out = previous;
+  std::vector<ManifoldHead> heads;
+  std::vector<ManifoldTail> tails;
+  split_list(previous, heads, tails);
   std::vector<SeparatedPair> apart;
   std::vector<PairCache> poses;
   tbb::task_arena(threads).execute([&] {
-    collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, scratch, out, apart, poses);
+    collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, scratch, heads, tails,
+                  apart, poses);
   });
-  return out;
+  return whole_list(heads, tails);
 }
 
 TEST(CollideCarry, MergesTheIdleOnesInKeyOrder) {

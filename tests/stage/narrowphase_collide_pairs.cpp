@@ -60,6 +60,18 @@ Pile make_pile(int n, uint32_t seed) {
   return p;
 }
 
+// collide_pairs on a list of whole manifolds: split into the heads and tails it keeps, and made
+// whole again after.
+void collide_list(std::span<const uint64_t> pairs, const Pile& p, const CollideSettings& settings,
+                  std::span<const uint8_t> idle, CollideScratch& slots, std::vector<Manifold>& list,
+                  std::vector<SeparatedPair>& apart, std::vector<PairCache>& poses) {
+  std::vector<ManifoldHead> heads;
+  std::vector<ManifoldTail> tails;
+  split_list(list, heads, tails);
+  collide_pairs(pairs, p.bodies, p.shapes, settings, idle, slots, heads, tails, apart, poses);
+  list = whole_list(heads, tails);
+}
+
 void expect_identical(const std::vector<Manifold>& x, const std::vector<Manifold>& y) {
   ASSERT_EQ(x.size(), y.size());
   for (std::size_t i = 0; i < x.size(); ++i) {
@@ -85,12 +97,10 @@ TEST(CollidePairs, BitIdenticalUnderOneAndTwoThreads) {
   std::vector<SeparatedPair> apart1, apart2;
   std::vector<PairCache> poses1, poses2;
   std::vector<Manifold> out1, out2;
-  tbb::task_arena(1).execute([&] {
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots1, out1, apart1, poses1);
-  });
-  tbb::task_arena(2).execute([&] {
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots2, out2, apart2, poses2);
-  });
+  tbb::task_arena(1).execute(
+      [&] { collide_list(p.pairs, p, settings, {}, slots1, out1, apart1, poses1); });
+  tbb::task_arena(2).execute(
+      [&] { collide_list(p.pairs, p, settings, {}, slots2, out2, apart2, poses2); });
   ASSERT_GT(out1.size(), 50u);
   expect_identical(out1, out2);
   // Keys sorted and unique; static ground is always B; the normal is unit.
@@ -108,12 +118,10 @@ TEST(CollidePairs, BitIdenticalUnderOneAndTwoThreads) {
       m.points[k].normal_impulse = Real(m.points[k].feature_id % 97);
   }
   out2 = out1;
-  tbb::task_arena(1).execute([&] {
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots1, out1, apart1, poses1);
-  });
-  tbb::task_arena(2).execute([&] {
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots2, out2, apart2, poses2);
-  });
+  tbb::task_arena(1).execute(
+      [&] { collide_list(p.pairs, p, settings, {}, slots1, out1, apart1, poses1); });
+  tbb::task_arena(2).execute(
+      [&] { collide_list(p.pairs, p, settings, {}, slots2, out2, apart2, poses2); });
   expect_identical(out1, out2);
 }
 
@@ -135,16 +143,16 @@ TEST(CollidePairs, CarriedManifoldsAgreeWithTheExactTest) {
   std::vector<SeparatedPair> apart;
   std::vector<PairCache> carried_poses, exact_poses;
   std::vector<Manifold> carried, exact;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, carried, apart, carried_poses);
+  collide_list(p.pairs, p, settings, {}, slots, carried, apart, carried_poses);
   // 0.047 mm per move for every other body: four moves stay inside the cache's 1 mm.
   const Vec3 move(Real(3e-5), Real(-3e-5), Real(2e-5));
   for (int k = 0; k < 4; ++k) {
     for (uint32_t b = 1; b < p.bodies.size(); b += 2) {
       p.bodies.set_position(b, p.bodies.position(b) + move);
     }
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, carried, apart, carried_poses);
+    collide_list(p.pairs, p, settings, {}, slots, carried, apart, carried_poses);
   }
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, exact, apart, exact_poses);
+  collide_list(p.pairs, p, settings, {}, slots, exact, apart, exact_poses);
   std::size_t j = 0;
   int compared = 0;
   for (const Manifold& m : carried) {
@@ -164,7 +172,7 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
   std::vector<SeparatedPair> apart;
   std::vector<PairCache> poses;
   std::vector<Manifold> first, second;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, first, apart, poses);
+  collide_list(p.pairs, p, settings, {}, slots, first, apart, poses);
   int points = 0;
   for (Manifold& m : first) {
     for (int k = 0; k < m.point_count; ++k) {
@@ -182,7 +190,7 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
     p.bodies.set_position(b, p.bodies.position(b) + Vec3(Real(1e-4), 0, Real(-1e-4)));
   }
   second = first;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, second, apart, poses);
+  collide_list(p.pairs, p, settings, {}, slots, second, apart, poses);
   std::size_t j = 0;
   int matched = 0, total = 0;
   for (const Manifold& m : second) {
@@ -238,7 +246,7 @@ TEST(CollidePairs, InPlaceUpdateGivesEveryTouchingPairWhateverTheListHeld) {
   std::vector<SeparatedPair> apart;
   std::vector<PairCache> poses;
   std::vector<Manifold> fresh;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, fresh, apart, poses);
+  collide_list(p.pairs, p, settings, {}, slots, fresh, apart, poses);
   ASSERT_GT(p.pairs.size(), 8 * 64u) << "enough blocks of pairs to shift across";
   std::vector<uint64_t> stale;
   for (uint32_t i = 1; i < p.bodies.size(); ++i) {
@@ -270,12 +278,10 @@ TEST(CollidePairs, InPlaceUpdateGivesEveryTouchingPairWhateverTheListHeld) {
     // The poses of fresh's pairs, some now without a manifold, which collide_pairs must drop.
     std::vector<Manifold> one = start, two = start;
     std::vector<PairCache> poses_one = poses, poses_two = poses;
-    tbb::task_arena(1).execute([&] {
-      collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, one, apart, poses_one);
-    });
-    tbb::task_arena(2).execute([&] {
-      collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, two, apart, poses_two);
-    });
+    tbb::task_arena(1).execute(
+        [&] { collide_list(p.pairs, p, settings, {}, slots, one, apart, poses_one); });
+    tbb::task_arena(2).execute(
+        [&] { collide_list(p.pairs, p, settings, {}, slots, two, apart, poses_two); });
     ASSERT_EQ(one.size(), fresh.size()) << "trial " << trial;
     for (std::size_t i = 0; i < one.size(); ++i) {
       ASSERT_EQ(one[i].key(), fresh[i].key()) << "trial " << trial << ", manifold " << i;
@@ -300,10 +306,9 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   int kept = 0, closed_in = 0, closed_form_pairs = 0;
   std::vector<SeparatedPair> before;
   for (int step = 0; step < 24; ++step) {
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots_cached, cached, apart,
-                  cached_poses);
+    collide_list(p.pairs, p, settings, {}, slots_cached, cached, apart, cached_poses);
     none.clear();
-    collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots_exact, exact, none, exact_poses);
+    collide_list(p.pairs, p, settings, {}, slots_exact, exact, none, exact_poses);
     expect_identical(cached, exact);
     if (HasFatalFailure()) return;
     for (const Manifold& m : cached) {
@@ -353,7 +358,7 @@ TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
   std::vector<SeparatedPair> apart;
   std::vector<PairCache> poses;
   std::vector<Manifold> list;
-  collide_pairs(p.pairs, p.bodies, p.shapes, settings, {}, slots, list, apart, poses);
+  collide_list(p.pairs, p, settings, {}, slots, list, apart, poses);
   ASSERT_GT(list.size(), 100u);
   EXPECT_TRUE(slots.ended.empty());
   ASSERT_EQ(slots.began.size(), list.size());
@@ -369,8 +374,7 @@ TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
     p.bodies.set_position(b, p.bodies.position(b) + Vec3(Real(0.15), Real(-0.1), Real(0.1)));
   }
   tbb::task_arena arena(2);
-  arena.execute(
-      [&] { collide_pairs(kept, p.bodies, p.shapes, settings, {}, slots, list, apart, poses); });
+  arena.execute([&] { collide_list(kept, p, settings, {}, slots, list, apart, poses); });
   std::vector<ContactRecord> ended;
   std::vector<uint64_t> began;
   std::size_t j = 0;
@@ -393,17 +397,19 @@ TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
   EXPECT_EQ(slots.began, began);
 }
 
-// The body pair cache holds the poses of exactly the manifolds that may reuse their points
-// (neither body round), in key order: new ones get them, ended ones lose them, and carried ones
-// (two idle bodies, no pair this step) keep theirs unchanged. Small moves between steps make
-// pairs reuse their points, so the poses are updated in place as well as replaced.
-TEST(CollidePairs, KeepsThePosesOfEveryManifoldThatMayReuseThemAndNoOthers) {
+// The lists beside the heads hold the tails of exactly the manifolds with more than one point
+// and the poses of exactly those that may reuse their points (neither body round), in key order:
+// new ones get them, ended ones lose them, and carried ones (two idle bodies, no pair this step)
+// keep theirs unchanged. Small moves between steps make pairs reuse their points, so the poses
+// are updated in place as well as replaced, and manifolds change their point counts.
+TEST(CollidePairs, KeepsTheTailsAndPosesOfExactlyTheManifoldsThatHaveThem) {
   Pile p = make_pile(300, 23);
   CollideSettings settings;
   CollideScratch slots;
   std::vector<SeparatedPair> apart;
   std::vector<PairCache> poses;
-  std::vector<Manifold> list;
+  std::vector<ManifoldHead> list;
+  std::vector<ManifoldTail> tails;
   auto round = [&](uint32_t body) {
     const ShapeType t = p.shapes[p.bodies.shape[body]].type;
     return t == ShapeType::Sphere || t == ShapeType::Capsule || t == ShapeType::Cylinder;
@@ -413,22 +419,35 @@ TEST(CollidePairs, KeepsThePosesOfEveryManifoldThatMayReuseThemAndNoOthers) {
   std::vector<uint8_t> idle(p.bodies.size(), 0);
   idle[0] = 1;
   std::vector<PairCache> carried_before;
-  int reused = 0, carried = 0;
+  std::vector<ManifoldTail> carried_tails;
+  int reused = 0, carried = 0, carried_tail = 0, tails_replaced = 0;
   for (int step = 0; step < 6; ++step) {
     std::vector<uint64_t> pairs;
     for (uint64_t key : p.pairs) {
       if (!(step > 0 && idle[pair_first(key)] && idle[pair_second(key)])) pairs.push_back(key);
     }
+    const std::size_t tails_before = tails.size();
     tbb::task_arena(2).execute([&] {
-      collide_pairs(pairs, p.bodies, p.shapes, settings, idle, slots, list, apart, poses);
+      collide_pairs(pairs, p.bodies, p.shapes, settings, idle, slots, list, tails, apart, poses);
     });
-    std::vector<uint64_t> expected;
-    for (const Manifold& m : list) {
+    std::vector<uint64_t> expected, expected_tails;
+    for (const ManifoldHead& m : list) {
       if (!round(m.body_a) && !round(m.body_b)) expected.push_back(m.key());
+      if (m.point_count > 1) expected_tails.push_back(m.key());
     }
-    std::vector<uint64_t> keys;
+    std::vector<uint64_t> keys, tail_keys;
     for (const PairCache& c : poses) keys.push_back(c.key);
+    for (const ManifoldTail& t : tails) tail_keys.push_back(t.key);
     ASSERT_EQ(keys, expected) << "step " << step;
+    ASSERT_EQ(tail_keys, expected_tails) << "step " << step;
+    tails_replaced += step > 0 && tails.size() != tails_before;
+    for (const ManifoldTail& t : tails) {
+      for (const ManifoldTail& b : carried_tails) {
+        if (b.key != t.key) continue;
+        EXPECT_EQ(std::memcmp(b.points, t.points, sizeof(t.points)), 0) << "carried tail changed";
+        ++carried_tail;
+      }
+    }
     for (const PairCache& c : poses) {
       reused += std::memcmp(c.exact_position.data(), c.relative_position.data(), sizeof(Vec3)) != 0;
       for (const PairCache& b : carried_before) {
@@ -452,6 +471,9 @@ TEST(CollidePairs, KeepsThePosesOfEveryManifoldThatMayReuseThemAndNoOthers) {
       for (const PairCache& c : poses) {
         if (idle[pair_first(c.key)] && idle[pair_second(c.key)]) carried_before.push_back(c);
       }
+      for (const ManifoldTail& t : tails) {
+        if (idle[pair_first(t.key)] && idle[pair_second(t.key)]) carried_tails.push_back(t);
+      }
     }
     // The awake bodies move 0.1 mm and turn 0.1 degree, inside the cache's tolerance; every
     // fourth moves 5 cm, outside it.
@@ -466,6 +488,10 @@ TEST(CollidePairs, KeepsThePosesOfEveryManifoldThatMayReuseThemAndNoOthers) {
   EXPECT_LT(poses.size(), list.size()) << "the pile has round bodies, which keep no poses";
   EXPECT_GT(reused, 100) << "poses updated by a reuse";
   EXPECT_GT(carried, 10) << "poses carried with their manifolds";
+  EXPECT_GT(tails.size(), 20u);
+  EXPECT_LT(tails.size(), list.size()) << "the pile has one-point manifolds, which keep no tail";
+  EXPECT_GT(carried_tail, 10) << "tails carried with their manifolds";
+  EXPECT_GT(tails_replaced, 0) << "manifolds that gained or lost their tail";
 }
 
 }  // namespace narrowphase_collide_pairs_test

@@ -74,11 +74,11 @@ TEST(Continuous, BodyAlreadyTouchingIsLeftToItsContact) {
 
 TEST(Continuous, PairWithAContactIsLeftToTheSolver) {
   Scene s({Vec3(2, 0, 0)});
-  Manifold m;
+  ManifoldHead m;
   m.body_a = pair_first(s.pairs[0]);
   m.body_b = pair_second(s.pairs[0]);
   m.point_count = 1;
-  const std::vector<Manifold> contacts = {m};
+  const std::vector<ManifoldHead> contacts = {m};
   EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.pairs, contacts, s.state), 0u);
   EXPECT_EQ(s.state.packets[1].dp, Vec3(2, 0, 0));
 }

@@ -35,7 +35,8 @@ TEST(MemoryUse, PartsAddUpToTheHeapTheWorldHolds) {
       "held %zu B, reported %zu B: bodies %zu shapes %zu broadphase %zu contacts %zu "
       "solver %zu api %zu\n",
       held, use.total(), use.bodies, use.shapes, use.broadphase, use.contacts, use.solver, use.api);
-  EXPECT_GT(use.contacts, world.state().contacts.size() * sizeof(detail::Manifold));
+  EXPECT_GT(use.contacts, world.state().contacts.size() * sizeof(detail::ManifoldHead) +
+                              world.state().contact_tails.size() * sizeof(detail::ManifoldTail));
   EXPECT_GT(use.solver, 0u);
   EXPECT_GT(use.broadphase, world.state().pairs.size() * sizeof(uint64_t));
   if (test::kSanitized) {
@@ -93,6 +94,7 @@ TEST(MemoryUse, StepBuffersAreGivenBackWithinTheStep) {
     auto kept = [&] {
       std::size_t bytes = detail::heap_bytes(w.solver.bundles) + detail::heap_bytes(w.solver.rows);
       for (const auto& b : w.contact_blocks.contacts.added) bytes += detail::heap_bytes(b);
+      for (const auto& b : w.contact_blocks.tails.added) bytes += detail::heap_bytes(b);
       for (const auto& b : w.contact_blocks.separated.added) bytes += detail::heap_bytes(b);
       return bytes;
     };

@@ -43,7 +43,8 @@ class World {
   /// Makes room for `bodies` bodies and `shapes` shapes in all, so that creating up to that many
   /// allocates nothing more for them (Jolt takes such maxima up front; here they are a hint, and
   /// a world may grow past them). Without it the stores grow by doubling and keep up to half
-  /// their capacity unused. Throws elan::Error "bodies" or "shapes" for more than 2^32 - 2.
+  /// their capacity unused. Throws elan::Error "bodies" for more than 2^29 (a world's limit) or
+  /// "shapes" for more than 2^32 - 2.
   void reserve(std::size_t bodies, std::size_t shapes);
   /// Creates an immutable shape that any number of bodies may share. Throws elan::Error.
   ShapeId create_shape(const ShapeDef& def);
@@ -52,7 +53,8 @@ class World {
   void destroy_shape(ShapeId id);
   bool is_valid(ShapeId id) const;
   /// Creates a body. Throws elan::Error naming the field for invalid input (a stale shape id,
-  /// non-finite values, zero orientation, non-positive mass or density, a non-static plane).
+  /// non-finite values, zero orientation, non-positive mass or density, a non-static plane), or
+  /// "body" when the world already holds 2^29 bodies.
   BodyId create_body(const BodyDef& def);
   /// Destroys a body between steps. Its contacts are dropped, with a ContactEndEvent for each
   /// touching one (appended to contact_end_events() at once), and the dynamic bodies it touched
