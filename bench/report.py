@@ -253,8 +253,9 @@ def main():
     L.append(f"- heap held by a live world after the scene's steps: elan {fmt(heap_elan, 0)} B/body, "
              f"Bullet {fmt(heap_bullet, 0)} B/body (glibc mallinfo2, in process)")
     if all(v == v for _, v in mem_parts):
-        L.append("- elan's by part (buffer capacities, B/body; the contacts part holds the contact list, the separation "
-                 "cache and the step's changes to the list (the contact events); scratch is the step's "
+        L.append("- elan's by part (buffer capacities, B/body; the contacts part holds the contact list's "
+                 "manifold heads, the tails of those with more than one point, the body pair cache's poses, "
+                 "the separation cache and the step's changes to the list (the contact events); scratch is the step's "
                  "scratch, which the bounding boxes and the sweep's buffers, the collide stage's buffers "
                  "and then the solver's islands, colourings, bundles and rows use in turn): " +
                  ", ".join(f"{part} {fmt(v, 0)}" for part, v in mem_parts) +
