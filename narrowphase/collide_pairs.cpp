@@ -323,12 +323,12 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   auto carried = [&](uint64_t key) {
     return !idle.empty() && idle[pair_first(key)] && idle[pair_second(key)];
   };
-  // determinism: part p writes only its ranges of the two lists and one run of each of its
+  // determinism: part p writes only its ranges of the four lists and one run of each of its
   // thread's buffers. An entry whose key is in a list is updated where it is; a key new to a list
   // goes to the run (which thread's buffer holds it changes nothing: the join reads runs in part
   // order); one that ends is marked (a manifold with point_count 0, which no live manifold has; a
-  // separated pair of kind Unknown). Nothing depends on which thread ran a part. A key is in at
-  // most one of the lists: touching or apart.
+  // separated pair of kind Unknown; a tail or poses with kEndedKey). Nothing depends on which
+  // thread ran a part. A key is touching (a head, perhaps a tail and poses) or apart, not both.
   for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
     const std::size_t slot = thread_slot();
     ScratchVector<ManifoldHead>& added = mu.added[slot];

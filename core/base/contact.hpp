@@ -84,16 +84,22 @@ struct ManifoldTail {
 };
 static_assert(sizeof(Real) != 4 || sizeof(ManifoldTail) == 80, "ManifoldTail: 80 bytes in float");
 
+// The fields a whole manifold and its head share, from one to the other.
+template <class From, class To>
+void copy_shared(const From& from, To& to) {
+  to.body_a = from.body_a;
+  to.body_b = from.body_b;
+  to.point_count = from.point_count;
+  to.normal = from.normal;
+  to.tangent_impulse[0] = from.tangent_impulse[0];
+  to.tangent_impulse[1] = from.tangent_impulse[1];
+  to.twist_impulse = from.twist_impulse;
+}
+
 // A manifold's head and tail (the tail only for a manifold with more than one point), written in
 // place: the collide stage stores one for every touching pair every step.
 inline void store_head(const Manifold& m, ManifoldHead& h) {
-  h.body_a = m.body_a;
-  h.body_b = m.body_b;
-  h.point_count = m.point_count;
-  h.normal = m.normal;
-  h.tangent_impulse[0] = m.tangent_impulse[0];
-  h.tangent_impulse[1] = m.tangent_impulse[1];
-  h.twist_impulse = m.twist_impulse;
+  copy_shared(m, h);
   h.first = m.points[0];
 }
 inline void store_tail(const Manifold& m, ManifoldTail& t) {
@@ -114,13 +120,7 @@ inline ManifoldTail tail_of(const Manifold& m) {
 // The whole manifold of a head and its tail (null for one point or none), into `m`; the points
 // past its count are left as they were.
 inline void load_whole(const ManifoldHead& h, const ManifoldTail* t, Manifold& m) {
-  m.body_a = h.body_a;
-  m.body_b = h.body_b;
-  m.point_count = h.point_count;
-  m.normal = h.normal;
-  m.tangent_impulse[0] = h.tangent_impulse[0];
-  m.tangent_impulse[1] = h.tangent_impulse[1];
-  m.twist_impulse = h.twist_impulse;
+  copy_shared(h, m);
   m.points[0] = h.first;
   if (t != nullptr) {
     for (int k = 1; k < kMaxManifoldPoints; ++k) m.points[k] = t->points[k - 1];

@@ -66,9 +66,10 @@ TEST(WorldApi, ReserveMakesRoomAndRejectsImpossibleCounts) {
   add(w, box, Vec3(-5, 0, 0));
   EXPECT_EQ(w.body_count(), 101u);
   EXPECT_EQ(w.body_columns().px[100], Real(-5));
+  // A world holds at most 2^29 bodies (their indices share a word with a manifold's point count).
   try {
-    w.reserve(std::size_t(UINT32_MAX), 1);
-    ADD_FAILURE() << "reserve of 2^32 - 1 bodies accepted";
+    w.reserve((std::size_t{1} << 29) + 1, 1);
+    ADD_FAILURE() << "reserve of 2^29 + 1 bodies accepted";
   } catch (const Error& e) {
     EXPECT_EQ(e.field(), "bodies");
   }
