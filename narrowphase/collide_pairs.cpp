@@ -361,11 +361,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       entry.key = kEndedKey;
       ++dead_count;
     };
-    auto keep_tail_if_carried = [&](ManifoldTail& t) {
-      if (!carried(t.key)) end_side(t, dead_tail);
-    };
-    auto keep_cache_if_carried = [&](PairCache& c) {
-      if (!carried(c.key)) end_side(c, dead_cache);
+    auto keep_side_if_carried = [&](auto& entry, std::size_t& dead_count) {
+      if (!carried(entry.key)) end_side(entry, dead_count);
     };
     auto end_apart = [&](SeparatedPair& s) {
       s.kind = Separation::Kind::Unknown;
@@ -381,10 +378,11 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       if (prev_end - prev_it > 2) prefetch<true>(prev_it[2]);
       if (tail_end - tail_it > 2) prefetch<true>(tail_it[2]);
       for (; prev_it != prev_end && prev_it->key() < key; ++prev_it) keep_if_carried(*prev_it);
-      for (; tail_it != tail_end && tail_it->key < key; ++tail_it) keep_tail_if_carried(*tail_it);
+      for (; tail_it != tail_end && tail_it->key < key; ++tail_it)
+        keep_side_if_carried(*tail_it, dead_tail);
       for (; apart_it != apart_end && apart_it->key < key; ++apart_it) end_apart(*apart_it);
       for (; cache_it != cache_end && cache_it->key < key; ++cache_it) {
-        keep_cache_if_carried(*cache_it);
+        keep_side_if_carried(*cache_it, dead_cache);
       }
       uint32_t a = pair_first(key), b = pair_second(key);
       // The static or kinematic body, if any, is B (architecture rule 4).
@@ -444,8 +442,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation);
       if (m.point_count == 0) {
         if (same_key != nullptr) keep_if_carried(*same_key);
-        if (tail != nullptr) keep_tail_if_carried(*tail);
-        if (cache != nullptr) keep_cache_if_carried(*cache);
+        if (tail != nullptr) keep_side_if_carried(*tail, dead_tail);
+        if (cache != nullptr) keep_side_if_carried(*cache, dead_cache);
         // A closed-form test costs about what checking a cached separation does, so its pairs
         // keep none: on pile10k the separated list went from 49k pairs to 40k, 40 bytes each.
         if (separation.kind == Separation::Kind::Unknown ||
@@ -490,9 +488,9 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       store();
     }
     for (; prev_it != prev_end; ++prev_it) keep_if_carried(*prev_it);
-    for (; tail_it != tail_end; ++tail_it) keep_tail_if_carried(*tail_it);
+    for (; tail_it != tail_end; ++tail_it) keep_side_if_carried(*tail_it, dead_tail);
     for (; apart_it != apart_end; ++apart_it) end_apart(*apart_it);
-    for (; cache_it != cache_end; ++cache_it) keep_cache_if_carried(*cache_it);
+    for (; cache_it != cache_end; ++cache_it) keep_side_if_carried(*cache_it, dead_cache);
     mu.live[part] = mu.start[part + 1] - mu.start[part] - dead;
     mu.added_run[part] = {uint32_t(slot), first_added, added.size() - first_added};
     tu.live[part] = tu.start[part + 1] - tu.start[part] - dead_tail;

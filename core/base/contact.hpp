@@ -141,17 +141,28 @@ inline const ContactPoint& point_of(const ManifoldHead& h, std::span<const Manif
   return k == 0 ? h.first : tails[h.tail].points[k - 1];
 }
 
+// The entry of `key` in a list kept beside the contact list (tails, poses: sorted by key, a subset
+// of its keys), or null. `cursor` walks the list in key order alongside the contact list, so a
+// pass over both is one pass over each.
+template <class T>
+const T* find_beside(std::span<const T> list, std::size_t& cursor, uint64_t key) {
+  while (cursor < list.size() && list[cursor].key < key) ++cursor;
+  return cursor < list.size() && list[cursor].key == key ? &list[cursor] : nullptr;
+}
+
+// The whole manifold of a head, its tail found in `tails` by `cursor` (find_beside).
+inline Manifold whole_at(const ManifoldHead& h, std::span<const ManifoldTail> tails,
+                         std::size_t& cursor) {
+  return whole(h, h.point_count > 1 ? find_beside(tails, cursor, h.key()) : nullptr);
+}
+
 // Every whole manifold of a list of heads and its tails, in key order.
 inline std::vector<Manifold> whole_list(std::span<const ManifoldHead> heads,
                                         std::span<const ManifoldTail> tails) {
   std::vector<Manifold> out;
   out.reserve(heads.size());
-  std::size_t t = 0;
-  for (const ManifoldHead& h : heads) {
-    while (t < tails.size() && tails[t].key < h.key()) ++t;
-    const bool has_tail = h.point_count > 1 && t < tails.size() && tails[t].key == h.key();
-    out.push_back(whole(h, has_tail ? &tails[t] : nullptr));
-  }
+  std::size_t cursor = 0;
+  for (const ManifoldHead& h : heads) out.push_back(whole_at(h, tails, cursor));
   return out;
 }
 

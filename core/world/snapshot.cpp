@@ -229,32 +229,20 @@ ContactPoint read_point(ByteReader& r) {
 
 // The manifold's friction impulses, carried to the next step like the normal impulses, and the
 // poses its points were computed at if it may reuse them (they decide whether the next step
-// does). `cache` walks the pair cache, which holds a subset of the manifolds' keys in the same
-// order.
-void write_friction(ByteWriter& w, const Manifold& m, std::vector<PairCache>::const_iterator& cache,
-                    std::vector<PairCache>::const_iterator cache_end) {
+// does). `cursor` walks the pair cache alongside the manifolds (detail::find_beside).
+void write_friction(ByteWriter& w, const Manifold& m, std::span<const PairCache> poses,
+                    std::size_t& cursor) {
   w.real(m.tangent_impulse[0]);
   w.real(m.tangent_impulse[1]);
   w.real(m.twist_impulse);
-  while (cache != cache_end && cache->key < m.key()) ++cache;
-  const bool cached = cache != cache_end && cache->key == m.key();
-  w.u8(cached ? 1 : 0);
-  if (!cached) return;
+  const PairCache* cache = detail::find_beside(poses, cursor, m.key());
+  w.u8(cache != nullptr ? 1 : 0);
+  if (cache == nullptr) return;
   write_quat(w, cache->orientation_a);
   write_quat(w, cache->orientation_b);
   w.vec3(cache->relative_position);
   w.vec3(cache->exact_position);
   for (uint8_t byte : cache->exact_rotation.bytes) w.u8(byte);
-  ++cache;
-}
-
-// The whole manifold of `head`, its tail found by `tail`, which walks the list of tails in key
-// order alongside the heads.
-Manifold whole_at(const ManifoldHead& head, std::vector<ManifoldTail>::const_iterator& tail,
-                  std::vector<ManifoldTail>::const_iterator tail_end) {
-  while (tail != tail_end && tail->key < head.key()) ++tail;
-  const bool has_tail = head.point_count > 1 && tail != tail_end && tail->key == head.key();
-  return detail::whole(head, has_tail ? &*tail : nullptr);
 }
 
 // Reads what write_friction wrote; the manifold's poses, if it has them, are appended to `cache`.
@@ -550,17 +538,16 @@ std::vector<uint8_t> save_snapshot(const World& world) {
   for (uint32_t v : s.free_slots) w.u32(v);
 
   w.u32(uint32_t(s.contacts.size()));
-  auto cache = s.pair_cache.cbegin();
-  auto tail = s.contact_tails.cbegin();
+  std::size_t cache = 0, tail = 0;
   for (const ManifoldHead& head : s.contacts) {
-    const Manifold m = whole_at(head, tail, s.contact_tails.cend());
+    const Manifold m = detail::whole_at(head, s.contact_tails, tail);
     w.u64(m.key());
     w.u32(m.body_a);
     w.u32(m.body_b);
     w.vec3(m.normal);
     w.u8(uint8_t(m.point_count));
     for (const ContactPoint& p : m.points) write_point(w, p);
-    write_friction(w, m, cache, s.pair_cache.cend());
+    write_friction(w, m, s.pair_cache, cache);
   }
   seal(out);
   return out;
@@ -596,16 +583,15 @@ void save_rollback(const World& world, std::vector<uint8_t>& out) {
     w.u8(b.flags[i]);
   }
   w.u32(uint32_t(s.contacts.size()));
-  auto cache = s.pair_cache.cbegin();
-  auto tail = s.contact_tails.cbegin();
+  std::size_t cache = 0, tail = 0;
   for (const ManifoldHead& head : s.contacts) {
-    const Manifold m = whole_at(head, tail, s.contact_tails.cend());
+    const Manifold m = detail::whole_at(head, s.contact_tails, tail);
     w.u64(m.key());
     w.u8(m.body_a > m.body_b ? 1 : 0);
     w.vec3(m.normal);
     w.u8(uint8_t(m.point_count));
     for (int p = 0; p < m.point_count; ++p) write_point(w, m.points[p]);
-    write_friction(w, m, cache, s.pair_cache.cend());
+    write_friction(w, m, s.pair_cache, cache);
   }
   seal(out);
 }
