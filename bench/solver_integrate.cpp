@@ -19,7 +19,6 @@ using namespace elan::detail;
 struct Bodies {
   BodyStore store;
   std::vector<SolverBody> packets;
-  std::vector<SolverBodyParams> params;
   std::vector<SolverBodyMass> masses;
 };
 
@@ -29,17 +28,15 @@ Bodies make_bodies(std::size_t n, bool anisotropic) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1, 1);
   b.packets.resize(n + 1);
-  b.params.resize(n + 1);
   b.masses.resize(n + 1);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t k = b.store.push_back();
     Quat q(1, u(rng), u(rng), u(rng));
     q.normalize();
     b.store.set_orientation(k, q);
-    SolverBodyParams& p = b.params[k + 1];
+    SolverBodyMass& p = b.masses[k + 1];
     p.body = uint32_t(k);
-    b.masses[k + 1].inv_mass = 1;
-    p.delta_v_per_s = Vec3(0, Real(-9.81), 0);
+    p.inv_mass = 1;
     const Vec3 moments =
         anisotropic ? Vec3(Real(0.15), Real(0.12), Real(0.03)) : Vec3::Constant(Real(0.1));
     b.store.inv_ix[k] = 1 / moments.x();
@@ -61,9 +58,9 @@ void integrate(benchmark::State& state, bool anisotropic) {
   for (auto _ : state) {
     arena.execute([&] {
       for_blocks(n, kGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
-        integrate_velocities(b.packets, b.params, b.masses, h, uint32_t(begin + 1),
-                             uint32_t(end + 1));
-        integrate_positions(b.packets, b.params, b.masses, b.store, h, uint32_t(begin + 1),
+        integrate_velocities(b.packets, b.masses, b.store, Vec3(0, Real(-9.81), 0), h,
+                             uint32_t(begin + 1), uint32_t(end + 1));
+        integrate_positions(b.packets, b.masses, b.store, h, uint32_t(begin + 1),
                             uint32_t(end + 1));
       });
     });

@@ -54,7 +54,7 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
   fast.assign(count, 0);
   bool any = false;
   for (std::size_t k = 1; k < count; ++k) {
-    const uint32_t i = st.params[k].body;
+    const uint32_t i = st.masses[k].body;
     if (!bodies.is_dynamic(i)) continue;
     const Shape& s = shapes[bodies.shape[i]];
     const SolverBody& p = st.packets[k];
@@ -118,7 +118,7 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
     const Real t = earliest[k];
     if (t >= 1) continue;
     SolverBody& p = st.packets[k];
-    const Quat q0 = bodies.orientation(st.params[k].body);
+    const Quat q0 = bodies.orientation(st.masses[k].body);
     const Quat q1 = (p.dq * q0).normalized();
     // The pose time_of_impact tested: position along the line, rotation slerped.
     p.dp *= t;

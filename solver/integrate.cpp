@@ -6,15 +6,20 @@
 
 namespace elan::detail {
 
-void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
-                          std::span<const SolverBodyMass> masses, Real h, uint32_t begin,
+void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyMass> masses,
+                          const BodyStore& bodies, const Vec3& gravity, Real h, uint32_t begin,
                           uint32_t end) {
-  for (uint32_t i = begin; i < end; ++i) {
-    const SolverBodyParams& p = params[i];
-    if (masses[i].inv_mass == 0) continue;  // kinematic: moves with its given velocities
-    SolverBody& b = packets[i];
-    b.v = (b.v + h * p.delta_v_per_s) / (1 + h * p.linear_damping);
-    b.w = (b.w + h * p.delta_w_per_s) / (1 + h * p.angular_damping);
+  for (uint32_t k = begin; k < end; ++k) {
+    const SolverBodyMass& m = masses[k];
+    if (m.inv_mass == 0) continue;  // kinematic: moves with its given velocities
+    const uint32_t i = m.body;
+    const Vec3 force(bodies.fx[i], bodies.fy[i], bodies.fz[i]);
+    const Vec3 torque(bodies.tx[i], bodies.ty[i], bodies.tz[i]);
+    const Vec3 delta_v_per_s = gravity + m.inv_mass * force;
+    const Vec3 delta_w_per_s = m.inv_inertia * torque;
+    SolverBody& b = packets[k];
+    b.v = (b.v + h * delta_v_per_s) / (1 + h * bodies.linear_damping[i]);
+    b.w = (b.w + h * delta_w_per_s) / (1 + h * bodies.angular_damping[i]);
   }
 }
 
@@ -129,9 +134,8 @@ Quat rotation_from_angular_velocity(const Vec3& w, Real h) {
 
 // perf: kLanes packets at once. The scalar loop was a tenth of pile4k's step (the gyroscopic
 // update is two exponentials, six rotations and an inertia per body and substep).
-void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
-                         std::span<SolverBodyMass> masses, const BodyStore& bodies, Real h,
-                         uint32_t begin, uint32_t end) {
+void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyMass> masses,
+                         const BodyStore& bodies, Real h, uint32_t begin, uint32_t end) {
   for (uint32_t first = begin; first < end; first += kLanes) {
     const int count = int(std::min<uint32_t>(kLanes, end - first));
     // Unused lanes hold a body at rest with unit inertia.
@@ -140,16 +144,16 @@ void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBo
     Wide gyroscopic{};
     for (int l = 0; l < count; ++l) {
       const SolverBody& b = packets[first + l];
-      const SolverBodyParams& p = params[first + l];
+      const SolverBodyMass& m = masses[first + l];
       set_lane(v, l, b.v);
       set_lane(w, l, b.w);
       set_lane(dp, l, b.dp);
       set_lane(dtheta, l, b.dtheta);
       set_lane(dq, l, b.dq);
-      if (p.gyroscopic) {
+      if (m.gyroscopic) {
         gyroscopic[l] = 1;
-        set_lane(d, l, principal_moments(bodies, p.body));
-        set_lane(q0, l, bodies.orientation(p.body));
+        set_lane(d, l, principal_moments(bodies, m.body));
+        set_lane(q0, l, bodies.orientation(m.body));
       }
     }
     dp = dp + splat(h) * v;

@@ -12,9 +12,11 @@
 
 namespace elan::detail {
 
-// v += h (g + F/m), w += h I^-1 tau, then implicit damping v /= (1 + h d) (dv/dt = -d v).
-void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
-                          std::span<const SolverBodyMass> masses, Real h, uint32_t begin,
+// v += h (g + F/m), w += h I^-1 tau, then implicit damping v /= (1 + h d) (dv/dt = -d v). The
+// force, torque and damping are the body's (masses[i].body) in the store; I^-1 is the packet's
+// current world inverse inertia. Kinematic packets (no inverse mass) keep their velocities.
+void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyMass> masses,
+                          const BodyStore& bodies, const Vec3& gravity, Real h, uint32_t begin,
                           uint32_t end);
 
 // dp += h v; dq advanced by the exact rotation of w over h. For anisotropic dynamic bodies the
@@ -22,9 +24,8 @@ void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverB
 // w' = I(q')^-1 I(q) w (the body spins "from momentum": L is unchanged by the rotation update,
 // so a torque-free body conserves L and shows the intermediate-axis flip). Gyroscopic bodies'
 // masses[i].inv_inertia is updated to the new orientation.
-void integrate_positions(std::span<SolverBody> packets, std::span<const SolverBodyParams> params,
-                         std::span<SolverBodyMass> masses, const BodyStore& bodies, Real h,
-                         uint32_t begin, uint32_t end);
+void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyMass> masses,
+                         const BodyStore& bodies, Real h, uint32_t begin, uint32_t end);
 
 // A body's principal moments of inertia, kg m^2, from its inverses (the body store keeps those).
 inline Vec3 principal_moments(const BodyStore& bodies, uint32_t i) {

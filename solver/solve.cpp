@@ -96,10 +96,8 @@ void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
   st.half_start[2] = 1 + dynamic;
   st.packet_of.assign(n, 0);
   st.packets.resize(count);
-  st.params.resize(count);
   st.masses.resize(count);
   st.packets[0] = SolverBody{};
-  st.params[0] = SolverBodyParams{};
   st.masses[0] = SolverBodyMass{};
   stats.awake = dynamic;
   uint32_t next_packet[kHalves] = {st.half_start[0], st.half_start[1]};
@@ -107,18 +105,18 @@ void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
     const uint32_t i = st.simulated[k];
     const uint32_t p = next_packet[st.side[k]]++;
     st.packet_of[i] = p;
-    st.params[p].body = i;
+    st.masses[p].body = i;
   }
   for (uint32_t i = 0, p = st.half_start[kHalves]; kinematic > 0 && i < n; ++i) {
     if (bodies.motion[i] != uint8_t(MotionType::Kinematic)) continue;
     st.packet_of[i] = p;
-    st.params[p++].body = i;
+    st.masses[p++].body = i;
   }
-  // The packets' step constants: velocities, world inverse inertias, forces as velocity rates.
+  // The packets' step constants: velocities, world inverse inertias.
   auto fill_packets = [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
-      SolverBodyParams& prm = st.params[k];
-      const uint32_t i = prm.body;
+      SolverBodyMass& mass = st.masses[k];
+      const uint32_t i = mass.body;
       SolverBody& b = st.packets[k];
       b.v = bodies.linear_velocity(i);
       b.w = bodies.angular_velocity(i);
@@ -126,19 +124,11 @@ void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
       b.dtheta.setZero();
       b.dq = Quat::Identity();
       const bool dynamic = bodies.is_dynamic(i);
-      SolverBodyMass& mass = st.masses[k];
       mass.inv_mass = dynamic ? bodies.inv_mass[i] : 0;
       const Vec3 inv_i(bodies.inv_ix[i], bodies.inv_iy[i], bodies.inv_iz[i]);
       const Quat q = bodies.orientation(i);
       mass.inv_inertia = dynamic ? rotate_diagonal(q, inv_i) : SymMat3{};
-      const Vec3 force(bodies.fx[i], bodies.fy[i], bodies.fz[i]);
-      const Vec3 torque(bodies.tx[i], bodies.ty[i], bodies.tz[i]);
-      prm.delta_v_per_s = dynamic ? Vec3(settings.gravity + mass.inv_mass * force) : Vec3::Zero();
-      prm.delta_w_per_s = dynamic ? Vec3(mass.inv_inertia * torque) : Vec3::Zero();
-      prm.linear_damping = bodies.linear_damping[i];
-      prm.angular_damping = bodies.angular_damping[i];
-      // Bodies with equal principal moments (spheres, cubes) have no gyroscopic term.
-      prm.gyroscopic = dynamic && !(inv_i.x() == inv_i.y() && inv_i.y() == inv_i.z());
+      mass.gyroscopic = dynamic && !(inv_i.x() == inv_i.y() && inv_i.y() == inv_i.z());
     }
   };
 
@@ -366,13 +356,12 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
   const Real h = ctx.h;
   auto work = [&](const StageSpec& stage, uint32_t block) {
     if (stage.kind == kKinematicVelocities) {
-      integrate_velocities(st.packets, st.params, st.masses, h, st.half_start[kHalves],
-                           packet_count);
+      integrate_velocities(st.packets, st.masses, bodies, settings.gravity, h,
+                           st.half_start[kHalves], packet_count);
       return;
     }
     if (stage.kind == kKinematicPositions) {
-      integrate_positions(st.packets, st.params, st.masses, bodies, h, st.half_start[kHalves],
-                          packet_count);
+      integrate_positions(st.packets, st.masses, bodies, h, st.half_start[kHalves], packet_count);
       return;
     }
     const uint32_t group = stage.arg == kCutGroup ? kCutGroup : block;
@@ -382,8 +371,8 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
     switch (stage.kind) {
       case kWarmStart:
         if (half) {
-          integrate_velocities(st.packets, st.params, st.masses, h, st.half_start[group],
-                               st.half_start[group + 1]);
+          integrate_velocities(st.packets, st.masses, bodies, settings.gravity, h,
+                               st.half_start[group], st.half_start[group + 1]);
         }
         warm_start_contacts(ctx, begin, end);
         break;
@@ -392,7 +381,7 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
         break;
       case kRelax:
         if (half) {
-          integrate_positions(st.packets, st.params, st.masses, bodies, h, st.half_start[group],
+          integrate_positions(st.packets, st.masses, bodies, h, st.half_start[group],
                               st.half_start[group + 1]);
         }
         // perf: refreshing a bundle reads only the poses, which no constraint pass changes, and

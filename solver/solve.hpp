@@ -68,7 +68,6 @@ struct SolverState {
   // Half h: packets [half_start[h], half_start[h + 1]); the kinematic bodies' follow.
   uint32_t half_start[kHalves + 1] = {1, 1, 1};
   std::vector<SolverBody> packets;  // 0 = static dummy; half 0, half 1, kinematic
-  std::vector<SolverBodyParams> params;
   std::vector<SolverBodyMass> masses;
   // Contact indices that take part, group by group, and per candidate its packets as its group's
   // colouring sees them. These, order_scratch and the colourings' arrays are taken from the

@@ -45,23 +45,21 @@ inline bool written_packet(uint32_t packet, uint32_t written_end) {
 // into every constraint bundle, where they were 14 of a bundle's 38 values a lane: the passes
 // stream the bundles from beyond L2, while the packets' masses (128 KiB on pile4k) stay in it.
 // Solve 2.98 -> 2.89 ms a step on pile4k, 2.80 -> 2.63 on jolt_pyramid.
+//
+// The row's eighth word, which the passes' 8-float gathers load and ignore, tells the substep
+// integration which body the packet is and whether it turns gyroscopically. Gravity, forces and
+// damping are read from the body store there (memory: a 40-byte record of per-packet constants,
+// 40 B a body on pile10k, had held copies of them).
 struct alignas(8 * sizeof(Real)) SolverBodyMass {
   Real inv_mass = 0;    // 1/kg
   SymMat3 inv_inertia;  // 1/(kg m^2), world; integrate_positions turns it for gyroscopic bodies
-  Real unused = 0;
-};
-
-// Per-packet constants for the step.
-struct SolverBodyParams {
-  uint32_t body = 0;                  // dense body index
-  Vec3 delta_v_per_s = Vec3::Zero();  // m/s^2: gravity + force / mass
-  Vec3 delta_w_per_s = Vec3::Zero();  // rad/s^2: inv_inertia * torque
-  Real linear_damping = 0;            // 1/s
-  Real angular_damping = 0;           // 1/s
+  uint32_t body : kManifoldBodyBits = 0;  // dense body index
   // Anisotropic inertia: keep L = I w through rotation (integrate_positions reads the principal
-  // moments from the body store then, for these bodies only).
-  bool gyroscopic = false;
+  // moments from the body store then, for these bodies only). Bodies with equal principal
+  // moments (spheres, cubes) have no gyroscopic term.
+  uint32_t gyroscopic : 1 = 0;
 };
+static_assert(sizeof(Real) != 4 || sizeof(SolverBodyMass) == 32, "SolverBodyMass: one 8-float row");
 
 // Soft constraint coefficients (Box2D v3 "soft step", b2MakeSoft): a spring-damper of the
 // given stiffness (Hz) and damping ratio expressed as a bias rate and two impulse scales.

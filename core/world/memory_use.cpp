@@ -49,11 +49,11 @@ MemoryUse memory_use(const WorldState& w) {
 
   const SolverState& v = w.solver;
   m.solver = heap_bytes(v.packet_of) + heap_bytes(v.simulated) + heap_bytes(v.side) +
-             heap_bytes(v.split_keys) + heap_bytes(v.packets) + heap_bytes(v.params) +
-             heap_bytes(v.masses) + heap_bytes(v.candidates) + heap_bytes(v.color_input) +
-             heap_bytes(v.order) + heap_bytes(v.segment_start) + heap_bytes(v.order_scratch) +
-             heap_bytes(v.bundles) + heap_bytes(v.row_start) + heap_bytes(v.lane_start) +
-             heap_bytes(v.rows) + heap_bytes(v.restitution) + heap_bytes(v.bundle_start) +
+             heap_bytes(v.split_keys) + heap_bytes(v.packets) + heap_bytes(v.masses) +
+             heap_bytes(v.candidates) + heap_bytes(v.color_input) + heap_bytes(v.order) +
+             heap_bytes(v.segment_start) + heap_bytes(v.order_scratch) + heap_bytes(v.bundles) +
+             heap_bytes(v.row_start) + heap_bytes(v.lane_start) + heap_bytes(v.rows) +
+             heap_bytes(v.restitution) + heap_bytes(v.bundle_start) +
              heap_bytes(v.island_scratch.parent) + heap_bytes(v.island_scratch.island_sleep_time) +
              heap_bytes(v.island_scratch.island_awake) + v.executor.heap_bytes() +
              heap_bytes(v.stages) + heap_bytes(v.block_flags) + heap_bytes(v.fast) +

@@ -24,7 +24,7 @@ struct Scene {
     bodies.motion[wall] = uint8_t(MotionType::Static);
     bodies.set_position(wall, Vec3(1, 0, 0));
     state.packets.resize(1);
-    state.params.resize(1);
+    state.masses.resize(1);
     for (const Vec3& dp : motions) {
       const uint32_t b = uint32_t(bodies.push_back());
       bodies.shape[b] = 1;
@@ -33,13 +33,13 @@ struct Scene {
       SolverBody p;
       p.dp = dp;
       state.packets.push_back(p);
-      SolverBodyParams prm;
-      prm.body = b;
-      state.params.push_back(prm);
+      SolverBodyMass mass;
+      mass.body = b;
+      state.masses.push_back(mass);
       pairs.push_back(make_pair_key(wall, b));
     }
     state.packet_of.assign(bodies.size(), 0);
-    for (uint32_t k = 1; k < state.params.size(); ++k) state.packet_of[state.params[k].body] = k;
+    for (uint32_t k = 1; k < state.masses.size(); ++k) state.packet_of[state.masses[k].body] = k;
   }
 };
 

@@ -58,7 +58,7 @@ struct Reference {
   Eigen::Matrix3d inv_inertia;
 };
 
-Reference reference_step(const SolverBody& b, const SolverBodyParams& p, const BodyStore& store,
+Reference reference_step(const SolverBody& b, const SolverBodyMass& p, const BodyStore& store,
                          double h) {
   const Quat& q0f = store.orientation(p.body);
   const Quatd q0 = q0f.cast<double>();
@@ -80,7 +80,6 @@ Reference reference_step(const SolverBody& b, const SolverBodyParams& p, const B
 struct Bodies {
   BodyStore store;
   std::vector<SolverBody> packets;
-  std::vector<SolverBodyParams> params;
   std::vector<SolverBodyMass> masses;
 };
 
@@ -90,13 +89,12 @@ Bodies make_bodies(std::size_t n, std::mt19937& rng) {
   std::uniform_real_distribution<float> u(-1, 1);
   Bodies s;
   s.packets.resize(n + 1);
-  s.params.resize(n + 1);
   s.masses.resize(n + 1);
   for (std::size_t k = 1; k <= n; ++k) {
     const std::size_t i = s.store.push_back();
     s.store.set_orientation(i, Quat(u(rng), u(rng), u(rng), u(rng)).normalized());
     SolverBody& b = s.packets[k];
-    SolverBodyParams& p = s.params[k];
+    SolverBodyMass& p = s.masses[k];
     const Real spin = k % 7 == 0 ? Real(300) : Real(20);  // 300 rad/s: the libm route at 1/240 s
     b.v = Vec3(u(rng), u(rng), u(rng));
     b.w = spin * Vec3(u(rng), u(rng), u(rng));
@@ -105,8 +103,8 @@ Bodies make_bodies(std::size_t n, std::mt19937& rng) {
     b.dtheta = Vec3(u(rng), u(rng), u(rng));
     b.dq = Quat(1, Real(0.1) * u(rng), Real(0.1) * u(rng), Real(0.1) * u(rng)).normalized();
     p.body = uint32_t(i);
-    s.masses[k].inv_mass = k % 5 == 0 ? 0 : 1;
-    p.gyroscopic = k % 3 != 0 && s.masses[k].inv_mass != 0;
+    p.inv_mass = k % 5 == 0 ? 0 : 1;
+    p.gyroscopic = k % 3 != 0 && p.inv_mass != 0;
     const Vec3 moments = p.gyroscopic ? Vec3(1 + u(rng) * Real(0.5), 2, 3 + u(rng)) : Vec3::Ones();
     s.store.inv_ix[i] = 1 / moments.x();
     s.store.inv_iy[i] = 1 / moments.y();
@@ -120,11 +118,11 @@ TEST(IntegratePositions, LanesFollowTheMidpointRuleInDouble) {
   Bodies s = make_bodies(101, rng);
   const std::vector<SolverBody> start = s.packets;
   const Real h = Real(1.0 / 240);
-  integrate_positions(s.packets, s.params, s.masses, s.store, h, 1, uint32_t(s.packets.size()));
+  integrate_positions(s.packets, s.masses, s.store, h, 1, uint32_t(s.packets.size()));
   for (std::size_t k = 1; k < s.packets.size(); ++k) {
     const SolverBody& b0 = start[k];
     const SolverBody& b = s.packets[k];
-    const SolverBodyParams& p = s.params[k];
+    const SolverBodyMass& p = s.masses[k];
     const Reference r = reference_step(b0, p, s.store, h);
     EXPECT_LE((b.dp - (b0.dp + h * b0.v)).cwiseAbs().maxCoeff(), 4 * kEps) << k;
     EXPECT_LE((b.dtheta - (b0.dtheta + h * b0.w)).cwiseAbs().maxCoeff(), 4 * kEps) << k;
@@ -150,11 +148,11 @@ TEST(IntegratePositions, ABodyGetsTheSameBitsInAnyLaneAndBlock) {
   const Bodies s = make_bodies(77, rng);
   const Real h = Real(1.0 / 240);
   Bodies whole = s;
-  integrate_positions(whole.packets, whole.params, whole.masses, whole.store, h, 1, 78);
+  integrate_positions(whole.packets, whole.masses, whole.store, h, 1, 78);
   for (uint32_t chunk : {1u, 3u, 5u, 17u, 40u}) {
     Bodies parts = s;
     for (uint32_t begin = 1; begin < 78; begin += chunk) {
-      integrate_positions(parts.packets, parts.params, parts.masses, parts.store, h, begin,
+      integrate_positions(parts.packets, parts.masses, parts.store, h, begin,
                           std::min<uint32_t>(78, begin + chunk));
     }
     EXPECT_EQ(std::memcmp(parts.packets.data(), whole.packets.data(),
