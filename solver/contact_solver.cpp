@@ -54,12 +54,47 @@ inline Wide row_velocity(const WideBody& a, const WideBody& b, const WideVec3& d
   return dot(d, b.v - a.v) + dot(rb_d, b.w) - dot(ra_d, a.w);
 }
 
+// The Jacobian arms of a bundle's points as its passes derive them (WideContactPoint): the
+// centre's, once a bundle, then each point's from its offset.
+struct BundleArms {
+  WideVec3 center_n;        // c_a x n
+  WideVec3 b_offset_n;      // (c_a - c_b) x n: a point's rb x n is its ra x n minus this
+  WideVec3 first_offset_n;  // the first point's offset: minus the sum of the others'
+};
+
+BundleArms bundle_arms(const ContactBundle& c, const WideContactPoint* rows, int point_count) {
+  BundleArms arms;
+  arms.center_n = cross(c.center_ra, c.normal);
+  arms.b_offset_n = cross(c.center_ra - c.center_rb, c.normal);
+  for (int k = 1; k < point_count; ++k) {
+    arms.first_offset_n = arms.first_offset_n - rows[k - 1].offset_n;
+  }
+  return arms;
+}
+
+// Point k's row (the first is the bundle's own) and offset.
+template <class Bundle, class Point>
+auto& row_of(Bundle& c, Point* rows, int k) {
+  return k == 0 ? c.first : rows[k - 1].row;
+}
+inline const WideVec3& offset_of(const BundleArms& arms, const WideContactPoint* rows, int k) {
+  return k == 0 ? arms.first_offset_n : rows[k - 1].offset_n;
+}
+
+struct PointArms {
+  WideVec3 ra_n, rb_n;  // ra x n, rb x n
+};
+inline PointArms arms_of(const BundleArms& arms, const WideContactPoint* rows, int k) {
+  const WideVec3 ra_n = arms.center_n + offset_of(arms, rows, k);
+  return {ra_n, ra_n - arms.b_offset_n};
+}
+
 // Applies impulse `lambda` along a non-penetration row: linear part along n, angular parts
 // I^-1 (r x n). A side that is not written has zero inverse mass and inertia.
 inline void apply_row(const ContactBundle& c, const WideMass& ma, const WideMass& mb, WideBody& a,
-                      WideBody& b, const WideContactPoint& p, Wide lambda) {
-  const WideVec3 ia_ra_n = ma.inv_inertia * p.ra_n;
-  const WideVec3 ib_rb_n = mb.inv_inertia * p.rb_n;
+                      WideBody& b, const PointArms& r, Wide lambda) {
+  const WideVec3 ia_ra_n = ma.inv_inertia * r.ra_n;
+  const WideVec3 ib_rb_n = mb.inv_inertia * r.rb_n;
   a.v = a.v - (ma.inv_mass * lambda) * c.normal;
   a.w = a.w - lambda * ia_ra_n;
   b.v = b.v + (mb.inv_mass * lambda) * c.normal;
@@ -116,7 +151,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   ContactBundle& c = ctx.bundles[bundle];
   const std::span<const uint32_t> lanes = ctx.manifolds_of(bundle);
   WideContactPoint* rows = ctx.rows_of(bundle);
-  const int row_count = ctx.row_count(bundle);
+  const int points = ctx.point_count(bundle);
   BundleRestitution unused;
   BundleRestitution& bounce = ctx.restitution.empty() ? unused : ctx.restitution[bundle];
   const int lane_count = int(lanes.size());
@@ -169,11 +204,12 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   const Wide one = splat(1);
   const WideVec3& n = c.normal;
   const Wide m_sum = ma.inv_mass + mb.inv_mass;
-  WideVec3 ra[kMaxManifoldPoints], center_ra, center_rb;
-  for (int k = 0; k < row_count; ++k) {
-    WideContactPoint& p = rows[k];
+  // The points' arms from A (zero in lanes without the point, and in unused lanes), and their
+  // rows but for the arms.
+  WideVec3 ra[kMaxManifoldPoints], center_ra;
+  for (int k = 0; k < points; ++k) {
+    WideNormalRow& p = row_of(c, rows, k);
     p.separation = p.normal_impulse = Wide{};
-    // Arms of lanes without this point, and of unused lanes, stay zero.
     for (int l = 0; l < lane_count; ++l) {
       const ManifoldHead& m = manifolds[lanes[l]];
       if (k >= m.point_count) continue;
@@ -182,33 +218,29 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
       p.separation[l] = q.separation;
       p.normal_impulse[l] = q.normal_impulse;
     }
-    // Lanes with fewer points leave this row empty: zero arms and zero mass apply no impulse.
-    const auto used = point_count > splat(Real(k));
-    const WideVec3 rb = select(used, ra[k] - b_from_a, WideVec3{});
-    p.ra_n = cross(ra[k], n);
-    p.rb_n = cross(rb, n);
-    const Wide k_n =
-        m_sum + dot(p.ra_n, ma.inv_inertia * p.ra_n) + dot(p.rb_n, mb.inv_inertia * p.rb_n);
-    p.normal_mass = (used & (k_n > zero)) ? one / (k_n > zero ? k_n : one) : zero;
-    bounce.max_normal_impulse[k] = zero;
-    p.current_separation = p.separation;
-    bounce.relative_velocity[k] =
-        used ? dot(n, vb.v - va.v) + dot(p.rb_n, vb.w) - dot(p.ra_n, va.w) : zero;
     center_ra = center_ra + ra[k];
-    center_rb = center_rb + rb;
   }
   const Wide inv_count = point_count > zero ? one / (point_count > zero ? point_count : one) : zero;
-  center_ra = inv_count * center_ra;
-  center_rb = inv_count * center_rb;
-  for (int k = 0; k < row_count; ++k) {
+  c.center_ra = inv_count * center_ra;
+  c.center_rb = c.center_ra - b_from_a;
+  for (int k = 1; k < points; ++k) {
     const auto used = point_count > splat(Real(k));
-    const WideVec3 offset = ra[k] - center_ra;
-    const WideVec3 in_plane = offset - dot(offset, n) * n;
-    const Wide lever = wide_sqrt(dot(in_plane, in_plane));
-    rows[k].twist_lever = used ? lever : zero;
+    rows[k - 1].offset_n = select(used, cross(ra[k] - c.center_ra, n), WideVec3{});
   }
-  c.center_ra = center_ra;
-  c.center_rb = center_rb;
+  const BundleArms arms = bundle_arms(c, rows, points);
+  for (int k = 0; k < points; ++k) {
+    WideNormalRow& p = row_of(c, rows, k);
+    // Lanes with fewer points leave this row empty: zero mass applies no impulse.
+    const auto used = point_count > splat(Real(k));
+    const PointArms r = arms_of(arms, rows, k);
+    const Wide k_n =
+        m_sum + dot(r.ra_n, ma.inv_inertia * r.ra_n) + dot(r.rb_n, mb.inv_inertia * r.rb_n);
+    p.normal_mass = (used & (k_n > zero)) ? one / (k_n > zero ? k_n : one) : zero;
+    p.current_separation = p.separation;
+    bounce.max_normal_impulse[k] = zero;
+    bounce.relative_velocity[k] =
+        used ? dot(n, vb.v - va.v) + dot(r.rb_n, vb.w) - dot(r.ra_n, va.w) : zero;
+  }
   set_friction_mass(c, ma, mb);
   const Wide k_twist = dot(n, ma.inv_inertia * n) + dot(n, mb.inv_inertia * n);
   c.twist_mass = k_twist > zero ? one / (k_twist > zero ? k_twist : one) : zero;
@@ -223,7 +255,7 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
     WideContactPoint* rows = ctx.rows_of(i);
-    const int row_count = ctx.row_count(i);
+    const int points = ctx.point_count(i);
     // Current separation from the pose change since the step began, linearised in the
     // rotation: s = s0 + n.(dp_b - dp_a) + (rb x n).dtheta_b - (ra x n).dtheta_a.
     WideVec3 dp_a, dtheta_a, dp_b, dtheta_b;
@@ -231,9 +263,11 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
     gather_pose(ctx.bodies.data(), c.packet_b, dp_b, dtheta_b);
     const WideVec3& n = c.normal;
     const Wide dp_n = dot(n, dp_b - dp_a);
-    for (int k = 0; k < row_count; ++k) {
-      WideContactPoint& p = rows[k];
-      p.current_separation = p.separation + dp_n + dot(p.rb_n, dtheta_b) - dot(p.ra_n, dtheta_a);
+    const BundleArms arms = bundle_arms(c, rows, points);
+    for (int k = 0; k < points; ++k) {
+      WideNormalRow& p = row_of(c, rows, k);
+      const PointArms r = arms_of(arms, rows, k);
+      p.current_separation = p.separation + dp_n + dot(r.rb_n, dtheta_b) - dot(r.ra_n, dtheta_a);
     }
     // Against a static or kinematic body (not written: no inverse mass) the impulse is external
     // anyway: keep the arms. perf: resting contacts (most of a pile or stack) have barely moved
@@ -249,8 +283,9 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                            splat(kRefreshAngle * kRefreshAngle)));
     if (!any_lane(refresh)) continue;
     // Lane by lane, for the lanes refreshed only: B's centre from A's at the step's start, the
-    // point count and the contact points of the step's start.
-    WideVec3 start_b, anchor_a[kMaxManifoldPoints];
+    // point count and the mean of the contact points of the step's start (A's arms then), summed
+    // and scaled as prepare_bundle does, so that it is the centre the offsets were taken from.
+    WideVec3 start_b, center_start;
     Wide count{};
     const std::span<const uint32_t> lanes = ctx.manifolds_of(i);
     for (int l = 0; l < kLanes; ++l) {
@@ -258,40 +293,33 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
       const ManifoldHead& m = manifolds[lanes[l]];
       set_lane(start_b, l, bodies.position(m.body_b) - bodies.position(m.body_a));
       count[l] = Real(m.point_count);
-      for (int k = 0; k < m.point_count; ++k) {
-        set_lane(anchor_a[k], l, point_of(m, tails, k).anchor_a);
-      }
+      Vec3 sum = Vec3::Zero();
+      for (int k = 0; k < m.point_count; ++k) sum = sum + point_of(m, tails, k).anchor_a;
+      set_lane(center_start, l, (Real(1) / Real(m.point_count)) * sum);
     }
-    // Centres now, relative to A's centre at the step's start (keeps the numbers small).
-    const WideVec3& xa = dp_a;
-    const WideVec3 xb = start_b + dp_b;
-    const WideVec3 mean_dp = half * (dp_a + dp_b);
+    // The centre of the step's start, carried by the mean translation of the two bodies (not
+    // their rotation: a rolling sphere's contact stays under its centre), seen from each
+    // centre now (relative to A's centre at the step's start, which keeps the numbers small).
+    // A point's offset from the centre does not change, so the points move with it.
+    const WideVec3 shared = center_start + half * (dp_a + dp_b);
+    c.center_ra = select(refresh, shared - dp_a, c.center_ra);
+    c.center_rb = select(refresh, shared - (start_b + dp_b), c.center_rb);
     // The inertias are those of the current orientation (integrate_positions turns them for
     // gyroscopic bodies: the integrator keeps L = I w with them, so impulses must change w
     // through them too).
     const Wide m_sum = ma.inv_mass + mb.inv_mass;
-    WideVec3 center_ra, center_rb;
-    for (int k = 0; k < row_count; ++k) {
-      WideContactPoint& p = rows[k];
+    const BundleArms moved = bundle_arms(c, rows, points);
+    for (int k = 0; k < points; ++k) {
+      WideNormalRow& p = row_of(c, rows, k);
       const auto used = refresh & (count > splat(Real(k)));
-      // The contact point of the step's start, carried by the mean translation of the two
-      // bodies (not their rotation: a rolling sphere's contact stays under its centre).
-      const WideVec3 shared = anchor_a[k] + mean_dp;
-      const WideVec3 ra = shared - xa, rb = shared - xb;
-      const WideVec3 ra_n = cross(ra, n), rb_n = cross(rb, n);
-      const Wide k_n = m_sum + dot(ra_n, ma.inv_inertia * ra_n) + dot(rb_n, mb.inv_inertia * rb_n);
+      const PointArms r = arms_of(moved, rows, k);
+      const Wide k_n =
+          m_sum + dot(r.ra_n, ma.inv_inertia * r.ra_n) + dot(r.rb_n, mb.inv_inertia * r.rb_n);
       // The same current separation, expressed with the new arms.
-      const Wide s0 = p.current_separation - (dp_n + dot(rb_n, dtheta_b) - dot(ra_n, dtheta_a));
-      p.ra_n = select(used, ra_n, p.ra_n);
-      p.rb_n = select(used, rb_n, p.rb_n);
+      const Wide s0 = p.current_separation - (dp_n + dot(r.rb_n, dtheta_b) - dot(r.ra_n, dtheta_a));
       p.normal_mass = used ? (k_n > zero ? one / (k_n > zero ? k_n : one) : zero) : p.normal_mass;
       p.separation = used ? s0 : p.separation;
-      center_ra = center_ra + select(used, ra, WideVec3{});
-      center_rb = center_rb + select(used, rb, WideVec3{});
     }
-    const Wide inv_count = one / (refresh ? count : one);
-    c.center_ra = select(refresh, inv_count * center_ra, c.center_ra);
-    c.center_rb = select(refresh, inv_count * center_rb, c.center_rb);
     // Lanes that were not refreshed get the current inertias' friction mass too.
     set_friction_mass(c, ma, mb);
   }
@@ -302,7 +330,7 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
   for (uint32_t i = begin; i < end; ++i) {
     const ContactBundle& c = ctx.bundles[i];
     const WideContactPoint* rows = ctx.rows_of(i);
-    const int row_count = ctx.row_count(i);
+    const int points = ctx.point_count(i);
     WideBody a, b;
     WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
@@ -310,14 +338,15 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
     gather_mass(ctx.masses.data(), c.packet_a, ma);
     gather_mass(ctx.masses.data(), c.packet_b, mb);
     // The points' impulses summed first: one angular response per side instead of one per point.
+    const BundleArms arms = bundle_arms(c, rows, points);
     Wide total{};
-    WideVec3 ra_n_sum, rb_n_sum;
-    for (int k = 0; k < row_count; ++k) {
-      const WideContactPoint& p = rows[k];
-      total += p.normal_impulse;
-      ra_n_sum = ra_n_sum + p.normal_impulse * p.ra_n;
-      rb_n_sum = rb_n_sum + p.normal_impulse * p.rb_n;
+    WideVec3 ra_n_sum;
+    for (int k = 0; k < points; ++k) {
+      const Wide lambda = row_of(c, rows, k).normal_impulse;
+      total += lambda;
+      ra_n_sum = ra_n_sum + lambda * arms_of(arms, rows, k).ra_n;
     }
+    const WideVec3 rb_n_sum = ra_n_sum - total * arms.b_offset_n;
     a.v = a.v - (ma.inv_mass * total) * c.normal;
     a.w = a.w - ma.inv_inertia * ra_n_sum;
     b.v = b.v + (mb.inv_mass * total) * c.normal;
@@ -340,7 +369,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
     WideContactPoint* rows = ctx.rows_of(i);
-    const int row_count = ctx.row_count(i);
+    const int points = ctx.point_count(i);
     WideBody a, b;
     WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
@@ -348,14 +377,20 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     gather_mass(ctx.masses.data(), c.packet_a, ma);
     gather_mass(ctx.masses.data(), c.packet_b, mb);
     const WideVec3& n = c.normal;
+    const BundleArms arms = bundle_arms(c, rows, points);
     {
       // Friction first, so the non-penetration rows, which carry the load, have the last word.
       // Coulomb limits from the accumulated normal impulses: the tangent impulse within
-      // mu * sum(lambda_n), the twist within mu * sum(lever_k * lambda_n_k).
+      // mu * sum(lambda_n), the twist within mu * sum(lever_k * lambda_n_k). A point's lever is
+      // its distance from the centre in the contact plane, |offset_n|: zero for a lone point.
       Wide total_normal{}, twist_limit{};
-      for (int k = 0; k < row_count; ++k) {
-        total_normal += rows[k].normal_impulse;
-        twist_limit += rows[k].twist_lever * rows[k].normal_impulse;
+      for (int k = 0; k < points; ++k) {
+        const Wide lambda = row_of(c, rows, k).normal_impulse;
+        total_normal += lambda;
+        if (points > 1) {
+          const WideVec3& offset = offset_of(arms, rows, k);
+          twist_limit += wide_sqrt(dot(offset, offset)) * lambda;
+        }
       }
       // Velocity of B's centre point against A's: t . (v_b + w_b x rb - v_a - w_a x ra) is the
       // row velocity t . (v_b - v_a) + (rb x t) . w_b - (ra x t) . w_a of each tangent.
@@ -392,8 +427,9 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     const Wide soft_mass = fixed_b ? splat(fix.mass_scale) : splat(dyn.mass_scale);
     const Wide soft_impulse = fixed_b ? splat(fix.impulse_scale) : splat(dyn.impulse_scale);
     Wide* max_impulse = ctx.restitution.empty() ? nullptr : ctx.restitution[i].max_normal_impulse;
-    for (int k = 0; k < row_count; ++k) {
-      WideContactPoint& p = rows[k];
+    for (int k = 0; k < points; ++k) {
+      WideNormalRow& p = row_of(c, rows, k);
+      const PointArms r = arms_of(arms, rows, k);
       const Wide s = p.current_separation;
       // Speculative (s > 0): allow closing the gap within this substep only. Penetrating: the
       // soft spring pushes out, or nothing in the relax pass.
@@ -404,13 +440,13 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
         mass_scale = gap ? one : soft_mass;
         impulse_scale = gap ? zero : soft_impulse;
       }
-      const Wide vn = row_velocity(a, b, n, p.ra_n, p.rb_n);
+      const Wide vn = row_velocity(a, b, n, r.ra_n, r.rb_n);
       Wide impulse = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
       const Wide updated = wide_max(p.normal_impulse + impulse, zero);
       impulse = updated - p.normal_impulse;
       p.normal_impulse = updated;
       if (max_impulse != nullptr) max_impulse[k] = wide_max(max_impulse[k], impulse);
-      apply_row(c, ma, mb, a, b, p, impulse);
+      apply_row(c, ma, mb, a, b, r, impulse);
     }
     scatter_velocity(bodies, c.packet_a, ctx.written_end, a);
     scatter_velocity(bodies, c.packet_b, ctx.written_end, b);
@@ -425,28 +461,30 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end) 
   for (uint32_t i = begin; i < end; ++i) {
     const BundleRestitution& bounce = ctx.restitution[i];
     if (!any_lane(bounce.restitution != zero)) continue;
-    const ContactBundle& c = ctx.bundles[i];
+    ContactBundle& c = ctx.bundles[i];
     WideContactPoint* rows = ctx.rows_of(i);
-    const int row_count = ctx.row_count(i);
+    const int points = ctx.point_count(i);
     WideBody a, b;
     WideMass ma, mb;
     gather_velocity(bodies, c.packet_a, a);
     gather_velocity(bodies, c.packet_b, b);
     gather_mass(ctx.masses.data(), c.packet_a, ma);
     gather_mass(ctx.masses.data(), c.packet_b, mb);
-    for (int k = 0; k < row_count; ++k) {
-      WideContactPoint& p = rows[k];
+    const BundleArms arms = bundle_arms(c, rows, points);
+    for (int k = 0; k < points; ++k) {
+      WideNormalRow& p = row_of(c, rows, k);
+      const PointArms r = arms_of(arms, rows, k);
       const Wide approach = bounce.relative_velocity[k];
       // Only points that approached faster than the threshold and actually pushed bounce.
       const auto bounces = (bounce.restitution != zero) & (approach <= threshold) &
                            (bounce.max_normal_impulse[k] != zero);
-      const Wide vn = row_velocity(a, b, c.normal, p.ra_n, p.rb_n);
+      const Wide vn = row_velocity(a, b, c.normal, r.ra_n, r.rb_n);
       Wide impulse = -p.normal_mass * (vn + bounce.restitution * approach);
       impulse = bounces ? impulse : zero;
       const Wide updated = wide_max(p.normal_impulse + impulse, zero);
       impulse = updated - p.normal_impulse;
       p.normal_impulse = updated;
-      apply_row(c, ma, mb, a, b, p, impulse);
+      apply_row(c, ma, mb, a, b, r, impulse);
     }
     scatter_velocity(bodies, c.packet_a, ctx.written_end, a);
     scatter_velocity(bodies, c.packet_b, ctx.written_end, b);
@@ -462,7 +500,7 @@ void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t en
     for (std::size_t l = 0; l < lanes.size(); ++l) {
       ManifoldHead& m = manifolds[lanes[l]];
       for (int k = 0; k < m.point_count; ++k) {
-        point_of(m, tails, k).normal_impulse = rows[k].normal_impulse[l];
+        point_of(m, tails, k).normal_impulse = row_of(c, rows, k).normal_impulse[l];
       }
       m.tangent_impulse[0] = c.tangent_impulse[0][l];
       m.tangent_impulse[1] = c.tangent_impulse[1][l];

@@ -25,8 +25,8 @@ struct ContactSolverContext {
   std::span<SolverBody> bodies;  // packets (0 = static dummy)
   std::span<const SolverBodyMass> masses;
   std::span<ContactBundle> bundles;     // grouped by colour
-  std::span<WideContactPoint> rows;     // the bundles' point rows
-  std::span<const uint32_t> row_start;  // bundle j's rows are [row_start[j], row_start[j + 1])
+  std::span<WideContactPoint> rows;     // the bundles' points past the first
+  std::span<const uint32_t> row_start;  // bundle j's are rows [row_start[j], row_start[j + 1])
   // Bundle j's lanes are the manifolds lane_manifolds[lane_start[j], lane_start[j + 1]) of the
   // contact list (SolverState::order), lane l the l-th.
   std::span<const uint32_t> lane_manifolds;
@@ -40,16 +40,17 @@ struct ContactSolverContext {
   Real max_push_velocity = 3;      // m/s: cap of the position-correction speed
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
 
-  // Bundle j's point rows: as many as the most points of its lanes.
+  // Bundle j's points: as many as the most points of its lanes, the first in the bundle
+  // (ContactBundle::first), the others rows_of(j)[0, point_count(j) - 1).
   WideContactPoint* rows_of(uint32_t j) const { return rows.data() + row_start[j]; }
-  int row_count(uint32_t j) const { return int(row_start[j + 1] - row_start[j]); }
+  int point_count(uint32_t j) const { return 1 + int(row_start[j + 1] - row_start[j]); }
   std::span<const uint32_t> manifolds_of(uint32_t j) const {
     return lane_manifolds.subspan(lane_start[j], lane_start[j + 1] - lane_start[j]);
   }
 };
 
 // Builds bundle `bundle` from its manifolds (ctx.manifolds_of(bundle): at most kLanes, sharing
-// no dynamic body). Its rows (ctx.row_start) must be as many as the most points of its
+// no dynamic body). Its rows (ctx.row_start) must be one fewer than the most points of its
 // manifolds; every field of it, of its rows and of its BundleRestitution is written, unused
 // lanes and points with zero mass so they apply nothing.
 // The manifolds' points past the first are read from `tails` (ManifoldHead::tail), here and in

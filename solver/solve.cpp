@@ -227,7 +227,7 @@ void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
 
   // Bundles: each colour's constraints kLanes at a time in colour order; an overflow one per
   // bundle (its constraints may share bodies, so they cannot be lanes of one bundle). Each bundle
-  // gets as many point rows as its first lane has points, the most of its lanes.
+  // gets a point row for each point but the first of its first lane, which has the most points.
   auto lay_out_bundles = [&]() {
     // The colouring is done: its arrays go back, the last taken first, so the bundles start
     // where they did.
@@ -253,7 +253,7 @@ void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
       const uint32_t per_bundle = is_overflow(s) ? 1 : kLanes;
       for (uint32_t j = st.bundle_start[s]; j < st.bundle_start[s + 1]; ++j) {
         const uint32_t first = st.segment_start[s] + (j - st.bundle_start[s]) * per_bundle;
-        st.row_start[j + 1] = st.row_start[j] + uint32_t(point_count(first));
+        st.row_start[j + 1] = st.row_start[j] + uint32_t(point_count(first)) - 1;
         st.lane_start[j] = first;
       }
     }

@@ -89,22 +89,32 @@ inline void set_lane(WideSym3& w, int l, const SymMat3& m) {
   w.yz[l] = m.yz;
 }
 
-// One non-penetration row per lane in Jacobian form, J = [-n, -(ra x n), n, (rb x n)]. A
-// bundle's rows are stored apart from it, only as many as its lanes have points
-// (SolverState::row_start); points past a lane's count are zero, so they apply no impulse.
+// One non-penetration row per lane in Jacobian form, J = [-n, -(ra x n), n, (rb x n)], but for
+// its arms, which the passes derive (BundleArms in contact_solver.cpp). Points past a lane's
+// count are zero, so they apply no impulse.
 // perf: the angular responses I^-1 (r x n) are not stored but recomputed from the bundle's
 // inverse inertias in every pass (15 operations a side, off the chain of dependent updates):
 // stored, they were 6 of 17 values a row, and the passes are bound by memory traffic.
-struct WideContactPoint {
-  WideVec3 ra_n;      // m: ra x n (ra = point minus A's centre of mass, world)
-  WideVec3 rb_n;      // m: rb x n
+struct WideNormalRow {
   Wide separation{};  // m at the step's start; s = this + J . (dp, dtheta)
   // m: s at the current pose. Positions change once per substep, so refresh_contacts computes
   // it then for every pass until the next (it was 12 body values gathered per lane per pass).
   Wide current_separation{};
   Wide normal_mass{};     // kg: 1 / (J M^-1 J^T)
-  Wide twist_lever{};     // m: distance from the manifold centre (twist friction limit)
   Wide normal_impulse{};  // N s, accumulated over the substep (warm started)
+};
+
+// A point past the first of its lane. Its row's arms come from the manifold centre c
+// (ContactBundle::center_ra, center_rb) and this offset: ra x n = c_a x n + offset_n, and
+// rb x n = ra x n - (c_a - c_b) x n, since a point's two arms differ by the two centres' offset.
+// The first point's offset is minus the others' sum (c is the points' mean), so it is not stored
+// at all, and its row lives in the bundle: a bundle of one-point manifolds (77 % of pile10k's)
+// has no rows of its own. The offset's length is the point's lever about c (twist friction).
+// memory: a row was 11 values a lane with both arms, the lever and a row for every point; pile10k
+// 168 -> 31 B a body of rows, 239 -> 282 of bundles.
+struct WideContactPoint {
+  WideVec3 offset_n;  // m: (r - c) x n, r the point's arm from A's centre of mass
+  WideNormalRow row;
 };
 
 // kLanes contact constraints of one colour (no two share a dynamic body), structure of arrays
@@ -117,11 +127,11 @@ struct WideContactPoint {
 // angular responses from the inverse inertias, the softness from whether B is written, the
 // masses from the packets (SolverBodyMass), and the restitution inputs, read once per step, live
 // apart (ContactSolverContext::restitution). Nor does it keep what its packets or the layout
-// tell: which sides are written (written_packet), where its point rows are
+// tell: which sides are written (written_packet), where its other point rows are
 // (SolverState::row_start), which manifolds its lanes are and how many (SolverState::order and
 // lane_start, read by the refresh and the impulses' storage only). So its header is its two packet
 // arrays, 128 bytes, and the wide values start on the next cache line (a bundle was 1536 bytes,
-// then 1472, now 1408).
+// then 1472, then 1408; 1664 with its first points' rows, which had been 704 bytes apart).
 struct ContactBundle {
   uint32_t packet_a[kLanes] = {}, packet_b[kLanes] = {};  // 0 = static dummy, and unused lanes
   WideVec3 normal;
@@ -134,10 +144,11 @@ struct ContactBundle {
   Wide twist_mass{};                     // kg m^2
   Wide tangent_impulse[2] = {};          // N s
   Wide twist_impulse{};                  // N m s
+  WideNormalRow first;                   // the lanes' first points (WideContactPoint)
 };
 
-static_assert(sizeof(Real) != 4 || kLanes != 16 || sizeof(ContactBundle) == 1408,
-              "ContactBundle: the packet arrays, then 20 wide values");
+static_assert(sizeof(Real) != 4 || kLanes != 16 || sizeof(ContactBundle) == 1664,
+              "ContactBundle: the packet arrays, then 24 wide values");
 
 // Read by the restitution pass only: the lane's restitution, and per row the approach speed and
 // the largest impulse any pass applied (Box2D v3: only points that pushed bounce). Kept only
