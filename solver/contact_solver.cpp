@@ -101,12 +101,32 @@ inline void apply_row(const ContactBundle& c, const WideMass& ma, const WideMass
   b.w = b.w + lambda * ib_rb_n;
 }
 
+// The solver's tangent basis of each lane's normal: tangent_basis() across the lanes, the same
+// operations in the same order (zero where the normal is, in unused lanes). perf: derived in
+// every pass, not kept in the bundle (12 bytes a lane): a compare, a square root and three
+// divisions a bundle.
+struct WideTangents {
+  WideVec3 t0, t1;
+};
+inline WideTangents tangents_of(const WideVec3& n) {
+  const Wide zero{};
+  const auto x_large = (n.x < zero ? -n.x : n.x) >= splat(Real(0.57735027));
+  const WideVec3 t{x_large ? n.y : zero, x_large ? -n.x : n.z, x_large ? zero : -n.y};
+  const Wide len2 = dot(t, t);
+  const auto nonzero = len2 > zero;
+  const Wide len = wide_sqrt(len2);
+  const Wide safe = nonzero ? len : splat(1);
+  const WideVec3 t0{nonzero ? t.x / safe : zero, nonzero ? t.y / safe : zero,
+                    nonzero ? t.z / safe : zero};
+  return {t0, cross(n, t0)};
+}
+
 // The tangent impulse (t0, t1) at the centre, applied as one impulse p there: the angular
 // parts are I^-1 (r x p), one product per side instead of one per tangent.
-inline void apply_friction(const ContactBundle& c, const WideVec3& t1, const WideMass& ma,
+inline void apply_friction(const ContactBundle& c, const WideTangents& t, const WideMass& ma,
                            const WideMass& mb, WideBody& a, WideBody& b, Wide lambda0,
                            Wide lambda1) {
-  const WideVec3 p = lambda0 * c.tangent + lambda1 * t1;
+  const WideVec3 p = lambda0 * t.t0 + lambda1 * t.t1;
   a.v = a.v - ma.inv_mass * p;
   a.w = a.w - ma.inv_inertia * cross(c.center_ra, p);
   b.v = b.v + mb.inv_mass * p;
@@ -124,7 +144,8 @@ inline void apply_twist(const ContactBundle& c, const WideMass& ma, const WideMa
 // centre, in closed form, from the bundle's centre arms and the two sides' masses.
 void set_friction_mass(ContactBundle& c, const WideMass& ma, const WideMass& mb) {
   const Wide zero{};
-  const WideVec3 tangent[2] = {c.tangent, cross(c.normal, c.tangent)};
+  const WideTangents t = tangents_of(c.normal);
+  const WideVec3 tangent[2] = {t.t0, t.t1};
   WideVec3 ra_t[2], rb_t[2], ia_ra_t[2], ib_rb_t[2];
   for (int t = 0; t < 2; ++t) {
     ra_t[t] = cross(c.center_ra, tangent[t]);
@@ -158,7 +179,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   // Lane by lane: the inputs, scattered over manifolds, bodies and packets, into lanes.
   // Unused lanes stay zero (packet 0, no mass), so every product below is zero there.
   c.friction = bounce.restitution = Wide{};
-  c.normal = c.tangent = WideVec3{};
+  c.normal = WideVec3{};
   c.tangent_impulse[0] = c.tangent_impulse[1] = c.twist_impulse = Wide{};
   WideBody va, vb;
   WideMass ma, mb;  // zero in unused lanes
@@ -185,9 +206,6 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     c.friction[l] = std::sqrt(bodies.friction[a] * bodies.friction[b]);
     bounce.restitution[l] = std::max(bodies.restitution[a], bodies.restitution[b]);
     set_lane(c.normal, l, m.normal);
-    Vec3 t0, t1;
-    tangent_basis(m.normal, t0, t1);
-    set_lane(c.tangent, l, t0);
     c.tangent_impulse[0][l] = m.tangent_impulse[0];
     c.tangent_impulse[1][l] = m.tangent_impulse[1];
     c.twist_impulse[l] = m.twist_impulse;
@@ -351,7 +369,7 @@ void warm_start_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end
     a.w = a.w - ma.inv_inertia * ra_n_sum;
     b.v = b.v + (mb.inv_mass * total) * c.normal;
     b.w = b.w + mb.inv_inertia * rb_n_sum;
-    apply_friction(c, cross(c.normal, c.tangent), ma, mb, a, b, c.tangent_impulse[0],
+    apply_friction(c, tangents_of(c.normal), ma, mb, a, b, c.tangent_impulse[0],
                    c.tangent_impulse[1]);
     apply_twist(c, ma, mb, a, b, c.twist_impulse);
     scatter_velocity(bodies, c.packet_a, ctx.written_end, a);
@@ -394,9 +412,9 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       }
       // Velocity of B's centre point against A's: t . (v_b + w_b x rb - v_a - w_a x ra) is the
       // row velocity t . (v_b - v_a) + (rb x t) . w_b - (ra x t) . w_a of each tangent.
-      const WideVec3 t1 = cross(n, c.tangent);
+      const WideTangents t = tangents_of(n);
       const WideVec3 dv = (b.v + cross(b.w, c.center_rb)) - (a.v + cross(a.w, c.center_ra));
-      const Wide v0 = dot(c.tangent, dv), v1 = dot(t1, dv);
+      const Wide v0 = dot(t.t0, dv), v1 = dot(t.t1, dv);
       Wide f0 = c.tangent_impulse[0] - (c.inv_k00 * v0 + c.inv_k01 * v1);
       Wide f1 = c.tangent_impulse[1] - (c.inv_k01 * v0 + c.inv_k11 * v1);
       const Wide max_friction = c.friction * total_normal;
@@ -409,7 +427,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
         f0 *= scale;
         f1 *= scale;
       }
-      apply_friction(c, t1, ma, mb, a, b, f0 - c.tangent_impulse[0], f1 - c.tangent_impulse[1]);
+      apply_friction(c, t, ma, mb, a, b, f0 - c.tangent_impulse[0], f1 - c.tangent_impulse[1]);
       c.tangent_impulse[0] = f0;
       c.tangent_impulse[1] = f1;
 

@@ -123,7 +123,7 @@ struct WideContactPoint {
 //
 // perf: every solver pass streams all bundles through the cache (megabytes a pass on
 // jolt_pyramid and pile10k), so a bundle keeps only what a pass cannot derive cheaply in registers,
-// as bepuphysics2 does: the friction Jacobians come from the manifold centre and the tangent, the
+// as bepuphysics2 does: the friction Jacobians come from the manifold centre and the normal, the
 // angular responses from the inverse inertias, the softness from whether B is written, the
 // masses from the packets (SolverBodyMass), and the restitution inputs, read once per step, live
 // apart (ContactSolverContext::restitution). Nor does it keep what its packets or the layout
@@ -131,11 +131,11 @@ struct WideContactPoint {
 // (SolverState::row_start), which manifolds its lanes are and how many (SolverState::order and
 // lane_start, read by the refresh and the impulses' storage only). So its header is its two packet
 // arrays, 128 bytes, and the wide values start on the next cache line (a bundle was 1536 bytes,
-// then 1472, then 1408; 1664 with its first points' rows, which had been 704 bytes apart).
+// then 1472, then 1408; 1664 with its first points' rows, which had been 704 bytes apart; 1472
+// without the tangent).
 struct ContactBundle {
   uint32_t packet_a[kLanes] = {}, packet_b[kLanes] = {};  // 0 = static dummy, and unused lanes
-  WideVec3 normal;
-  WideVec3 tangent;  // first axis of tangent_basis(normal); the second is normal x tangent
+  WideVec3 normal;  // the friction rows' axes are tangent_basis(normal)
   Wide friction{};
   // Central friction (Gregorius, GDC 2015): a coupled 2x2 tangent block at the mean of the
   // points and a twist row about the normal.
@@ -147,8 +147,8 @@ struct ContactBundle {
   WideNormalRow first;                   // the lanes' first points (WideContactPoint)
 };
 
-static_assert(sizeof(Real) != 4 || kLanes != 16 || sizeof(ContactBundle) == 1664,
-              "ContactBundle: the packet arrays, then 24 wide values");
+static_assert(sizeof(Real) != 4 || kLanes != 16 || sizeof(ContactBundle) == 1472,
+              "ContactBundle: the packet arrays, then 21 wide values");
 
 // Read by the restitution pass only: the lane's restitution, and per row the approach speed and
 // the largest impulse any pass applied (Box2D v3: only points that pushed bounce). Kept only

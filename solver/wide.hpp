@@ -53,7 +53,9 @@ inline Wide wide_min(Wide a, Wide b) {
 // instruction.
 inline Wide wide_sqrt(Wide x) {
 #if defined(__AVX512F__) && !defined(ELAN_DOUBLE)
-  return Wide(_mm512_sqrt_ps(__m512(x)));
+  // A zeroing mask of all lanes: _mm512_sqrt_ps passes GCC 12 an undefined merge operand, which it
+  // reports as used uninitialized in some callers (GCC bug 105593; see body_lanes.hpp).
+  return Wide(_mm512_maskz_sqrt_ps(__mmask16(0xFFFF), __m512(x)));
 #else
   for (int l = 0; l < kLanes; ++l) x[l] = std::sqrt(x[l]);
   return x;
