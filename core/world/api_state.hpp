@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "broadphase/bounds.hpp"
+#include "core/base/grow.hpp"
 #include "elan/events.hpp"
 #include "elan/ids.hpp"
 
@@ -14,6 +15,7 @@ namespace elan::detail {
 struct ApiState {
   std::vector<ContactBeginEvent> begin_events;
   std::vector<ContactEndEvent> end_events;
+  SpikeTrim begin_trim, end_trim;  // a pile's landing begins thousands of contacts in one step
   PairFilter pair_filter;
   std::vector<uint8_t> pair_keep;  // per broadphase pair: the filter's answer
   std::vector<uint64_t> pair_scratch;

@@ -78,6 +78,8 @@ void compute_contact_events(WorldState& w) {
   for (const ContactRecord& r : w.contact_blocks.ended) {
     ends.push_back({body_id_at(w, r.body_a), body_id_at(w, r.body_b)});
   }
+  trim_spike(begins, w.api.begin_trim);
+  trim_spike(ends, w.api.end_trim);
 }
 
 }  // namespace elan::detail
