@@ -51,16 +51,39 @@ struct CollideSettings {
 };
 
 // A pair the exact test found apart, what the rejection measured, and B's pose relative to A at
-// that test: the reference the motion since is measured from. 32 bytes: the rotation is packed
-// into seven (a pile keeps about four of these a body).
+// that test: the reference the motion since is measured from. 24 bytes (a pile keeps about three
+// of these a body): the rotation is packed into six bytes (PackedRotation's kept components), the
+// position into 16-bit steps of the pair's size (position_step), and the separation's kind and
+// the rotation's left-out component take the gap's four lowest bits. Each code rounds so that
+// closing() still over-estimates the motion: the gap comes back a little smaller, and the
+// position's and rotation's errors are added to the motion.
 struct SeparatedPair {
   uint64_t key = 0;
-  Vec3 position = Vec3::Zero();  // m: B's centre of mass minus A's, in A's frame
-  Real gap = 0;                  // m: Separation::gap
-  PackedRotation rotation;       // A's frame to B's (A^-1 B)
-  Separation::Kind kind = Separation::Kind::Unknown;  // Unknown marks an entry that ended
+  uint32_t gap_bits = 0;     // Separation::gap as a float, the lowest four bits replaced by tags
+  int16_t position[3] = {};  // B's centre of mass minus A's, in A's frame: steps of position_step
+  uint8_t rotation[6] = {};  // A's frame to B's (A^-1 B), PackedRotation's kept components
+
+  // The step of the position code, m: 2 (r_a + r_b) / 32767 for the shapes' bounding radii, so
+  // that the centres of any pair whose boxes overlap, and then some, are within range.
+  static Real position_step(const Shape& a, const Shape& b) {
+    return 2 * (a.bounding_radius + b.bounding_radius) / 32767;
+  }
+  // The entry, or false where the codes cannot hold it: an unknown kind, a gap that is not
+  // positive and finite, a centre out of the position code's range.
+  static bool make(uint64_t key, const Separation& separation, const Vec3& position,
+                   const Quat& rotation, Real step, SeparatedPair& out);
+
+  Separation::Kind kind() const { return Separation::Kind(gap_bits & 3u); }
+  // m: at most the measured gap.
+  Real gap() const;
+  Vec3 position_at(Real step) const {
+    return step * Vec3(Real(position[0]), Real(position[1]), Real(position[2]));
+  }
+  Quat rotation_value() const { return PackedRotation::unpack(rotation, int(gap_bits >> 2 & 3u)); }
+  // Marks the entry as ended (kind Unknown).
+  void end() { gap_bits &= ~3u; }
 };
-static_assert(sizeof(Real) != 4 || sizeof(SeparatedPair) == 32, "SeparatedPair: 32 bytes in float");
+static_assert(sizeof(Real) != 4 || sizeof(SeparatedPair) == 24, "SeparatedPair: 24 bytes in float");
 
 // Scratch of one list updated in place by collide_pairs (see there).
 template <class T>

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <span>
 
@@ -16,6 +17,33 @@
 #include "narrowphase/collide.hpp"
 
 namespace elan::detail {
+
+bool SeparatedPair::make(uint64_t key, const Separation& separation, const Vec3& position,
+                         const Quat& rotation, Real step, SeparatedPair& out) {
+  if (separation.kind == Separation::Kind::Unknown) return false;
+  if (!(separation.gap > 0 && separation.gap <= std::numeric_limits<float>::max())) return false;
+  if (!(step > 0 && step <= std::numeric_limits<Real>::max())) return false;
+  const Vec3 steps = position / step;
+  if (!(steps.cwiseAbs().maxCoeff() <= 32767)) return false;  // false for NaN too
+  // The gap as a float rounded towards zero, its lowest four bits (2^-19 of it) then dropped.
+  float gap = float(separation.gap);
+  if (Real(gap) > separation.gap) gap = std::nextafter(gap, 0.0f);
+  uint32_t bits = 0;
+  std::memcpy(&bits, &gap, sizeof(bits));
+  const PackedRotation packed = PackedRotation::pack(rotation);
+  out.key = key;
+  out.gap_bits = (bits & ~0xFu) | uint32_t(packed.bytes[6]) << 2 | uint32_t(separation.kind);
+  for (int k = 0; k < 3; ++k) out.position[k] = int16_t(std::lrint(steps[k]));
+  std::memcpy(out.rotation, packed.bytes, sizeof(out.rotation));
+  return true;
+}
+
+Real SeparatedPair::gap() const {
+  const uint32_t bits = gap_bits & ~0xFu;
+  float gap = 0;
+  std::memcpy(&gap, &bits, sizeof(gap));
+  return Real(gap);
+}
 
 namespace {
 
@@ -131,15 +159,18 @@ constexpr Real kSeparationSlackPerMetre = 64 * std::numeric_limits<Real>::epsilo
 // p' = -q^-1 p and A's bounding radius. A distance is bounded by either.
 //
 // q0 comes back from its packed form within PackedRotation::kError: the chord, and q0's turn of
-// p0, are each off by at most that times the radius it turns.
-Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& a, const Shape& b) {
-  const Quat q0 = s.rotation.unpack();
+// p0, are each off by at most that times the radius it turns. p0 comes back within (sqrt 3 / 2)
+// `step` (each coordinate rounded to the nearest step): `step` is added to each motion.
+Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& a, const Shape& b,
+             Real step) {
+  const Quat q0 = s.rotation_value();
+  const Vec3 p0 = s.position_at(step);
   const Real chord = 2 * (q * q0.conjugate()).vec().norm() + PackedRotation::kError;
-  const Real in_a = (p - s.position).norm() + chord * b.bounding_radius;
-  if (s.kind == Separation::Kind::FaceOfA) return in_a;
-  const Real in_b = (q.conjugate() * p - q0.conjugate() * s.position).norm() +
-                    PackedRotation::kError * s.position.norm() + chord * a.bounding_radius;
-  return s.kind == Separation::Kind::FaceOfB ? in_b : std::min(in_a, in_b);
+  const Real in_a = (p - p0).norm() + step + chord * b.bounding_radius;
+  if (s.kind() == Separation::Kind::FaceOfA) return in_a;
+  const Real in_b = (q.conjugate() * p - q0.conjugate() * p0).norm() + step +
+                    PackedRotation::kError * (p0.norm() + step) + chord * a.bounding_radius;
+  return s.kind() == Separation::Kind::FaceOfB ? in_b : std::min(in_a, in_b);
 }
 
 uint64_t list_key(const ManifoldHead& m) {
@@ -159,7 +190,7 @@ bool ended(const ManifoldHead& m) {
   return m.point_count == 0;
 }
 bool ended(const SeparatedPair& s) {
-  return s.kind == Separation::Kind::Unknown;
+  return s.kind() == Separation::Kind::Unknown;
 }
 // The lists kept beside the manifolds' (their tails, their poses) mark an entry that ended with
 // a key no pair has (its first index is the lower).
@@ -365,7 +396,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       if (!carried(entry.key)) end_side(entry, dead_count);
     };
     auto end_apart = [&](SeparatedPair& s) {
-      s.kind = Separation::Kind::Unknown;
+      s.end();
       ++dead_apart;
     };
     Manifold m, old;
@@ -434,8 +465,9 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         const Real slack =
             kSeparationSlack + kSeparationSlackPerMetre * (xa.position.cwiseAbs().maxCoeff() +
                                                            xb.position.cwiseAbs().maxCoeff());
-        if (closing(*apart, relative, rotation, shape_a, shape_b) <
-            apart->gap - speculative - slack) {
+        const Real step = SeparatedPair::position_step(shape_a, shape_b);
+        if (closing(*apart, relative, rotation, shape_a, shape_b, step) <
+            apart->gap() - speculative - slack) {
           continue;  // still apart: the exact test would reject it again
         }
       }
@@ -452,11 +484,11 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
           continue;
         }
         SeparatedPair s;
-        s.key = key;
-        s.position = relative;
-        s.gap = separation.gap;
-        s.rotation = PackedRotation::pack(rotation);
-        s.kind = separation.kind;
+        if (!SeparatedPair::make(key, separation, relative, rotation,
+                                 SeparatedPair::position_step(shape_a, shape_b), s)) {
+          if (apart != nullptr) end_apart(*apart);
+          continue;
+        }
         if (apart != nullptr) {
           *apart = s;
         } else {

@@ -31,7 +31,7 @@ PackedRotation PackedRotation::pack(const Quat& q) {
 bool PackedRotation::valid() const {
   if (bytes[6] > 3) return false;
   for (int k = 0; k < 3; ++k) {
-    if (kept_step(k) == INT16_MIN) return false;
+    if (kept_step(bytes, k) == INT16_MIN) return false;
   }
   return true;
 }

@@ -36,15 +36,19 @@ struct PackedRotation {
   // one by one, it was stored to the stack and read back as a vector, a failed store-to-load
   // forward that waits for every older store to commit; at 2 threads those include stores to
   // manifolds the other core last wrote, and this one load took 40 % of the collide stage.
-  Quat unpack() const {
-    const Real a = Real(kept_step(0)), b = Real(kept_step(1)), c = Real(kept_step(2));
+  Quat unpack() const { return unpack(bytes, bytes[6]); }
+  // The same from the six bytes of the kept components and the left-out index kept apart (the
+  // separation cache keeps the index in spare bits).
+  static Quat unpack(const uint8_t kept[6], int left_out) {
+    const Real a = Real(kept_step(kept, 0)), b = Real(kept_step(kept, 1));
+    const Real c = Real(kept_step(kept, 2));
     Real rest = a * a;
     rest += b * b;
     rest += c * c;
     rest /= kScale * kScale;
     const Real big = std::sqrt(std::max(Real(0), 1 - rest));
     const Real x = a / kScale, y = b / kScale, z = c / kScale;
-    switch (bytes[6]) {  // Quat(w, x, y, z)
+    switch (left_out) {  // Quat(w, x, y, z)
       case 0:
         return Quat(z, big, x, y);
       case 1:
@@ -63,8 +67,8 @@ struct PackedRotation {
 
  private:
   // Kept component k (0..2) in steps of 1/kScale.
-  int16_t kept_step(int k) const {
-    return int16_t(uint16_t(bytes[2 * k]) | uint16_t(bytes[2 * k + 1]) << 8);
+  static int16_t kept_step(const uint8_t kept[6], int k) {
+    return int16_t(uint16_t(kept[2 * k]) | uint16_t(kept[2 * k + 1]) << 8);
   }
 };
 static_assert(sizeof(PackedRotation) == 7 && alignof(PackedRotation) == 1);

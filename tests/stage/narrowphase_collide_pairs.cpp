@@ -326,7 +326,11 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
       if (a == 0) std::swap(a, b);  // the static ground is B
       const Vec3 now =
           p.bodies.orientation(a).conjugate() * (p.bodies.position(b) - p.bodies.position(a));
-      kept += std::memcmp(now.data(), s.position.data(), sizeof(Vec3)) != 0 ? 1 : 0;
+      const Real step =
+          SeparatedPair::position_step(p.shapes[p.bodies.shape[a]], p.shapes[p.bodies.shape[b]]);
+      bool same = true;
+      for (int k = 0; k < 3; ++k) same = same && std::lrint(now[k] / step) == s.position[k];
+      kept += same ? 0 : 1;
     }
     for (uint32_t b = 1; b < p.bodies.size(); ++b) {
       const Vec3 x = p.bodies.position(b);
@@ -346,6 +350,63 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   EXPECT_GT(closed_form_pairs, 100) << "the pile has pairs the cache leaves out";
   EXPECT_GT(kept, 2000) << "pairs skipped: entries kept from an earlier pose";
   EXPECT_GT(closed_in, 20) << "cached pairs that went on to touch";
+}
+
+// The separation cache's 24-byte entry: each code errs on the side closing() can account for.
+// The gap comes back no larger and within 2^-18 of itself, the kind and the rotation's left-out
+// component survive in the gap's low bits, the position within (sqrt 3 / 2) of its step, the
+// rotation within PackedRotation's bound; what the codes cannot hold is refused, not rounded.
+TEST(SeparatedPair, CodesErrOnTheSideClosingAccountsFor) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::normal_distribution<float> n(0, 1);
+  Shape a, b;
+  a.bounding_radius = Real(0.7);
+  b.bounding_radius = Real(1.3);
+  const Real step = SeparatedPair::position_step(a, b);
+  const Real reach = 32767 * step;  // each coordinate's range
+  EXPECT_NEAR(reach, 2 * (a.bounding_radius + b.bounding_radius), 1e-5);
+  Real worst_position = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    const auto kind = Separation::Kind(1 + trial % 3);
+    const Real gap = std::exp(Real(9) * u(rng)) * Real(0.01);
+    const Vec3 position = reach * Vec3(u(rng), u(rng), u(rng));
+    const Quat rotation = Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
+    SeparatedPair s;
+    ASSERT_TRUE(SeparatedPair::make(42, {kind, gap}, position, rotation, step, s));
+    EXPECT_EQ(s.key, 42u);
+    EXPECT_EQ(s.kind(), kind);
+    EXPECT_LE(s.gap(), gap);
+    EXPECT_GE(s.gap(), gap * (1 - std::ldexp(Real(1), -18)));
+    const Real error = (s.position_at(step) - position).norm();
+    worst_position = std::max(worst_position, error);
+    EXPECT_LE(error, Real(0.8661) * step);
+    const Vec3 point(n(rng), n(rng), n(rng));
+    EXPECT_LE((s.rotation_value() * point - rotation * point).norm(),
+              PackedRotation::kError * point.norm());
+    s.end();
+    EXPECT_EQ(s.kind(), Separation::Kind::Unknown);
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(worst_position, Real(0.5) * step) << "the position is rounded to its step, no finer";
+  SeparatedPair s;
+  const Vec3 inside(reach, -reach, 0);
+  EXPECT_TRUE(
+      SeparatedPair::make(1, {Separation::Kind::Distance, 1}, inside, Quat::Identity(), step, s));
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  const Real inf = std::numeric_limits<Real>::infinity();
+  const Separation distance{Separation::Kind::Distance, 1};
+  EXPECT_FALSE(
+      SeparatedPair::make(1, {Separation::Kind::Unknown, 1}, inside, Quat::Identity(), step, s));
+  for (const Real gap : {Real(0), Real(-1), nan, inf}) {
+    EXPECT_FALSE(
+        SeparatedPair::make(1, {Separation::Kind::FaceOfA, gap}, inside, Quat::Identity(), step, s))
+        << gap;
+  }
+  EXPECT_FALSE(
+      SeparatedPair::make(1, distance, Vec3(0, 0, Real(1.001) * reach), Quat::Identity(), step, s));
+  EXPECT_FALSE(SeparatedPair::make(1, distance, Vec3(nan, 0, 0), Quat::Identity(), step, s));
+  EXPECT_FALSE(SeparatedPair::make(1, distance, inside, Quat::Identity(), 0, s));
 }
 
 // The contact events come from what collide_pairs reports it changed in the list: exactly the
