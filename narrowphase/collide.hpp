@@ -68,8 +68,16 @@ struct SeparatedPair {
   static Real position_step(const Shape& a, const Shape& b) {
     return 2 * (a.bounding_radius + b.bounding_radius) / 32767;
   }
-  // The entry, or false where the codes cannot hold it: an unknown kind, a gap that is not
-  // positive and finite, a centre out of the position code's range.
+  // An entry that never skips the exact test (gap 0): a pair found apart whose separation is not
+  // kept, which the continuous stage still reads.
+  static SeparatedPair uncached(uint64_t key) {
+    SeparatedPair s;
+    s.key = key;
+    s.gap_bits = uint32_t(Separation::Kind::Distance);
+    return s;
+  }
+  // The entry, or false (`out` untouched) where the codes cannot hold it: an unknown kind, a gap
+  // that is not positive and finite, a centre out of the position code's range.
   static bool make(uint64_t key, const Separation& separation, const Vec3& position,
                    const Quat& rotation, Real step, SeparatedPair& out);
 
@@ -136,13 +144,15 @@ struct CollideScratch {
 // manifolds and the carried ones, in key order, and `cached` the poses of those that may be
 // reused.
 //
-// Separation cache: `separated` holds, sorted by key, the pairs found apart with what their
-// rejection measured (Separation), but for those whose exact test is a closed form (two round
-// shapes, a sphere and a box), which costs about as much as checking the cache. While B's points
-// have moved, relative to A, by less than that gap minus the pair's speculative distance and a
-// tolerance, the exact test is skipped: it would reject the pair again, so the result is the same
-// bits with or without the cache. It belongs to one set of bodies and shapes: clear it when bodies
-// are removed or renumbered.
+// Separation cache: `separated` holds, sorted by key, the pairs found apart (on return, exactly
+// the pairs of `pairs` without a touching manifold: the continuous stage's candidates), each with
+// what its rejection measured (Separation), but for those whose exact test is a closed form (two
+// round shapes, a sphere and a box), which costs about as much as checking the cache, and those
+// whose separation the entry cannot hold: these keep a gap of 0 (SeparatedPair::uncached). While
+// B's points have moved, relative to A, by less than that gap minus the pair's speculative distance
+// and a tolerance, the exact test is skipped: it would reject the pair again, so the result is the
+// same bits with or without the cache. It belongs to one set of bodies and shapes: clear it when
+// bodies are removed or renumbered.
 //
 // Carrying: a manifold whose two bodies are both flagged in `idle` (per body; the world flags
 // static and sleeping bodies) and whose key has no touching manifold this step is kept as it is,

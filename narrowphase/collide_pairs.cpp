@@ -461,7 +461,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
           (bodies.linear_velocity(a) - bodies.linear_velocity(b)).norm() * settings.dt;
       const Real speculative = settings.speculative_distance + approach;
       const Quat rotation = xa.rotation.conjugate() * xb.rotation;
-      if (apart != nullptr) {
+      if (apart != nullptr && apart->gap() > 0) {
         const Real slack =
             kSeparationSlack + kSeparationSlackPerMetre * (xa.position.cwiseAbs().maxCoeff() +
                                                            xb.position.cwiseAbs().maxCoeff());
@@ -476,18 +476,13 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         if (same_key != nullptr) keep_if_carried(*same_key);
         if (tail != nullptr) keep_side_if_carried(*tail, dead_tail);
         if (cache != nullptr) keep_side_if_carried(*cache, dead_cache);
-        // A closed-form test costs about what checking a cached separation does, so its pairs
-        // keep none: on pile10k the separated list went from 49k pairs to 40k, 40 bytes each.
-        if (separation.kind == Separation::Kind::Unknown ||
-            exact_test_is_closed_form(shape_a, shape_b)) {
-          if (apart != nullptr) end_apart(*apart);
-          continue;
-        }
-        SeparatedPair s;
-        if (!SeparatedPair::make(key, separation, relative, rotation,
-                                 SeparatedPair::position_step(shape_a, shape_b), s)) {
-          if (apart != nullptr) end_apart(*apart);
-          continue;
+        // Every pair found apart has an entry: the continuous stage's candidates. A closed-form
+        // test costs about what checking a cached separation does, so its pairs keep one that
+        // never skips it (gap 0), as do separations the entry cannot hold.
+        SeparatedPair s = SeparatedPair::uncached(key);
+        if (!exact_test_is_closed_form(shape_a, shape_b)) {
+          SeparatedPair::make(key, separation, relative, rotation,
+                              SeparatedPair::position_step(shape_a, shape_b), s);
         }
         if (apart != nullptr) {
           *apart = s;

@@ -47,8 +47,7 @@ Transform end_pose(const BodyStore& bodies, uint32_t i, const SolverBody& p) {
 }  // namespace
 
 std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> shapes,
-                             std::span<const uint64_t> pairs,
-                             std::span<const ManifoldHead> contacts, SolverState& st) {
+                             std::span<const SeparatedPair> apart, SolverState& st) {
   const std::size_t count = st.packets.size();
   std::vector<uint8_t>& fast = st.fast;
   fast.assign(count, 0);
@@ -67,22 +66,17 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
   // Impacts are few (a handful of fast bodies' near pairs), so each thread lists those it found
   // rather than every pair keeping a time (4 bytes a pair, most of them never set).
   reset_thread_buffers(st.impacts, largest_capacity(st.impacts));
-  for_blocks(pairs.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
+  // A pair with a manifold had its (speculative) contact in the solve, placed along the motion
+  // predicted at the step's start: the contact solver has it in hand. So the candidates are the
+  // pairs found apart.
+  for_blocks(apart.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
     std::vector<Impact>& found = st.impacts[thread_slot()];
     for (std::size_t n = begin; n < end; ++n) {
-      const uint32_t a = pair_first(pairs[n]), b = pair_second(pairs[n]);
+      const uint32_t a = pair_first(apart[n].key), b = pair_second(apart[n].key);
       const uint32_t pa = st.packet_of[a], pb = st.packet_of[b];
       const bool fast_a = fast[pa] != 0, fast_b = fast[pb] != 0;  // packet 0 is never fast
       // Two fast bodies are left to their contacts: moving both back would need a joint time.
       if (fast_a == fast_b) continue;
-      // A pair with a manifold had its (speculative) contact in the solve, placed along the
-      // motion predicted at the step's start: the contact solver has it in hand. perf: looked up
-      // for the few pairs of one fast body, not merged along the whole list (pile10k: 27k
-      // manifolds, a cache line each, read for a handful of falling bodies).
-      const auto contact =
-          std::lower_bound(contacts.begin(), contacts.end(), pairs[n],
-                           [](const ManifoldHead& m, uint64_t key) { return m.key() < key; });
-      if (contact != contacts.end() && contact->key() == pairs[n]) continue;
       const uint32_t mover = fast_a ? a : b, other = fast_a ? b : a;
       const uint32_t other_packet = fast_a ? pb : pa;
       const Shape& ms = shapes[bodies.shape[mover]];

@@ -5,12 +5,12 @@
 // contacts placed at the step's start did not cover. Its velocity is kept: next step's contact
 // resolves the impact.
 //
-// Pairs that have a manifold are skipped: their speculative contact was in the solve.
+// Pairs that have a manifold are not candidates: their speculative contact was in the solve.
 //
-// Reads: the pair list, the contacts (sorted by key), body columns (poses at the step's start),
-// shapes, packets (the pose change of the step). Writes: dp and dq of fast packets. Parallel over
-// blocks of pairs, each writing its own pairs' times; a body's earliest time is a minimum, which
-// does not depend on the order its pairs are visited in.
+// Reads: the pairs the collide stage found apart (its separation list), body columns (poses at
+// the step's start), shapes, packets (the pose change of the step). Writes: dp and dq of fast
+// packets. Parallel over blocks of pairs, each listing the impacts it found; a body's earliest
+// time is a minimum, which does not depend on the order its pairs are visited in.
 #pragma once
 
 #include <cstdint>
@@ -18,6 +18,7 @@
 
 #include "core/base/body_store.hpp"
 #include "core/base/shape.hpp"
+#include "narrowphase/collide.hpp"
 #include "solver/solve.hpp"
 
 namespace elan::detail {
@@ -26,8 +27,9 @@ namespace elan::detail {
 inline constexpr Real kContinuousTarget = Real(0.005);
 
 // Returns the number of bodies moved back.
+// The candidates are the pairs the collide stage found apart this step (its separation list):
+// a pair with a manifold had its speculative contact in the solve.
 std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> shapes,
-                             std::span<const uint64_t> pairs,
-                             std::span<const ManifoldHead> contacts, SolverState& state);
+                             std::span<const SeparatedPair> apart, SolverState& state);
 
 }  // namespace elan::detail

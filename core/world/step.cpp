@@ -88,7 +88,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve(bodies, w.contacts, w.contact_tails, solve_settings, w.solver);
   compute_contact_events(w);
   const auto t5 = clock::now();
-  solve_continuous(bodies, w.shapes, w.pairs, w.contacts, w.solver);
+  solve_continuous(bodies, w.shapes, w.separated, w.solver);
   const auto t6 = clock::now();
   const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   const auto t7 = clock::now();
