@@ -80,7 +80,8 @@ void scan_tile(const BroadphaseInput& in, std::size_t i0, std::size_t i1, std::s
 
 }  // namespace
 
-void AllPairs::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs) {
+template <class Pairs>
+void AllPairs::find_pairs(const BroadphaseInput& in, Pairs& out_pairs) {
   const std::size_t n = in.bounds->size();
   const std::size_t edge = tile_edge(n);
   const std::size_t nb = block_count(n, edge);
@@ -101,6 +102,8 @@ void AllPairs::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_
   const uint64_t max_key = n < 2 ? 0 : make_pair_key(uint32_t(n - 2), uint32_t(n - 1));
   sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_);
 }
+template void AllPairs::find_pairs(const BroadphaseInput&, std::vector<uint64_t>&);
+template void AllPairs::find_pairs(const BroadphaseInput&, ScratchVector<uint64_t>&);
 
 std::size_t AllPairs::heap_bytes() const {
   return detail::heap_bytes(block_pairs_) + detail::heap_bytes(pair_sort_);

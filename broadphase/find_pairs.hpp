@@ -44,9 +44,12 @@ inline bool filter_pass(const BroadphaseInput& in, uint32_t a, uint32_t b) {
 void find_pairs_brute_force(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
 
 // All n(n-1)/2 pairs in parallel TBB tasks over tiles of the pair space. Keeps its scratch.
+// The pair lists below are a std::vector or a ScratchVector of keys (the world's lives in the
+// step's scratch): `Pairs`.
 class AllPairs {
  public:
-  void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs);
+  template <class Pairs>
+  void find_pairs(const BroadphaseInput& in, Pairs& out_pairs);
   std::size_t heap_bytes() const;  // scratch kept between steps (the memory report)
 
  private:
@@ -66,9 +69,10 @@ class SweepAndPrune {
   // The buffers of one update (the boxes dealt into strips, the chunks' pairs, the sorts' copies)
   // are taken from `scratch` in its current phase and given back before returning. The two-argument
   // form uses a scratch of the sweep's own.
-  void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs,
-                  StepScratch& scratch);
-  void find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs) {
+  template <class Pairs>
+  void find_pairs(const BroadphaseInput& in, Pairs& out_pairs, StepScratch& scratch);
+  template <class Pairs>
+  void find_pairs(const BroadphaseInput& in, Pairs& out_pairs) {
     if (!own_scratch_) own_scratch_ = std::make_unique<StepScratch>();
     own_scratch_->begin_phase();
     find_pairs(in, out_pairs, *own_scratch_);

@@ -517,8 +517,8 @@ void SweepAndPrune::release_update_buffers() {
   for (ScratchVector<uint64_t>& b : block_pairs_) release(b);
 }
 
-void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>& out_pairs,
-                               StepScratch& scratch) {
+template <class Pairs>
+void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, StepScratch& scratch) {
   const BoundsColumns& b = *in.bounds;
   const std::size_t n = b.size();
 
@@ -606,6 +606,10 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, std::vector<uint64_t>&
   for (std::size_t t = 0; t < blocks; ++t) block_room_[t] = uint32_t(block_pairs_[t].size());
   release_update_buffers();
 }
+template void SweepAndPrune::find_pairs(const BroadphaseInput&, std::vector<uint64_t>&,
+                                        StepScratch&);
+template void SweepAndPrune::find_pairs(const BroadphaseInput&, ScratchVector<uint64_t>&,
+                                        StepScratch&);
 
 std::size_t SweepAndPrune::heap_bytes() const {
   using detail::heap_bytes;

@@ -188,7 +188,7 @@ void sort_sources(std::size_t sources, const Source& source, std::size_t total, 
 
 }  // namespace
 
-void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch,
+void sort_keys(std::span<uint64_t> keys, uint64_t max_key, KeySortScratch& scratch,
                StepScratch* step_scratch) {
   const std::size_t n = keys.size();
   if (n < kSerialBelow) {
@@ -207,9 +207,9 @@ void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& sc
                step_scratch);
 }
 
+template <class Keys>
 void sort_key_blocks(const std::vector<ScratchVector<uint64_t>>& blocks, uint64_t max_key,
-                     std::vector<uint64_t>& out, KeySortScratch& scratch,
-                     StepScratch* step_scratch) {
+                     Keys& out, KeySortScratch& scratch, StepScratch* step_scratch) {
   std::size_t total = 0;
   for (const auto& b : blocks) total += b.size();
   if (total < kSerialBelow || blocks.size() > kMaxSources) {
@@ -217,9 +217,18 @@ void sort_key_blocks(const std::vector<ScratchVector<uint64_t>>& blocks, uint64_
     sort_keys(out, max_key, scratch, step_scratch);
     return;
   }
-  grow_to(out, total);
+  if (total > out.capacity()) {
+    out.clear();
+    out.reserve(total);
+  }
+  out.resize(total);
   const auto block = [&](std::size_t b) { return std::span<const uint64_t>(blocks[b]); };
   sort_sources(blocks.size(), block, total, max_key, out.data(), scratch, true, step_scratch);
 }
+
+template void sort_key_blocks(const std::vector<ScratchVector<uint64_t>>&, uint64_t,
+                              std::vector<uint64_t>&, KeySortScratch&, StepScratch*);
+template void sort_key_blocks(const std::vector<ScratchVector<uint64_t>>&, uint64_t,
+                              ScratchVector<uint64_t>&, KeySortScratch&, StepScratch*);
 
 }  // namespace elan::detail

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/base/grow.hpp"
@@ -129,10 +130,12 @@ inline std::size_t heap_bytes(const KeySortScratch& s) {
 // sort_key_blocks writes the keys of all `blocks`, sorted, to `out`, scattering them there
 // directly (a thread's scratch holds one bucket at a time); sort_keys sorts in place, through a
 // scratch copy of all the keys.
+// `out` is a std::vector or a ScratchVector of keys (the world's pair list lives in the step's
+// scratch); a smaller one grows to exactly the keys' count.
+template <class Keys>
 void sort_key_blocks(const std::vector<ScratchVector<uint64_t>>& blocks, uint64_t max_key,
-                     std::vector<uint64_t>& out, KeySortScratch& scratch,
-                     StepScratch* step_scratch = nullptr);
-void sort_keys(std::vector<uint64_t>& keys, uint64_t max_key, KeySortScratch& scratch,
+                     Keys& out, KeySortScratch& scratch, StepScratch* step_scratch = nullptr);
+void sort_keys(std::span<uint64_t> keys, uint64_t max_key, KeySortScratch& scratch,
                StepScratch* step_scratch = nullptr);
 
 }  // namespace elan::detail

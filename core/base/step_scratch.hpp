@@ -1,10 +1,10 @@
 // StepScratch: one block of memory that the stages of a step take their per-step buffers from,
-// in turn, one phase each: the sweep (the bounding boxes, its strip entries, pair blocks and
-// sorts), the collide stage (its threads' buffers of new keys, its per-block arrays and join),
-// the solver (its islands, median cut and colourings, then its bundles and point rows). Each is
-// dead before the next phase starts, so each phase starts again at the front of the block, and the
-// block holds the largest, not their sum (Box2D v3's b2ArenaAllocator and Jolt's TempAllocator,
-// per step).
+// in turn, one phase each: the sweep and the collide stage (the bounding boxes, the sweep's strip
+// entries, pair blocks and sorts, the pair list they leave, which the collide stage reads; then
+// its threads' buffers of new keys, its per-block arrays and join), the solver (its islands,
+// median cut and colourings, then its bundles and point rows). Each is dead before the next phase
+// starts, so each phase starts again at the front of the block, and the block holds the largest,
+// not their sum (Box2D v3's b2ArenaAllocator and Jolt's TempAllocator, per step).
 //
 // A buffer is a std::vector with a ScratchAllocator: it grows and is indexed as any vector, and
 // taking memory is a bump of an atomic offset, so the sweep's chunks may grow theirs in parallel.

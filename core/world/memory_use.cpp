@@ -38,8 +38,7 @@ MemoryUse memory_use(const WorldState& w) {
   for (const ConvexHull* h : hulls) m.shapes += hull_bytes(*h);
 
   m.broadphase = bounds_bytes(w.bounds) + heap_bytes(w.broad_kind) + heap_bytes(w.is_plane) +
-                 heap_bytes(w.idle) + w.all_pairs.heap_bytes() + w.sap.heap_bytes() +
-                 heap_bytes(w.pairs);
+                 heap_bytes(w.idle) + w.all_pairs.heap_bytes() + w.sap.heap_bytes();
 
   m.contacts = heap_bytes(w.contacts) + heap_bytes(w.contact_tails) + heap_bytes(w.pair_cache) +
                heap_bytes(w.separated) + w.contact_blocks.contacts.heap_bytes() +

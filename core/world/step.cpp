@@ -56,6 +56,7 @@ uint32_t run_step(WorldState& w, Real dt) {
         kind == BroadKind::Static || (kind == BroadKind::Sleeping && !(bodies.flags[i] & kFrozen));
   }
   BroadphaseInput input{&w.bounds, w.broad_kind, bodies.category, bodies.mask, w.is_plane};
+  take_from(w.pairs, w.scratch);
   if (w.def.broadphase == BroadphaseType::AllPairs) {
     w.all_pairs.find_pairs(input, w.pairs);
   } else {
@@ -68,9 +69,11 @@ uint32_t run_step(WorldState& w, Real dt) {
   CollideSettings collide_settings;
   collide_settings.speculative_distance = kSpeculativeDistance;
   collide_settings.dt = dt;
-  w.scratch.begin_phase();
+  // The same phase of the scratch as the sweep's: the pair list is held through both.
   collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.idle, w.contact_blocks, w.contacts,
                 w.contact_tails, w.separated, w.pair_cache, &w.scratch);
+  stats.pairs = w.pairs.size();
+  release(w.pairs);
   const auto t3 = clock::now();
 
   SolveSettings solve_settings;
@@ -93,7 +96,6 @@ uint32_t run_step(WorldState& w, Real dt) {
   const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   const auto t7 = clock::now();
 
-  stats.pairs = w.pairs.size();
   stats.manifolds = w.contacts.size();
   // perf: counted by prepare_solve's pass over the list, not by one more (pile10k: 5 MB a step).
   stats.contacts = solve_stats.points;

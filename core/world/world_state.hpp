@@ -53,7 +53,10 @@ struct WorldState {
   std::vector<uint8_t> idle;  // static or asleep: contacts carried (collide_pairs)
   AllPairs all_pairs;
   SweepAndPrune sap;
-  std::vector<uint64_t> pairs;
+  // This step's pairs, sorted: the scratch's from the broadphase to the end of the collide stage,
+  // which leaves the continuous stage its candidates in the separation list. memory: a list kept
+  // between steps was 56 B a body on pile10k.
+  ScratchVector<uint64_t> pairs;
 
   // Contacts, sorted by key: the one list, which collide_pairs reads as last step's and rewrites,
   // of each manifold's head; the tails of those with more than one point and the poses of the body
