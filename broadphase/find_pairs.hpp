@@ -84,9 +84,12 @@ class SweepAndPrune {
   bool choose_axis(const BroadphaseInput& in);
   void sort_full(const BroadphaseInput& in, StepScratch& scratch);
   bool sort_incremental();
+  // Deals the sorted boxes into strips; takes the sweep's pair blocks, then the entries.
   void deal_strips(const BroadphaseInput& in, StepScratch& scratch);
+  void take_pair_blocks(const BroadphaseInput& in, std::size_t entries, StepScratch& scratch);
   void sweep_range(std::size_t begin, std::size_t end, ScratchVector<uint64_t>& out) const;
-  void release_update_buffers();
+  void release_entries();         // once swept
+  void release_update_buffers();  // the rest, once the pairs are sorted
   // Monotonic in v, which the sweep's dedup rule relies on; NaN and v <= strip_lo_ give 0.
   uint32_t strip_of(Real v) const {
     if (!(v > strip_lo_)) return 0;

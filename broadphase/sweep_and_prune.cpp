@@ -395,6 +395,7 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
   strip_begin_.resize(strips + 1);
   const std::size_t entries = bin_major_offsets(deal_counts_.data(), blocks, strips,
                                                 strip_begin_.data(), uint32_t(kStripPad));
+  take_pair_blocks(in, entries, scratch);
   take_from(entry_min_, scratch, entries);
   take_from(entry_max_, scratch, entries);
   take_from(entry_lo1_, scratch, entries);
@@ -496,25 +497,50 @@ void SweepAndPrune::sweep_range(std::size_t begin, std::size_t end,
   out.insert(out.end(), buffer, buffer + used);
 }
 
-void SweepAndPrune::release_update_buffers() {
-  release(sorted_max_);
-  release(sorted_lo1_);
-  release(sorted_hi1_);
-  release(sorted_lo2_);
-  release(sorted_hi2_);
-  release(sorted_strips_);
-  release(entry_min_);
-  release(entry_max_);
-  release(entry_lo1_);
-  release(entry_hi1_);
-  release(entry_lo2_);
-  release(entry_hi2_);
-  release(entry_body_);
-  release(entry_first_);
-  release(entry_kind_);
-  release(entry_category_);
+void SweepAndPrune::take_pair_blocks(const BroadphaseInput& in, std::size_t entries,
+                                     StepScratch& scratch) {
+  const std::size_t n = in.bounds->size();
+  planes_.clear();
+  for (uint32_t i = 0; i < n; ++i) {
+    if (in.is_plane[i]) planes_.push_back(i);
+  }
+  const std::size_t sweep_blocks = block_count(entries, kSweepGrain);
+  const std::size_t plane_blocks = planes_.empty() ? 0 : block_count(n, kPlaneGrain);
+  const std::size_t blocks = sweep_blocks + plane_blocks;
+  // Each block's buffer starts with room for a quarter more than the block found last update, so
+  // once the scene has settled no buffer grows (a grown one leaves its old bytes unused in the
+  // scratch until the phase ends).
+  if (block_pairs_.size() < blocks) block_pairs_.resize(blocks);
+  block_room_.resize(block_pairs_.size());
+  for (std::size_t t = 0; t < block_pairs_.size(); ++t) {
+    take_from(block_pairs_[t], scratch);
+    if (t < blocks) block_pairs_[t].reserve(block_room_[t] + block_room_[t] / 4 + 16);
+  }
+}
+
+void SweepAndPrune::release_entries() {
+  // The last taken first, so that the scratch's next buffers start where the entries did.
   release(entry_mask_);
-  for (ScratchVector<uint64_t>& b : block_pairs_) release(b);
+  release(entry_category_);
+  release(entry_kind_);
+  release(entry_first_);
+  release(entry_body_);
+  release(entry_hi2_);
+  release(entry_lo2_);
+  release(entry_hi1_);
+  release(entry_lo1_);
+  release(entry_max_);
+  release(entry_min_);
+}
+
+void SweepAndPrune::release_update_buffers() {
+  for (std::size_t t = block_pairs_.size(); t-- > 0;) release(block_pairs_[t]);
+  release(sorted_strips_);
+  release(sorted_hi2_);
+  release(sorted_lo2_);
+  release(sorted_hi1_);
+  release(sorted_lo1_);
+  release(sorted_max_);
 }
 
 template <class Pairs>
@@ -543,23 +569,10 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, Step
 
   deal_strips(in, scratch);
 
-  planes_.clear();
-  for (uint32_t i = 0; i < n; ++i) {
-    if (in.is_plane[i]) planes_.push_back(i);
-  }
   const std::size_t entries = entry_body_.size();
   const std::size_t sweep_blocks = block_count(entries, kSweepGrain);
   const std::size_t plane_blocks = planes_.empty() ? 0 : block_count(n, kPlaneGrain);
   const std::size_t blocks = sweep_blocks + plane_blocks;
-  // Each block's buffer starts with room for a quarter more than the block found last update, so
-  // once the scene has settled no buffer grows (a grown one leaves its old bytes unused in the
-  // scratch until the phase ends).
-  if (block_pairs_.size() < blocks) block_pairs_.resize(blocks);
-  block_room_.resize(block_pairs_.size());
-  for (std::size_t t = 0; t < block_pairs_.size(); ++t) {
-    take_from(block_pairs_[t], scratch);
-    if (t < blocks) block_pairs_[t].reserve(block_room_[t] + block_room_[t] / 4 + 16);
-  }
 
   // Each chunk scans forward from its own entries to the end of their strip, possibly past the
   // chunk's end.
@@ -599,6 +612,10 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, Step
     });
   }
 
+  // memory: the entries are dead once swept. Taken after the pair blocks, they go back first, so
+  // the sort and the pair list it writes reuse their bytes (pile10k's sweep peaked 40 B a body
+  // higher with both).
+  release_entries();
   // The sweep yields each pair once and the plane pass covers only pairs with a plane, so the
   // sorted list is already unique.
   const uint64_t max_key = n < 2 ? 0 : make_pair_key(uint32_t(n - 2), uint32_t(n - 1));
