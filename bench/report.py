@@ -255,8 +255,9 @@ def main():
     if all(v == v for _, v in mem_parts):
         L.append("- elan's by part (buffer capacities, B/body; the contacts part holds the contact list's "
                  "manifold heads, the tails of those with more than one point, the body pair cache's poses, "
-                 "the separation cache and the step's changes to the list (the contact events); scratch is the step's "
-                 "scratch, which the bounding boxes and the sweep's buffers, the collide stage's buffers "
+                 "the pairs found apart (the separation cache) and the step's changes to the list (the contact events); "
+                 "scratch is the step's scratch, which the bounding boxes, the sweep's buffers and the pair list, "
+                 "the collide stage's buffers "
                  "and then the solver's islands, colourings, bundles and rows use in turn): " +
                  ", ".join(f"{part} {fmt(v, 0)}" for part, v in mem_parts) +
                  f"; sum {fmt(sum(v for _, v in mem_parts), 0)}")
