@@ -122,7 +122,8 @@ class SweepAndPrune {
   std::vector<uint32_t> planes_;
   std::vector<ScratchVector<uint64_t>> block_pairs_;  // sweep chunks, then plane blocks (scratch)
   std::vector<uint32_t> block_room_;  // per block: pairs last update, its buffer's next room
-  std::unique_ptr<StepScratch> own_scratch_;  // of the two-argument form
+  std::size_t sweep_blocks_ = 0, plane_blocks_ = 0;  // this update's (take_pair_blocks)
+  std::unique_ptr<StepScratch> own_scratch_;         // of the two-argument form
   std::vector<uint64_t> sort_keys_;
   std::vector<double> range_partials_;  // per block: smallest and largest finite sweep key
   KeySortScratch key_sort_, pair_sort_;

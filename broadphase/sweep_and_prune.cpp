@@ -504,9 +504,9 @@ void SweepAndPrune::take_pair_blocks(const BroadphaseInput& in, std::size_t entr
   for (uint32_t i = 0; i < n; ++i) {
     if (in.is_plane[i]) planes_.push_back(i);
   }
-  const std::size_t sweep_blocks = block_count(entries, kSweepGrain);
-  const std::size_t plane_blocks = planes_.empty() ? 0 : block_count(n, kPlaneGrain);
-  const std::size_t blocks = sweep_blocks + plane_blocks;
+  sweep_blocks_ = block_count(entries, kSweepGrain);
+  plane_blocks_ = planes_.empty() ? 0 : block_count(n, kPlaneGrain);
+  const std::size_t blocks = sweep_blocks_ + plane_blocks_;
   // Each block's buffer starts with room for a quarter more than the block found last update, so
   // once the scene has settled no buffer grows (a grown one leaves its old bytes unused in the
   // scratch until the phase ends).
@@ -570,9 +570,6 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, Step
   deal_strips(in, scratch);
 
   const std::size_t entries = entry_body_.size();
-  const std::size_t sweep_blocks = block_count(entries, kSweepGrain);
-  const std::size_t plane_blocks = planes_.empty() ? 0 : block_count(n, kPlaneGrain);
-  const std::size_t blocks = sweep_blocks + plane_blocks;
 
   // Each chunk scans forward from its own entries to the end of their strip, possibly past the
   // chunk's end.
@@ -582,9 +579,9 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, Step
   });
 
   // Planes against every other body; a plane-plane pair once, from the lower index.
-  if (plane_blocks != 0) {
+  if (plane_blocks_ != 0) {
     for_blocks(n, kPlaneGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
-      ScratchVector<uint64_t>& out = block_pairs_[sweep_blocks + blk];
+      ScratchVector<uint64_t>& out = block_pairs_[sweep_blocks_ + blk];
       const Real *min_x = b.min_x.data(), *min_y = b.min_y.data(), *min_z = b.min_z.data();
       const Real *max_x = b.max_x.data(), *max_y = b.max_y.data(), *max_z = b.max_z.data();
       for (uint32_t p : planes_) {
@@ -620,7 +617,9 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, Step
   // sorted list is already unique.
   const uint64_t max_key = n < 2 ? 0 : make_pair_key(uint32_t(n - 2), uint32_t(n - 1));
   sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_, &scratch);
-  for (std::size_t t = 0; t < blocks; ++t) block_room_[t] = uint32_t(block_pairs_[t].size());
+  for (std::size_t t = 0; t < sweep_blocks_ + plane_blocks_; ++t) {
+    block_room_[t] = uint32_t(block_pairs_[t].size());
+  }
   release_update_buffers();
 }
 template void SweepAndPrune::find_pairs(const BroadphaseInput&, std::vector<uint64_t>&,

@@ -84,6 +84,21 @@ inline const WideVec3& offset_of(const BundleArms& arms, const WideContactPoint*
 struct PointArms {
   WideVec3 ra_n, rb_n;  // ra x n, rb x n
 };
+
+// 1 / x where x > 0, else 0 (a constraint with no mass, or an unused lane): no lane divides by
+// zero, so none raises a floating-point exception or makes a NaN.
+inline Wide inverse_or_zero(Wide x) {
+  const Wide zero{};
+  const Wide one = splat(1);
+  return x > zero ? one / (x > zero ? x : one) : zero;
+}
+
+// The mass of a non-penetration row, 1 / (J M^-1 J^T), or 0 where it has none; m_sum is the two
+// sides' inverse masses.
+inline Wide normal_mass_of(const PointArms& r, const WideMass& ma, const WideMass& mb, Wide m_sum) {
+  return inverse_or_zero(m_sum + dot(r.ra_n, ma.inv_inertia * r.ra_n) +
+                         dot(r.rb_n, mb.inv_inertia * r.rb_n));
+}
 inline PointArms arms_of(const BundleArms& arms, const WideContactPoint* rows, int k) {
   const WideVec3 ra_n = arms.center_n + offset_of(arms, rows, k);
   return {ra_n, ra_n - arms.b_offset_n};
@@ -143,7 +158,6 @@ inline void apply_twist(const ContactBundle& c, const WideMass& ma, const WideMa
 // The inverse of the 2x2 mass matrix K = J M^-1 J^T of the friction rows at the manifold
 // centre, in closed form, from the bundle's centre arms and the two sides' masses.
 void set_friction_mass(ContactBundle& c, const WideMass& ma, const WideMass& mb) {
-  const Wide zero{};
   const WideTangents t = tangents_of(c.normal);
   const WideVec3 tangent[2] = {t.t0, t.t1};
   WideVec3 ra_t[2], rb_t[2], ia_ra_t[2], ib_rb_t[2];
@@ -158,7 +172,7 @@ void set_friction_mass(ContactBundle& c, const WideMass& ma, const WideMass& mb)
   const Wide k01 = dot(ra_t[0], ia_ra_t[1]) + dot(rb_t[0], ib_rb_t[1]);
   const Wide k11 = m_sum + dot(ra_t[1], ia_ra_t[1]) + dot(rb_t[1], ib_rb_t[1]);
   const Wide det = k00 * k11 - k01 * k01;
-  const Wide inv_det = det > zero ? splat(1) / (det > zero ? det : splat(1)) : zero;
+  const Wide inv_det = inverse_or_zero(det);
   c.inv_k00 = k11 * inv_det;
   c.inv_k01 = -k01 * inv_det;
   c.inv_k11 = k00 * inv_det;
@@ -219,7 +233,6 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     set_lane(b_from_a, l, bodies.position(b) - bodies.position(a));
   }
   const Wide zero{};
-  const Wide one = splat(1);
   const WideVec3& n = c.normal;
   const Wide m_sum = ma.inv_mass + mb.inv_mass;
   // The points' arms from A (zero in lanes without the point, and in unused lanes), and their
@@ -238,7 +251,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     }
     center_ra = center_ra + ra[k];
   }
-  const Wide inv_count = point_count > zero ? one / (point_count > zero ? point_count : one) : zero;
+  const Wide inv_count = inverse_or_zero(point_count);
   c.center_ra = inv_count * center_ra;
   c.center_rb = c.center_ra - b_from_a;
   for (int k = 1; k < points; ++k) {
@@ -251,9 +264,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     // Lanes with fewer points leave this row empty: zero mass applies no impulse.
     const auto used = point_count > splat(Real(k));
     const PointArms r = arms_of(arms, rows, k);
-    const Wide k_n =
-        m_sum + dot(r.ra_n, ma.inv_inertia * r.ra_n) + dot(r.rb_n, mb.inv_inertia * r.rb_n);
-    p.normal_mass = (used & (k_n > zero)) ? one / (k_n > zero ? k_n : one) : zero;
+    p.normal_mass = used ? normal_mass_of(r, ma, mb, m_sum) : zero;
     p.current_separation = p.separation;
     bounce.max_normal_impulse[k] = zero;
     bounce.relative_velocity[k] =
@@ -261,14 +272,13 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   }
   set_friction_mass(c, ma, mb);
   const Wide k_twist = dot(n, ma.inv_inertia * n) + dot(n, mb.inv_inertia * n);
-  c.twist_mass = k_twist > zero ? one / (k_twist > zero ? k_twist : one) : zero;
+  c.twist_mass = inverse_or_zero(k_twist);
 }
 
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                       std::span<const ManifoldHead> manifolds, std::span<const ManifoldTail> tails,
                       uint32_t begin, uint32_t end) {
   const Wide zero{};
-  const Wide one = splat(1);
   const Wide half = splat(Real(0.5));
   for (uint32_t i = begin; i < end; ++i) {
     ContactBundle& c = ctx.bundles[i];
@@ -331,11 +341,9 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
       WideNormalRow& p = row_of(c, rows, k);
       const auto used = refresh & (count > splat(Real(k)));
       const PointArms r = arms_of(moved, rows, k);
-      const Wide k_n =
-          m_sum + dot(r.ra_n, ma.inv_inertia * r.ra_n) + dot(r.rb_n, mb.inv_inertia * r.rb_n);
       // The same current separation, expressed with the new arms.
       const Wide s0 = p.current_separation - (dp_n + dot(r.rb_n, dtheta_b) - dot(r.ra_n, dtheta_a));
-      p.normal_mass = used ? (k_n > zero ? one / (k_n > zero ? k_n : one) : zero) : p.normal_mass;
+      p.normal_mass = used ? normal_mass_of(r, ma, mb, m_sum) : p.normal_mass;
       p.separation = used ? s0 : p.separation;
     }
     // Lanes that were not refreshed get the current inertias' friction mass too.
