@@ -136,7 +136,7 @@ void BM_CollidePairsPile(benchmark::State& state) {
   CollideScratch slots;
   std::vector<ManifoldHead> out;
   std::vector<ManifoldTail> tails;
-  std::vector<SeparatedPair> apart;
+  ApartPairs apart;
   std::vector<PairCache> poses;
   arena.execute([&] {
     collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, slots, out, tails, apart, poses);

@@ -68,14 +68,6 @@ struct SeparatedPair {
   static Real position_step(const Shape& a, const Shape& b) {
     return 2 * (a.bounding_radius + b.bounding_radius) / 32767;
   }
-  // An entry that never skips the exact test (gap 0): a pair found apart whose separation is not
-  // kept, which the continuous stage still reads.
-  static SeparatedPair uncached(uint64_t key) {
-    SeparatedPair s;
-    s.key = key;
-    s.gap_bits = uint32_t(Separation::Kind::Distance);
-    return s;
-  }
   // The entry, or false (`out` untouched) where the codes cannot hold it: an unknown kind, a gap
   // that is not positive and finite, a centre out of the position code's range.
   static bool make(uint64_t key, const Separation& separation, const Vec3& position,
@@ -92,6 +84,18 @@ struct SeparatedPair {
   void end() { gap_bits &= ~3u; }
 };
 static_assert(sizeof(Real) != 4 || sizeof(SeparatedPair) == 24, "SeparatedPair: 24 bytes in float");
+
+// The pairs found apart, sorted by key, in two lists (see collide_pairs): those kept with their
+// separation, and the others by key alone.
+struct ApartPairs {
+  std::vector<SeparatedPair> separated;
+  std::vector<uint64_t> keys;
+
+  void clear() {
+    separated.clear();
+    keys.clear();
+  }
+};
 
 // Scratch of one list updated in place by collide_pairs (see there).
 template <class T>
@@ -120,6 +124,7 @@ struct CollideScratch {
   ListUpdate<ManifoldHead> contacts;
   ListUpdate<ManifoldTail> tails;
   ListUpdate<SeparatedPair> separated;
+  ListUpdate<uint64_t> apart_keys;
   ListUpdate<PairCache> cached;
   // Out: what changed in the contact list, each in key order. `ended`: the manifolds that were
   // in it and are not any more; `began`: the keys new to it. Every manifold the list holds has
@@ -144,15 +149,16 @@ struct CollideScratch {
 // manifolds and the carried ones, in key order, and `cached` the poses of those that may be
 // reused.
 //
-// Separation cache: `separated` holds, sorted by key, the pairs found apart (on return, exactly
-// the pairs of `pairs` without a touching manifold: the continuous stage's candidates), each with
-// what its rejection measured (Separation), but for those whose exact test is a closed form (two
-// round shapes, a sphere and a box), which costs about as much as checking the cache, and those
-// whose separation the entry cannot hold: these keep a gap of 0 (SeparatedPair::uncached). While
-// B's points have moved, relative to A, by less than that gap minus the pair's speculative distance
-// and a tolerance, the exact test is skipped: it would reject the pair again, so the result is the
-// same bits with or without the cache. It belongs to one set of bodies and shapes: clear it when
-// bodies are removed or renumbered.
+// Separation cache: the pairs found apart are kept in `apart`, in one of its two lists. On return
+// the two hold exactly the pairs of `pairs` without a touching manifold: the continuous stage's
+// candidates. `apart.separated` has those whose rejection measured a separation that lasts
+// (Separation), with B's pose relative to A at the test; while B's points have moved, relative to
+// A, by less than that gap minus the pair's speculative distance and a tolerance, the exact test
+// is skipped: it would reject the pair again, so the result is the same bits with or without the
+// cache. `apart.keys` has the others' keys alone (8 bytes, not 24): those whose exact test is a
+// closed form (two round shapes, a sphere and a box), which costs about as much as checking the
+// cache, and those whose separation an entry cannot hold. Both belong to one set of bodies and
+// shapes: clear them when bodies are removed or renumbered.
 //
 // Carrying: a manifold whose two bodies are both flagged in `idle` (per body; the world flags
 // static and sleeping bodies) and whose key has no touching manifold this step is kept as it is,
@@ -172,7 +178,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,
                    std::vector<ManifoldHead>& contacts, std::vector<ManifoldTail>& tails,
-                   std::vector<SeparatedPair>& separated, std::vector<PairCache>& cached,
+                   ApartPairs& apart, std::vector<PairCache>& cached,
                    StepScratch* step_scratch = nullptr);
 
 // Time of impact by conservative advancement on the GJK distance: the earliest t in [0, 1] at

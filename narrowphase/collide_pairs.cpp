@@ -185,6 +185,9 @@ uint64_t list_key(const PairCache& c) {
 uint64_t list_key(const ManifoldTail& t) {
   return t.key;
 }
+uint64_t list_key(uint64_t apart_key) {
+  return apart_key;
+}
 
 bool ended(const ManifoldHead& m) {
   return m.point_count == 0;
@@ -200,6 +203,9 @@ bool ended(const PairCache& c) {
 }
 bool ended(const ManifoldTail& t) {
   return t.key == kEndedKey;
+}
+bool ended(uint64_t apart_key) {
+  return apart_key == kEndedKey;
 }
 
 // Before the blocks run: per-thread buffers emptied, and each block's range of the list found
@@ -325,13 +331,14 @@ std::size_t ListUpdate<T>::heap_bytes() const {
 template struct ListUpdate<ManifoldHead>;
 template struct ListUpdate<ManifoldTail>;
 template struct ListUpdate<SeparatedPair>;
+template struct ListUpdate<uint64_t>;
 template struct ListUpdate<PairCache>;
 
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                    std::span<const Shape> shapes, const CollideSettings& settings,
                    std::span<const uint8_t> idle, CollideScratch& scratch,
                    std::vector<ManifoldHead>& contacts, std::vector<ManifoldTail>& tails,
-                   std::vector<SeparatedPair>& separated, std::vector<PairCache>& cached,
+                   ApartPairs& apart_pairs, std::vector<PairCache>& cached,
                    StepScratch* step_scratch) {
   if (step_scratch == nullptr) {
     if (!scratch.own) scratch.own = std::make_unique<StepScratch>();
@@ -346,28 +353,35 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   ListUpdate<ManifoldHead>& mu = scratch.contacts;
   ListUpdate<ManifoldTail>& tu = scratch.tails;
   ListUpdate<SeparatedPair>& su = scratch.separated;
+  ListUpdate<uint64_t>& ku = scratch.apart_keys;
   ListUpdate<PairCache>& cu = scratch.cached;
+  std::vector<SeparatedPair>& separated = apart_pairs.separated;
+  std::vector<uint64_t>& apart_keys = apart_pairs.keys;
   begin_update(mu, contacts, pairs, parts, *step_scratch);
   begin_update(tu, tails, pairs, parts, *step_scratch);
   begin_update(su, separated, pairs, parts, *step_scratch);
+  begin_update(ku, apart_keys, pairs, parts, *step_scratch);
   begin_update(cu, cached, pairs, parts, *step_scratch);
   auto carried = [&](uint64_t key) {
     return !idle.empty() && idle[pair_first(key)] && idle[pair_second(key)];
   };
-  // determinism: part p writes only its ranges of the four lists and one run of each of its
+  // determinism: part p writes only its ranges of the five lists and one run of each of its
   // thread's buffers. An entry whose key is in a list is updated where it is; a key new to a list
   // goes to the run (which thread's buffer holds it changes nothing: the join reads runs in part
   // order); one that ends is marked (a manifold with point_count 0, which no live manifold has; a
-  // separated pair of kind Unknown; a tail or poses with kEndedKey). Nothing depends on which
-  // thread ran a part. A key is touching (a head, perhaps a tail and poses) or apart, not both.
+  // separated pair of kind Unknown; an apart key, a tail or poses with kEndedKey). Nothing depends
+  // on which thread ran a part. A key is touching (a head, perhaps a tail and poses) or apart (a
+  // separated pair or an apart key), not both.
   for_blocks(parts, 1, [&](std::size_t part, std::size_t, std::size_t) {
     const std::size_t slot = thread_slot();
     ScratchVector<ManifoldHead>& added = mu.added[slot];
     ScratchVector<ManifoldTail>& added_tail = tu.added[slot];
     ScratchVector<SeparatedPair>& added_apart = su.added[slot];
+    ScratchVector<uint64_t>& added_key = ku.added[slot];
     ScratchVector<PairCache>& added_cache = cu.added[slot];
     const std::size_t first_added = added.size(), first_tail = added_tail.size(),
-                      first_apart = added_apart.size(), first_cache = added_cache.size();
+                      first_apart = added_apart.size(), first_key = added_key.size(),
+                      first_cache = added_cache.size();
     const std::size_t begin = std::min(n, part * kPairGrain);
     const std::size_t end = std::min(n, begin + kPairGrain);
     ManifoldHead* prev_it = contacts.data() + mu.start[part];
@@ -376,9 +390,11 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     ManifoldTail* const tail_end = tails.data() + tu.start[part + 1];
     SeparatedPair* apart_it = separated.data() + su.start[part];
     SeparatedPair* const apart_end = separated.data() + su.start[part + 1];
+    uint64_t* key_it = apart_keys.data() + ku.start[part];
+    uint64_t* const key_end = apart_keys.data() + ku.start[part + 1];
     PairCache* cache_it = cached.data() + cu.start[part];
     PairCache* const cache_end = cached.data() + cu.start[part + 1];
-    std::size_t dead = 0, dead_tail = 0, dead_apart = 0, dead_cache = 0;
+    std::size_t dead = 0, dead_tail = 0, dead_apart = 0, dead_key = 0, dead_cache = 0;
     PolyhedronCache polyhedron_cache;
     // A manifold, its tail and its cached poses are carried together: a manifold with points is
     // in the list with its key's tail if it has more than one and its poses if it may reuse them.
@@ -399,6 +415,10 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       s.end();
       ++dead_apart;
     };
+    auto end_key = [&](uint64_t& apart_key) {
+      apart_key = kEndedKey;
+      ++dead_key;
+    };
     Manifold m, old;
     Separation separation;
     for (std::size_t i = begin; i < end; ++i) {
@@ -412,6 +432,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       for (; tail_it != tail_end && tail_it->key < key; ++tail_it)
         keep_side_if_carried(*tail_it, dead_tail);
       for (; apart_it != apart_end && apart_it->key < key; ++apart_it) end_apart(*apart_it);
+      for (; key_it != key_end && *key_it < key; ++key_it) end_key(*key_it);
       for (; cache_it != cache_end && cache_it->key < key; ++cache_it) {
         keep_side_if_carried(*cache_it, dead_cache);
       }
@@ -450,6 +471,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         }
       };
       SeparatedPair* apart = (apart_it != apart_end && apart_it->key == key) ? apart_it++ : nullptr;
+      uint64_t* apart_key = (key_it != key_end && *key_it == key) ? key_it++ : nullptr;
       PairCache* cache = (cache_it != cache_end && cache_it->key == key) ? cache_it++ : nullptr;
       const bool cacheable = !rolls(shape_a) && !rolls(shape_b);
       if (has_old && old.point_count > 0 && cache != nullptr && cacheable &&
@@ -461,7 +483,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
           (bodies.linear_velocity(a) - bodies.linear_velocity(b)).norm() * settings.dt;
       const Real speculative = settings.speculative_distance + approach;
       const Quat rotation = xa.rotation.conjugate() * xb.rotation;
-      if (apart != nullptr && apart->gap() > 0) {
+      if (apart != nullptr) {
         const Real slack =
             kSeparationSlack + kSeparationSlackPerMetre * (xa.position.cwiseAbs().maxCoeff() +
                                                            xb.position.cwiseAbs().maxCoeff());
@@ -476,22 +498,27 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         if (same_key != nullptr) keep_if_carried(*same_key);
         if (tail != nullptr) keep_side_if_carried(*tail, dead_tail);
         if (cache != nullptr) keep_side_if_carried(*cache, dead_cache);
-        // Every pair found apart has an entry: the continuous stage's candidates. A closed-form
-        // test costs about what checking a cached separation does, so its pairs keep one that
-        // never skips it (gap 0), as do separations the entry cannot hold.
-        SeparatedPair s = SeparatedPair::uncached(key);
-        if (!exact_test_is_closed_form(shape_a, shape_b)) {
-          SeparatedPair::make(key, separation, relative, rotation,
-                              SeparatedPair::position_step(shape_a, shape_b), s);
-        }
-        if (apart != nullptr) {
-          *apart = s;
+        // Every pair found apart is in one of the two lists: the continuous stage's candidates.
+        // A closed-form test costs about what checking a cached separation does, so its pairs
+        // keep their key alone, as do separations an entry cannot hold.
+        SeparatedPair s;
+        if (!exact_test_is_closed_form(shape_a, shape_b) &&
+            SeparatedPair::make(key, separation, relative, rotation,
+                                SeparatedPair::position_step(shape_a, shape_b), s)) {
+          if (apart != nullptr) {
+            *apart = s;
+          } else {
+            added_apart.push_back(s);
+          }
+          if (apart_key != nullptr) end_key(*apart_key);
         } else {
-          added_apart.push_back(s);
+          if (apart != nullptr) end_apart(*apart);
+          if (apart_key == nullptr) added_key.push_back(key);
         }
         continue;
       }
       if (apart != nullptr) end_apart(*apart);
+      if (apart_key != nullptr) end_key(*apart_key);
       for (int k = 0; k < m.point_count; ++k) m.points[k].normal_impulse = 0;
       m.tangent_impulse[0] = m.tangent_impulse[1] = 0;
       m.twist_impulse = 0;
@@ -517,6 +544,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     for (; prev_it != prev_end; ++prev_it) keep_if_carried(*prev_it);
     for (; tail_it != tail_end; ++tail_it) keep_side_if_carried(*tail_it, dead_tail);
     for (; apart_it != apart_end; ++apart_it) end_apart(*apart_it);
+    for (; key_it != key_end; ++key_it) end_key(*key_it);
     for (; cache_it != cache_end; ++cache_it) keep_side_if_carried(*cache_it, dead_cache);
     mu.live[part] = mu.start[part + 1] - mu.start[part] - dead;
     mu.added_run[part] = {uint32_t(slot), first_added, added.size() - first_added};
@@ -524,6 +552,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
     tu.added_run[part] = {uint32_t(slot), first_tail, added_tail.size() - first_tail};
     su.live[part] = su.start[part + 1] - su.start[part] - dead_apart;
     su.added_run[part] = {uint32_t(slot), first_apart, added_apart.size() - first_apart};
+    ku.live[part] = ku.start[part + 1] - ku.start[part] - dead_key;
+    ku.added_run[part] = {uint32_t(slot), first_key, added_key.size() - first_key};
     cu.live[part] = cu.start[part + 1] - cu.start[part] - dead_cache;
     cu.added_run[part] = {uint32_t(slot), first_cache, added_cache.size() - first_cache};
   });
@@ -547,10 +577,12 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
   tbb::parallel_invoke([&] { join(mu, contacts, parts, *step_scratch); },
                        [&] { join(tu, tails, parts, *step_scratch); },
                        [&] { join(su, separated, parts, *step_scratch); },
+                       [&] { join(ku, apart_keys, parts, *step_scratch); },
                        [&] { join(cu, cached, parts, *step_scratch); });
   end_update(mu);
   end_update(tu);
   end_update(su);
+  end_update(ku);
   end_update(cu);
   trim_spike(scratch.ended, scratch.ended_trim);
   trim_spike(scratch.began, scratch.began_trim);

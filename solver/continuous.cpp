@@ -47,7 +47,8 @@ Transform end_pose(const BodyStore& bodies, uint32_t i, const SolverBody& p) {
 }  // namespace
 
 std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> shapes,
-                             std::span<const SeparatedPair> apart, SolverState& st) {
+                             std::span<const SeparatedPair> separated,
+                             std::span<const uint64_t> apart_keys, SolverState& st) {
   const std::size_t count = st.packets.size();
   std::vector<uint8_t>& fast = st.fast;
   fast.assign(count, 0);
@@ -68,37 +69,41 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
   reset_thread_buffers(st.impacts, largest_capacity(st.impacts));
   // A pair with a manifold had its (speculative) contact in the solve, placed along the motion
   // predicted at the step's start: the contact solver has it in hand. So the candidates are the
-  // pairs found apart.
-  for_blocks(apart.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
-    std::vector<Impact>& found = st.impacts[thread_slot()];
-    for (std::size_t n = begin; n < end; ++n) {
-      const uint32_t a = pair_first(apart[n].key), b = pair_second(apart[n].key);
-      const uint32_t pa = st.packet_of[a], pb = st.packet_of[b];
-      const bool fast_a = fast[pa] != 0, fast_b = fast[pb] != 0;  // packet 0 is never fast
-      // Two fast bodies are left to their contacts: moving both back would need a joint time.
-      if (fast_a == fast_b) continue;
-      const uint32_t mover = fast_a ? a : b, other = fast_a ? b : a;
-      const uint32_t other_packet = fast_a ? pb : pa;
-      const Shape& ms = shapes[bodies.shape[mover]];
-      const Shape& os = shapes[bodies.shape[other]];
-      // A half-space cannot be passed through: its contact exists wherever the body ends.
-      if (os.type == ShapeType::Plane) continue;
-      const Transform o0 = start_pose(bodies, other);
-      const Transform o1 =
-          other_packet != 0 ? end_pose(bodies, other, st.packets[other_packet]) : o0;
-      const Transform m0 = start_pose(bodies, mover);
-      const Transform m1 = end_pose(bodies, mover, st.packets[st.packet_of[mover]]);
-      // perf: most pairs of a fast body are near misses of its grown bounding box.
-      if (!spheres_meet(o0.position - m0.position,
-                        (o1.position - o0.position) - (m1.position - m0.position),
-                        ms.bounding_radius + os.bounding_radius, kContinuousTarget)) {
-        continue;
-      }
-      const Real t = time_of_impact(ms, m0, m1, os, o0, o1, kContinuousTarget);
-      // t = 0: already touching at the start, which the contact solver has in hand.
-      if (t > 0 && t < 1) found.push_back({fast_a ? pa : pb, t});
-    }
-  });
+  // pairs found apart, in either list: one range over both.
+  const std::size_t kept = separated.size();
+  auto key_at = [&](std::size_t n) { return n < kept ? separated[n].key : apart_keys[n - kept]; };
+  for_blocks(
+      kept + apart_keys.size(), kPairBlock, [&](std::size_t begin, std::size_t end, std::size_t) {
+        std::vector<Impact>& found = st.impacts[thread_slot()];
+        for (std::size_t n = begin; n < end; ++n) {
+          const uint64_t key = key_at(n);
+          const uint32_t a = pair_first(key), b = pair_second(key);
+          const uint32_t pa = st.packet_of[a], pb = st.packet_of[b];
+          const bool fast_a = fast[pa] != 0, fast_b = fast[pb] != 0;  // packet 0 is never fast
+          // Two fast bodies are left to their contacts: moving both back would need a joint time.
+          if (fast_a == fast_b) continue;
+          const uint32_t mover = fast_a ? a : b, other = fast_a ? b : a;
+          const uint32_t other_packet = fast_a ? pb : pa;
+          const Shape& ms = shapes[bodies.shape[mover]];
+          const Shape& os = shapes[bodies.shape[other]];
+          // A half-space cannot be passed through: its contact exists wherever the body ends.
+          if (os.type == ShapeType::Plane) continue;
+          const Transform o0 = start_pose(bodies, other);
+          const Transform o1 =
+              other_packet != 0 ? end_pose(bodies, other, st.packets[other_packet]) : o0;
+          const Transform m0 = start_pose(bodies, mover);
+          const Transform m1 = end_pose(bodies, mover, st.packets[st.packet_of[mover]]);
+          // perf: most pairs of a fast body are near misses of its grown bounding box.
+          if (!spheres_meet(o0.position - m0.position,
+                            (o1.position - o0.position) - (m1.position - m0.position),
+                            ms.bounding_radius + os.bounding_radius, kContinuousTarget)) {
+            continue;
+          }
+          const Real t = time_of_impact(ms, m0, m1, os, o0, o1, kContinuousTarget);
+          // t = 0: already touching at the start, which the contact solver has in hand.
+          if (t > 0 && t < 1) found.push_back({fast_a ? pa : pb, t});
+        }
+      });
 
   // determinism: the minimum is exact and does not depend on the order, so neither which thread
   // found an impact nor the order of the lists matters.

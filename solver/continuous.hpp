@@ -7,7 +7,7 @@
 //
 // Pairs that have a manifold are not candidates: their speculative contact was in the solve.
 //
-// Reads: the pairs the collide stage found apart (its separation list), body columns (poses at
+// Reads: the pairs the collide stage found apart (its two lists of them), body columns (poses at
 // the step's start), shapes, packets (the pose change of the step). Writes: dp and dq of fast
 // packets. Parallel over blocks of pairs, each listing the impacts it found; a body's earliest
 // time is a minimum, which does not depend on the order its pairs are visited in.
@@ -27,9 +27,11 @@ namespace elan::detail {
 inline constexpr Real kContinuousTarget = Real(0.005);
 
 // Returns the number of bodies moved back.
-// The candidates are the pairs the collide stage found apart this step (its separation list):
-// a pair with a manifold had its speculative contact in the solve.
+// The candidates are the pairs the collide stage found apart this step (`separated` and
+// `apart_keys`, see collide_pairs): a pair with a manifold had its speculative contact in the
+// solve.
 std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> shapes,
-                             std::span<const SeparatedPair> apart, SolverState& state);
+                             std::span<const SeparatedPair> separated,
+                             std::span<const uint64_t> apart_keys, SolverState& state);
 
 }  // namespace elan::detail

@@ -41,8 +41,9 @@ MemoryUse memory_use(const WorldState& w) {
                  heap_bytes(w.idle) + w.all_pairs.heap_bytes() + w.sap.heap_bytes();
 
   m.contacts = heap_bytes(w.contacts) + heap_bytes(w.contact_tails) + heap_bytes(w.pair_cache) +
-               heap_bytes(w.separated) + w.contact_blocks.contacts.heap_bytes() +
-               w.contact_blocks.tails.heap_bytes() + w.contact_blocks.separated.heap_bytes() +
+               heap_bytes(w.apart.separated) + heap_bytes(w.apart.keys) +
+               w.contact_blocks.contacts.heap_bytes() + w.contact_blocks.tails.heap_bytes() +
+               w.contact_blocks.separated.heap_bytes() + w.contact_blocks.apart_keys.heap_bytes() +
                w.contact_blocks.cached.heap_bytes() + heap_bytes(w.contact_blocks.ended) +
                heap_bytes(w.contact_blocks.began);
 

@@ -407,7 +407,7 @@ void commit(WorldState& s, Decoded&& d) {
   s.free_slots = std::move(d.free_slots);
   detail::split_list(d.contacts, s.contacts, s.contact_tails);
   s.pair_cache = std::move(d.pair_cache);
-  s.separated.clear();
+  s.apart.clear();
   s.contact_blocks = {};
   s.pairs.clear();
   s.sap = detail::SweepAndPrune{};
@@ -610,7 +610,7 @@ void restore_rollback(World& world, std::span<const uint8_t> bytes) {
   read_rollback<false>(check, s);
   ByteReader apply(payload, "rollback");
   read_rollback<true>(apply, s);
-  s.separated.clear();
+  s.apart.clear();
   forget_api_caches(s);
 }
 

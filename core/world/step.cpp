@@ -71,7 +71,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   collide_settings.dt = dt;
   // The same phase of the scratch as the sweep's: the pair list is held through both.
   collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.idle, w.contact_blocks, w.contacts,
-                w.contact_tails, w.separated, w.pair_cache, &w.scratch);
+                w.contact_tails, w.apart, w.pair_cache, &w.scratch);
   stats.pairs = w.pairs.size();
   release(w.pairs);
   const auto t3 = clock::now();
@@ -91,7 +91,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve(bodies, w.contacts, w.contact_tails, solve_settings, w.solver);
   compute_contact_events(w);
   const auto t5 = clock::now();
-  solve_continuous(bodies, w.shapes, w.separated, w.solver);
+  solve_continuous(bodies, w.shapes, w.apart.separated, w.apart.keys, w.solver);
   const auto t6 = clock::now();
   const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   const auto t7 = clock::now();

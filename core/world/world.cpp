@@ -216,7 +216,7 @@ void World::destroy_body(BodyId id) {
   rename_beside(s.contact_tails, i, last, resort);
   rename_beside(s.pair_cache, i, last, resort);
   // The separation cache names bodies by index too; it is only a cache, so it starts over.
-  s.separated.clear();
+  s.apart.clear();
   if (resort) {
     // determinism: keys are unique, so the sorted order is a function of the keys alone.
     std::sort(contacts.begin(), contacts.end(),

@@ -63,7 +63,7 @@ std::vector<Manifold> run(const Scene& s, std::vector<uint64_t> pairs,
   std::vector<ManifoldHead> heads;
   std::vector<ManifoldTail> tails;
   split_list(previous, heads, tails);
-  std::vector<SeparatedPair> apart;
+  ApartPairs apart;
   std::vector<PairCache> poses;
   tbb::task_arena(threads).execute([&] {
     collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, scratch, heads, tails,

@@ -64,7 +64,7 @@ Pile make_pile(int n, uint32_t seed) {
 // whole again after.
 void collide_list(std::span<const uint64_t> pairs, const Pile& p, const CollideSettings& settings,
                   std::span<const uint8_t> idle, CollideScratch& slots, std::vector<Manifold>& list,
-                  std::vector<SeparatedPair>& apart, std::vector<PairCache>& poses) {
+                  ApartPairs& apart, std::vector<PairCache>& poses) {
   std::vector<ManifoldHead> heads;
   std::vector<ManifoldTail> tails;
   split_list(list, heads, tails);
@@ -94,7 +94,7 @@ TEST(CollidePairs, BitIdenticalUnderOneAndTwoThreads) {
   ASSERT_GT(p.pairs.size(), 256u) << "enough pairs for several blocks";
   CollideSettings settings;
   CollideScratch slots1, slots2;
-  std::vector<SeparatedPair> apart1, apart2;
+  ApartPairs apart1, apart2;
   std::vector<PairCache> poses1, poses2;
   std::vector<Manifold> out1, out2;
   tbb::task_arena(1).execute(
@@ -140,7 +140,7 @@ TEST(CollidePairs, CarriedManifoldsAgreeWithTheExactTest) {
   Pile p = make_pile(200, 5);
   CollideSettings settings;
   CollideScratch slots;
-  std::vector<SeparatedPair> apart;
+  ApartPairs apart;
   std::vector<PairCache> carried_poses, exact_poses;
   std::vector<Manifold> carried, exact;
   collide_list(p.pairs, p, settings, {}, slots, carried, apart, carried_poses);
@@ -169,7 +169,7 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
   Pile p = make_pile(200, 11);
   CollideSettings settings;
   CollideScratch slots;
-  std::vector<SeparatedPair> apart;
+  ApartPairs apart;
   std::vector<PairCache> poses;
   std::vector<Manifold> first, second;
   collide_list(p.pairs, p, settings, {}, slots, first, apart, poses);
@@ -243,7 +243,7 @@ TEST(CollidePairs, InPlaceUpdateGivesEveryTouchingPairWhateverTheListHeld) {
   const Pile p = make_pile(400, 3);
   CollideSettings settings;
   CollideScratch slots;
-  std::vector<SeparatedPair> apart;
+  ApartPairs apart;
   std::vector<PairCache> poses;
   std::vector<Manifold> fresh;
   collide_list(p.pairs, p, settings, {}, slots, fresh, apart, poses);
@@ -299,11 +299,11 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   CollideSettings settings;
   CollideScratch slots_cached, slots_exact;
   std::vector<Manifold> cached, exact;
-  std::vector<SeparatedPair> apart, none;
+  ApartPairs apart, none;
   std::vector<PairCache> cached_poses, exact_poses;
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1, 1);
-  int kept = 0, closed_in = 0, closed_form_pairs = 0;
+  int kept = 0, closed_in = 0, closed_form_pairs = 0, closed_form_apart = 0;
   std::vector<SeparatedPair> before;
   for (int step = 0; step < 24; ++step) {
     collide_list(p.pairs, p, settings, {}, slots_cached, cached, apart, cached_poses);
@@ -317,22 +317,26 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
                        ? 1
                        : 0;
     }
-    before = apart;
+    before = apart.separated;
     // Every pair is in exactly one of the lists: touching, or found apart (the continuous
-    // stage's candidates).
+    // stage's candidates), kept with its separation or by key alone; each list in key order.
     std::vector<uint64_t> listed;
     for (const Manifold& m : cached) listed.push_back(m.key());
-    for (const SeparatedPair& s : apart) listed.push_back(s.key);
+    for (const SeparatedPair& s : apart.separated) listed.push_back(s.key);
+    listed.insert(listed.end(), apart.keys.begin(), apart.keys.end());
     std::sort(listed.begin(), listed.end());
     EXPECT_EQ(listed, p.pairs);
-    for (const SeparatedPair& s : apart) {
-      // Pairs with a closed-form test keep an entry that never skips it (checking one costs
-      // about what the test does).
-      if (exact_test_is_closed_form(p.shapes[p.bodies.shape[pair_first(s.key)]],
-                                    p.shapes[p.bodies.shape[pair_second(s.key)]])) {
-        EXPECT_EQ(s.gap(), 0);
-        continue;
-      }
+    EXPECT_TRUE(std::is_sorted(apart.keys.begin(), apart.keys.end()));
+    auto closed_form = [&](uint64_t key) {
+      return exact_test_is_closed_form(p.shapes[p.bodies.shape[pair_first(key)]],
+                                       p.shapes[p.bodies.shape[pair_second(key)]]);
+    };
+    // Pairs with a closed-form test are kept by key alone (checking a separation costs about
+    // what the test does); most others with their separation.
+    for (uint64_t key : apart.keys) closed_form_apart += closed_form(key) ? 1 : 0;
+    for (const SeparatedPair& s : apart.separated) {
+      EXPECT_FALSE(closed_form(s.key));
+      EXPECT_GT(s.gap(), 0);
       uint32_t a = pair_first(s.key), b = pair_second(s.key);
       if (a == 0) std::swap(a, b);  // the static ground is B
       const Vec3 now =
@@ -359,6 +363,7 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
                                                    p.shapes[p.bodies.shape[pair_second(key)]]);
   }
   EXPECT_GT(closed_form_pairs, 100) << "the pile has pairs the cache leaves out";
+  EXPECT_GT(closed_form_apart, 100) << "closed-form pairs found apart, kept by key";
   EXPECT_GT(kept, 2000) << "pairs skipped: entries kept from an earlier pose";
   EXPECT_GT(closed_in, 20) << "cached pairs that went on to touch";
 }
@@ -427,7 +432,7 @@ TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
   Pile p = make_pile(200, 17);
   CollideSettings settings;
   CollideScratch slots;
-  std::vector<SeparatedPair> apart;
+  ApartPairs apart;
   std::vector<PairCache> poses;
   std::vector<Manifold> list;
   collide_list(p.pairs, p, settings, {}, slots, list, apart, poses);
@@ -478,7 +483,7 @@ TEST(CollidePairs, KeepsTheTailsAndPosesOfExactlyTheManifoldsThatHaveThem) {
   Pile p = make_pile(300, 23);
   CollideSettings settings;
   CollideScratch slots;
-  std::vector<SeparatedPair> apart;
+  ApartPairs apart;
   std::vector<PairCache> poses;
   std::vector<ManifoldHead> list;
   std::vector<ManifoldTail> tails;

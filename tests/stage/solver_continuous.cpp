@@ -15,7 +15,8 @@ namespace solver_continuous_test {
 struct Scene {
   BodyStore bodies;
   std::vector<Shape> shapes = {test::box(Real(0.02), 1, 1), test::sphere(Real(0.05))};
-  std::vector<SeparatedPair> apart;  // the collide stage's: every pair here was found apart
+  // The collide stage's apart keys (a sphere and a box: a closed form), each pair found apart.
+  std::vector<uint64_t> apart;
   SolverState state;
 
   explicit Scene(std::initializer_list<Vec3> motions) {
@@ -36,7 +37,7 @@ struct Scene {
       SolverBodyMass mass;
       mass.body = b;
       state.masses.push_back(mass);
-      apart.push_back(SeparatedPair::uncached(make_pair_key(wall, b)));
+      apart.push_back(make_pair_key(wall, b));
     }
     state.packet_of.assign(bodies.size(), 0);
     for (uint32_t k = 1; k < state.masses.size(); ++k) state.packet_of[state.masses[k].body] = k;
@@ -46,7 +47,7 @@ struct Scene {
 TEST(Continuous, FastBodyStopsAtTheWall) {
   // 2 m in one step: the sphere ends past the wall, its step's line crosses it.
   Scene s({Vec3(2, 0, 0)});
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.apart, s.state), 1u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.state), 1u);
   // Surface within the target of the face x = 0.98 (time of impact stops within a quarter of the
   // target of it, on the near side).
   const Real front = s.state.packets[1].dp.x() + Real(0.05);
@@ -59,7 +60,7 @@ TEST(Continuous, SlowBodiesAndMissesAreLeftAlone) {
   // 2 cm is less than half the radius: not fast. 2 m along y is fast but runs 0.93 m from the
   // wall's face.
   Scene s({Vec3(Real(0.02), 0, 0), Vec3(0, 2, 0)});
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.apart, s.state), 0u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.state), 0u);
   EXPECT_EQ(s.state.packets[1].dp, Vec3(Real(0.02), 0, 0));
   EXPECT_EQ(s.state.packets[2].dp, Vec3(0, 2, 0));
 }
@@ -68,7 +69,7 @@ TEST(Continuous, BodyAlreadyTouchingIsLeftToItsContact) {
   // Sliding fast along the wall's face, 2 mm from it: the contact solver owns this one.
   Scene s({Vec3(0, 0, 1)});
   s.bodies.set_position(1, Vec3(Real(0.98) - Real(0.05) - Real(0.002), 0, 0));
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.apart, s.state), 0u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.state), 0u);
   EXPECT_EQ(s.state.packets[1].dp, Vec3(0, 0, 1));
 }
 
@@ -76,9 +77,26 @@ TEST(Continuous, OnlyPairsFoundApartAreCandidates) {
   // The same crossing, but the collide stage gave the pair a manifold (so no separation entry):
   // its speculative contact was in the solve.
   Scene s({Vec3(2, 0, 0)});
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.state), 0u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, {}, s.state), 0u);
   EXPECT_EQ(s.state.packets[1].dp, Vec3(2, 0, 0));
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, s.apart, s.state), 1u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.state), 1u);
+}
+
+// A pair kept with its separation (the collide stage's other list of pairs found apart).
+SeparatedPair separated_entry(const Scene& s, uint32_t a, uint32_t b) {
+  const Real step =
+      SeparatedPair::position_step(s.shapes[s.bodies.shape[a]], s.shapes[s.bodies.shape[b]]);
+  SeparatedPair entry;
+  EXPECT_TRUE(SeparatedPair::make(make_pair_key(a, b), {Separation::Kind::Distance, Real(0.5)},
+                                  s.bodies.position(b) - s.bodies.position(a), Quat::Identity(),
+                                  step, entry));
+  return entry;
+}
+
+TEST(Continuous, PairsOfBothListsAreCandidates) {
+  Scene s({Vec3(2, 0, 0)});
+  const std::vector<SeparatedPair> separated = {separated_entry(s, 0, 1)};
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, separated, {}, s.state), 1u);
 }
 
 TEST(Continuous, EarliestWallWins) {
@@ -89,8 +107,9 @@ TEST(Continuous, EarliestWallWins) {
   s.bodies.motion[near_wall] = uint8_t(MotionType::Static);
   s.bodies.set_position(near_wall, Vec3(Real(0.5), 0, 0));
   s.state.packet_of.push_back(0);
-  s.apart.push_back(SeparatedPair::uncached(make_pair_key(1, near_wall)));
-  ASSERT_EQ(solve_continuous(s.bodies, s.shapes, s.apart, s.state), 1u);
+  // The near wall's pair in the other list: the earliest impact over both lists.
+  const std::vector<SeparatedPair> separated = {separated_entry(s, 1, near_wall)};
+  ASSERT_EQ(solve_continuous(s.bodies, s.shapes, separated, s.apart, s.state), 1u);
   EXPECT_NEAR(s.state.packets[1].dp.x() + Real(0.05), Real(0.48) - kContinuousTarget,
               Real(0.25) * kContinuousTarget);
 }

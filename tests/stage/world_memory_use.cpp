@@ -96,6 +96,7 @@ TEST(MemoryUse, StepBuffersAreGivenBackWithinTheStep) {
       for (const auto& b : w.contact_blocks.contacts.added) bytes += detail::heap_bytes(b);
       for (const auto& b : w.contact_blocks.tails.added) bytes += detail::heap_bytes(b);
       for (const auto& b : w.contact_blocks.separated.added) bytes += detail::heap_bytes(b);
+      for (const auto& b : w.contact_blocks.apart_keys.added) bytes += detail::heap_bytes(b);
       return bytes;
     };
     for (int i = 0; i < 120; ++i) {
