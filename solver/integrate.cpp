@@ -13,8 +13,8 @@ void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverB
     const SolverBodyMass& m = masses[k];
     if (m.inv_mass == 0) continue;  // kinematic: moves with its given velocities
     const uint32_t i = m.body;
-    const Vec3 force(bodies.fx[i], bodies.fy[i], bodies.fz[i]);
-    const Vec3 torque(bodies.tx[i], bodies.ty[i], bodies.tz[i]);
+    const Vec3 force = bodies.force(i);
+    const Vec3 torque = bodies.torque(i);
     const Vec3 delta_v_per_s = gravity + m.inv_mass * force;
     const Vec3 delta_w_per_s = m.inv_inertia * torque;
     SolverBody& b = packets[k];

@@ -434,10 +434,10 @@ uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
       bodies.set_orientation(i, q);
       bodies.set_linear_velocity(i, b.v);
       bodies.set_angular_velocity(i, b.w);
-      bodies.fx[i] = bodies.fy[i] = bodies.fz[i] = 0;
-      bodies.tx[i] = bodies.ty[i] = bodies.tz[i] = 0;
     }
   });
+  // The forces applied for this step are spent on the bodies it moved (a quarantined one's too).
+  bodies.drop_forces_if([&](uint32_t i) { return st.packet_of[i] != 0; });
   uint32_t status = 0;
   for (uint8_t f : frozen_any) status |= f ? uint32_t(kStepFrozeNonFinite) : 0u;
   if (settings.allow_sleep) {

@@ -95,9 +95,7 @@ void World::apply_force(BodyId id, const Vec3& force) {
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   if (!b.is_dynamic(i)) return;
-  b.fx[i] += force.x();
-  b.fy[i] += force.y();
-  b.fz[i] += force.z();
+  b.applied_force(i).force += force;
   detail::wake_index(*state_, i);
 }
 
@@ -114,9 +112,7 @@ void World::apply_torque(BodyId id, const Vec3& torque) {
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   if (!b.is_dynamic(i)) return;
-  b.tx[i] += torque.x();
-  b.ty[i] += torque.y();
-  b.tz[i] += torque.z();
+  b.applied_force(i).torque += torque;
   detail::wake_index(*state_, i);
 }
 

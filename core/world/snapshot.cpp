@@ -295,6 +295,14 @@ void check_bodies(ByteReader& r, const Decoded& d) {
     if (b.slot[i] >= d.slot_index.size() || d.slot_index[b.slot[i]] != i) {
       r.fail("body " + std::to_string(i) + ": id slot does not point back at it");
     }
+    const uint32_t k = b.applied[i];
+    if (k != detail::kNoForce && (k >= b.applied_forces.size() || b.applied_forces[k].body != i)) {
+      r.fail("body " + std::to_string(i) + ": applied force slot does not point back at it");
+    }
+  }
+  for (std::size_t k = 0; k < b.applied_forces.size(); ++k) {
+    const uint32_t body = b.applied_forces[k].body;
+    if (body >= n || b.applied[body] != k) r.fail("applied force of a body that does not hold it");
   }
   std::size_t live = 0;
   for (uint32_t index : d.slot_index) {
@@ -350,6 +358,12 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
     using T = typename std::remove_reference_t<decltype(column)>::value_type;
     for (T& v : column) v = read_value<T>(r);
   });
+  d.bodies.applied_forces.resize(r.count(4 + 6 * sizeof(Real), "applied force"));
+  for (detail::AppliedForce& a : d.bodies.applied_forces) {
+    a.body = r.u32();
+    a.force = r.vec3();
+    a.torque = r.vec3();
+  }
 
   const uint32_t slots = r.count(8, "id slot");
   d.slot_index.resize(slots);
@@ -442,15 +456,25 @@ void read_rollback(ByteReader& r, WorldState& s) {
   if (r.u32() != n) r.fail("saved from a world with a different number of bodies");
   if (r.u64() != layout_fingerprint(b)) r.fail("saved from a world with other bodies or shapes");
   const uint64_t step_count = r.u64();
-  if constexpr (Apply) s.step_count = step_count;
+  if constexpr (Apply) {
+    s.step_count = step_count;
+    b.drop_forces_if([](uint32_t) { return true; });
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (b.is_static(i)) continue;
     if constexpr (Apply) {
-      for (Column<Real>* c :
-           {&b.px, &b.py, &b.pz, &b.qw, &b.qx, &b.qy, &b.qz, &b.vx, &b.vy, &b.vz,
-            &b.wx, &b.wy, &b.wz, &b.fx, &b.fy, &b.fz, &b.tx, &b.ty, &b.tz, &b.sleep_time}) {
+      for (Column<Real>* c : {&b.px, &b.py, &b.pz, &b.qw, &b.qx, &b.qy, &b.qz, &b.vx, &b.vy, &b.vz,
+                              &b.wx, &b.wy, &b.wz}) {
         (*c)[i] = r.real();
       }
+      // A body with no force and torque has no entry; a zero entry would step the same bits.
+      const Vec3 force = r.vec3(), torque = r.vec3();
+      if (force != Vec3::Zero() || torque != Vec3::Zero()) {
+        detail::AppliedForce& a = b.applied_force(i);
+        a.force = force;
+        a.torque = torque;
+      }
+      b.sleep_time[i] = r.real();
       b.flags[i] = r.u8();
     } else {
       r.need(kRollbackBodyBytes);
@@ -530,6 +554,12 @@ std::vector<uint8_t> save_snapshot(const World& world) {
   detail::for_each_column(s.bodies, [&w](const auto& column) {
     for (auto v : column) write_value(w, v);
   });
+  w.u32(uint32_t(s.bodies.applied_forces.size()));
+  for (const detail::AppliedForce& a : s.bodies.applied_forces) {
+    w.u32(a.body);
+    w.vec3(a.force);
+    w.vec3(a.torque);
+  }
 
   w.u32(uint32_t(s.slot_index.size()));
   for (uint32_t v : s.slot_index) w.u32(v);
@@ -575,11 +605,13 @@ void save_rollback(const World& world, std::vector<uint8_t>& out) {
   w.u64(s.step_count);
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b.is_static(i)) continue;
-    for (const Column<Real>* c :
-         {&b.px, &b.py, &b.pz, &b.qw, &b.qx, &b.qy, &b.qz, &b.vx, &b.vy, &b.vz,
-          &b.wx, &b.wy, &b.wz, &b.fx, &b.fy, &b.fz, &b.tx, &b.ty, &b.tz, &b.sleep_time}) {
+    for (const Column<Real>* c : {&b.px, &b.py, &b.pz, &b.qw, &b.qx, &b.qy, &b.qz, &b.vx, &b.vy,
+                                  &b.vz, &b.wx, &b.wy, &b.wz}) {
       w.real((*c)[i]);
     }
+    w.vec3(b.force(i));
+    w.vec3(b.torque(i));
+    w.real(b.sleep_time[i]);
     w.u8(b.flags[i]);
   }
   w.u32(uint32_t(s.contacts.size()));

@@ -104,27 +104,54 @@ TEST(SnapshotFormat, OtherVersionAndRealSizeAreRefusedByName) {
             std::string::npos);
 }
 
-TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
-  // A body pointing at a shape that does not exist passes the checksum once resealed; the
-  // reader must still refuse it. The shape column's offset is counted back from the end:
-  // checksum, contacts, free list and slots, then the columns after `shape` (category, mask and
-  // slot: 4 bytes each, motion and flags: 1 byte each).
-  World world = small_world();
-  std::vector<uint8_t> bytes = save_snapshot(world);
-  const detail::WorldState& s = world.state();
-  const std::size_t n = s.bodies.size();
+// The snapshot's bytes after the body columns: the applied forces, contacts, id slots and the
+// checksum, counted back from the end.
+std::size_t bytes_after_columns(const detail::WorldState& s) {
   constexpr std::size_t kR = sizeof(Real);
+  const std::size_t forces = 4 + s.bodies.applied_forces.size() * (4 + 6 * kR);
   // Per manifold: key and bodies, normal, point count, points, friction, whether it has cache
   // poses; then the poses of those that have them.
   const std::size_t contacts = 4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (5 * kR + 4) + 1) +
                                s.pair_cache.size() * (14 * kR + 7);
   const std::size_t slots = 4 + 8 * s.slot_index.size() + 4 + 4 * s.free_slots.size();
-  const std::size_t last_shape = bytes.size() - 8 - contacts - slots - 14 * n - 4;
+  return forces + contacts + slots + 8;
+}
+
+TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
+  // A body pointing at a shape that does not exist passes the checksum once resealed; the
+  // reader must still refuse it. The shape column's offset is counted back from the end: the
+  // bytes after the columns, then the columns after `shape` (category, mask, slot and applied:
+  // 4 bytes each, motion and flags: 1 byte each).
+  World world = small_world();
+  std::vector<uint8_t> bytes = save_snapshot(world);
+  const detail::WorldState& s = world.state();
+  const std::size_t n = s.bodies.size();
+  const std::size_t last_shape = bytes.size() - bytes_after_columns(s) - 18 * n - 4;
   ASSERT_EQ(bytes[last_shape], s.bodies.shape[n - 1]);
   bytes[last_shape] = 200;
   reseal(bytes);
   World target;
   EXPECT_NE(error_of(target, bytes).find("body 3: bad shape index"), std::string::npos)
+      << error_of(target, bytes);
+}
+
+TEST(SnapshotFormat, ResealedForceSlotWithoutItsForceIsRefused) {
+  // The last body's `applied` slot (no force: all bits set) made to point at entry 0 of an empty
+  // list of applied forces.
+  World world = small_world();
+  std::vector<uint8_t> bytes = save_snapshot(world);
+  const detail::WorldState& s = world.state();
+  const std::size_t n = s.bodies.size();
+  ASSERT_TRUE(s.bodies.applied_forces.empty());
+  const std::size_t last_applied = bytes.size() - bytes_after_columns(s) - 2 * n - 4;
+  for (std::size_t k = 0; k < 4; ++k) {
+    ASSERT_EQ(bytes[last_applied + k], 0xFF);
+    bytes[last_applied + k] = 0;
+  }
+  reseal(bytes);
+  World target;
+  EXPECT_NE(error_of(target, bytes).find("body 3: applied force slot does not point back at it"),
+            std::string::npos)
       << error_of(target, bytes);
 }
 
@@ -162,7 +189,9 @@ TEST(SnapshotFormat, SavesEveryColumnOfTheBodyStore) {
   std::size_t columns = 0;
   detail::BodyStore probe;
   detail::for_each_column(probe, [&columns](auto&) { ++columns; });
-  EXPECT_EQ(columns * sizeof(detail::Column<Real>), sizeof(detail::BodyStore));
+  // The one member that is not a column, saved on its own: the applied forces.
+  EXPECT_EQ(columns * sizeof(detail::Column<Real>) + sizeof(std::vector<detail::AppliedForce>),
+            sizeof(detail::BodyStore));
 }
 
 TEST(SnapshotFormat, SavesEveryFieldOfAManifold) {

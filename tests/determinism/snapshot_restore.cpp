@@ -104,6 +104,32 @@ TEST(Snapshot, SavingALoadedWorldGivesTheSameBytes) {
   EXPECT_EQ(save_snapshot(world), reference().snapshot);
 }
 
+// Forces applied for the next step are state: a snapshot or rollback state taken between
+// apply_force and step carries them, and the restored world steps with them.
+TEST(Snapshot, ForcesAppliedForTheNextStepAreSavedAndRestored) {
+  World world = test::make_snapshot_world(1);
+  for (int s = 0; s < 20; ++s) world.step(test::kSnapshotDt);
+  World unpushed = load_snapshot(save_snapshot(world));
+  for (std::size_t i = 0; i < world.body_count(); i += 97) {
+    const BodyId id = world.body_at(i);
+    world.apply_force(id, Vec3(Real(40 + i), Real(300), Real(-25)));
+    world.apply_torque(id, Vec3(0, Real(3), Real(1)));
+  }
+  ASSERT_GT(world.state().bodies.applied_forces.size(), 5u);
+  const std::vector<uint8_t> snapshot = save_snapshot(world);
+  const std::vector<uint8_t> rollback = save_rollback(world);
+  world.step(test::kSnapshotDt);
+  const uint64_t pushed = world.state_hash();
+  unpushed.step(test::kSnapshotDt);
+  ASSERT_NE(unpushed.state_hash(), pushed) << "the forces change the step";
+  World loaded = load_snapshot(snapshot);
+  loaded.step(test::kSnapshotDt);
+  EXPECT_EQ(loaded.state_hash(), pushed);
+  restore_rollback(world, rollback);
+  world.step(test::kSnapshotDt);
+  EXPECT_EQ(world.state_hash(), pushed);
+}
+
 TEST(Snapshot, RestoresSettingsStepCountAndShapes) {
   const World world = load_snapshot(reference().snapshot);
   EXPECT_EQ(world.state().step_count, uint64_t(kSaveAt));

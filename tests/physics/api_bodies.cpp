@@ -152,6 +152,34 @@ TEST(WorldApi, ImpulseAndForceMatchClosedForms) {
   EXPECT_NEAR(w.mass(id), 12, 1e-5);
 }
 
+// Forces are kept by body, so removing bodies (each removal moves the last body into the gap)
+// must leave every force with its own body: a = F / m for one step, each on its own axis.
+TEST(WorldApi, ForcesStayWithTheirBodiesWhenOthersAreDestroyed) {
+  WorldDef def;
+  def.gravity = Vec3::Zero();
+  World w(def);
+  const ShapeId box = make_box(w, Vec3::Constant(Real(0.5)));
+  std::vector<BodyId> ids;
+  for (int k = 0; k < 4; ++k) ids.push_back(add(w, box, Vec3(Real(3 * k), 0, 0)));
+  const Real mass = w.mass(ids[0]);
+  w.apply_force(ids[1], Vec3(mass, 0, 0));      // 1 m/s^2 along x
+  w.apply_force(ids[2], Vec3(0, 2 * mass, 0));  // 2 m/s^2 along y
+  w.apply_torque(ids[2], Vec3(0, 0, Real(1e-3)));
+  w.apply_force(ids[3], Vec3(0, 0, 4 * mass));  // 4 m/s^2 along z
+  w.destroy_body(ids[0]);  // no force; the last body, with one, takes its index
+  w.destroy_body(ids[1]);  // has a force; the last body then takes its index
+  w.step(kDt);
+  EXPECT_NEAR(w.linear_velocity(ids[2]).y(), 2 * kDt, 1e-6);
+  EXPECT_NEAR(w.linear_velocity(ids[2]).x(), 0, 1e-9);
+  EXPECT_GT(w.angular_velocity(ids[2]).z(), 0);
+  EXPECT_NEAR(w.linear_velocity(ids[3]).z(), 4 * kDt, 1e-6);
+  EXPECT_NEAR(w.linear_velocity(ids[3]).x(), 0, 1e-9);
+  EXPECT_EQ(w.state().bodies.applied_forces.size(), 0u) << "spent by the step";
+  w.step(kDt);
+  EXPECT_NEAR(w.linear_velocity(ids[2]).y(), 2 * kDt, 1e-6);
+  EXPECT_NEAR(w.linear_velocity(ids[3]).z(), 4 * kDt, 1e-6);
+}
+
 TEST(WorldApi, MoveKinematicReachesTheTargetInOneStep) {
   WorldDef def;
   def.gravity = Vec3::Zero();

@@ -14,7 +14,7 @@
 namespace elan {
 
 /// Format version written by save_snapshot and save_rollback; other versions are refused.
-inline constexpr uint32_t kSnapshotVersion = 6;
+inline constexpr uint32_t kSnapshotVersion = 7;
 
 /// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built
 /// (hull vertices, faces and edges in the principal frame, frames, mass properties), every body
@@ -33,6 +33,8 @@ inline constexpr uint32_t kSnapshotVersion = 6;
 ///       [u32 n, n x 3R vertices | u32 n, n x (3R normal, R offset, u32 first, u32 count) faces
 ///        | u32 n, n x u32 face vertices | u32 n, n x 2 u32 edges], u8 destroyed
 ///     | u32 bodies n, then each BodyStore column in declaration order, n values each
+///     | u32 applied forces, each: u32 body, 3R force, 3R torque (the force and torque applied
+///       for the next step; the body's `applied` column holds its entry's index)
 ///     | u32 slots m, m x u32 slot index, m x u32 generation | u32 f, f x u32 free slots
 ///     | u32 manifolds, each: u64 key, u32 body a, u32 body b, 3R normal, u8 point count,
 ///       4 points x (3R anchor a, R separation, u32 feature id, R normal impulse),
@@ -73,7 +75,8 @@ World load_snapshot(std::span<const uint8_t> bytes);
 ///
 /// Format: magic "\x89ELANRBK" | u32 version | u32 sizeof(Real) | u32 bodies | u64 layout
 /// fingerprint (shape, slot and motion of every body) | u64 step count | per non-static body
-/// in index order: px py pz qw qx qy qz vx vy vz wx wy wz fx fy fz tx ty tz sleep_time (R each),
+/// in index order: px py pz qw qx qy qz vx vy vz wx wy wz, fx fy fz tx ty tz (the applied force and
+/// torque, zero if none), sleep_time (R each),
 /// u8 flags | u32 manifolds, each: u64 key, u8 (1 when body A is the higher index), 3R normal,
 /// u8 point count, per point: 3R anchor a, R separation, u32 feature id,
 /// R normal impulse; then 2R tangent impulses, R twist impulse, u8 has poses and, if 1,
