@@ -26,9 +26,12 @@ constexpr Real kMargin = Real(0.01);
 struct Pile {
   BoundsColumns bounds[2];  // two poses a few millimetres apart, alternated every update
   std::vector<uint8_t> kind, is_plane;
-  std::vector<uint32_t> category, mask;
+  std::vector<uint32_t> traits;            // every body: entry 0
+  std::vector<BodyTraits> trait_table{1};  // category 1, mask all: every pair passes
 
-  BroadphaseInput input(int pose) const { return {&bounds[pose], kind, category, mask, is_plane}; }
+  BroadphaseInput input(int pose) const {
+    return {&bounds[pose], kind, traits, trait_table, is_plane};
+  }
 };
 
 Pile make_pile(std::size_t n) {
@@ -43,8 +46,9 @@ Pile make_pile(std::size_t n) {
   for (auto& b : p.bounds) b.resize(total);
   p.kind.assign(total, uint8_t(BroadKind::Awake));
   p.is_plane.assign(total, 0);
-  p.category.assign(total, 1);
-  p.mask.assign(total, ~0u);
+  p.traits.assign(total, 0);
+  p.trait_table[0].category = 1;
+  p.trait_table[0].mask = ~0u;
   for (std::size_t i = 0; i < n; ++i) {
     const int col = int(i % std::size_t(side * side));
     const int layer = int(i / std::size_t(side * side));

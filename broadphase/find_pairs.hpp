@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "broadphase/bounds.hpp"
+#include "core/base/body_traits.hpp"
 #include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
 #include "core/base/step_scratch.hpp"
@@ -30,14 +31,15 @@ inline bool should_pair(BroadKind a, BroadKind b) {
 
 struct BroadphaseInput {
   const BoundsColumns* bounds = nullptr;
-  std::span<const uint8_t> kind;       // BroadKind per body
-  std::span<const uint32_t> category;  // a pair passes if (cat_a & mask_b) && (cat_b & mask_a)
-  std::span<const uint32_t> mask;
-  std::span<const uint8_t> is_plane;  // 1 for plane shapes (infinite boxes)
+  std::span<const uint8_t> kind;            // BroadKind per body
+  std::span<const uint32_t> traits;         // per body: its entry of `trait_table`
+  std::span<const BodyTraits> trait_table;  // the collision filters (BodyTraits::category, mask)
+  std::span<const uint8_t> is_plane;        // 1 for plane shapes (infinite boxes)
 };
 
 inline bool filter_pass(const BroadphaseInput& in, uint32_t a, uint32_t b) {
-  return (in.category[a] & in.mask[b]) != 0 && (in.category[b] & in.mask[a]) != 0;
+  const BodyTraits &ta = in.trait_table[in.traits[a]], &tb = in.trait_table[in.traits[b]];
+  return (ta.category & tb.mask) != 0 && (tb.category & ta.mask) != 0;
 }
 
 // Serial O(n^2) reference: the test oracle.

@@ -424,8 +424,9 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
         entry_body_[e] = i;
         entry_first_[e] = s0;
         entry_kind_[e] = in.kind[i];
-        entry_category_[e] = in.category[i];
-        entry_mask_[e] = in.mask[i];
+        const BodyTraits& traits = in.trait_table[in.traits[i]];
+        entry_category_[e] = traits.category;
+        entry_mask_[e] = traits.mask;
       }
     }
   });

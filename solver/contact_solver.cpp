@@ -217,8 +217,9 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     mb.inv_mass[l] = mass_b.inv_mass;
     set_lane(ma.inv_inertia, l, mass_a.inv_inertia);
     set_lane(mb.inv_inertia, l, mass_b.inv_inertia);
-    c.friction[l] = std::sqrt(bodies.friction[a] * bodies.friction[b]);
-    bounce.restitution[l] = std::max(bodies.restitution[a], bodies.restitution[b]);
+    const BodyTraits &traits_a = bodies.traits_of(a), &traits_b = bodies.traits_of(b);
+    c.friction[l] = std::sqrt(traits_a.friction * traits_b.friction);
+    bounce.restitution[l] = std::max(traits_a.restitution, traits_b.restitution);
     set_lane(c.normal, l, m.normal);
     c.tangent_impulse[0][l] = m.tangent_impulse[0];
     c.tangent_impulse[1][l] = m.tangent_impulse[1];

@@ -18,8 +18,9 @@ void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverB
     const Vec3 delta_v_per_s = gravity + m.inv_mass * force;
     const Vec3 delta_w_per_s = m.inv_inertia * torque;
     SolverBody& b = packets[k];
-    b.v = (b.v + h * delta_v_per_s) / (1 + h * bodies.linear_damping[i]);
-    b.w = (b.w + h * delta_w_per_s) / (1 + h * bodies.angular_damping[i]);
+    const BodyTraits& traits = bodies.traits_of(i);
+    b.v = (b.v + h * delta_v_per_s) / (1 + h * traits.linear_damping);
+    b.w = (b.w + h * delta_w_per_s) / (1 + h * traits.angular_damping);
   }
 }
 

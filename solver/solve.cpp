@@ -67,8 +67,7 @@ void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
   t0 = std::chrono::steady_clock::now();
   // Restitution inputs are kept only in a world that has something to bounce: on a pile of
   // inelastic bodies they were 62 B a body (pile10k) read by a pass that found nothing to do.
-  const bool bouncy = std::any_of(bodies.restitution.begin(), bodies.restitution.end(),
-                                  [](Real e) { return e > 0; });
+  const bool bouncy = bodies.trait_table.any_restitution();
 
   // Packets: the awake dynamic bodies of half 0, then of half 1 (partition.hpp), then every
   // kinematic body, each in index order (packet 0 is the dummy), so that each is one range of

@@ -8,10 +8,12 @@ std::size_t BodyStore::push_back() {
   for_each_column(*this, [](auto& c) { c.emplace_back(); });
   qw[i] = 1;
   applied[i] = kNoForce;
+  traits[i] = trait_table.acquire(BodyTraits{});
   return i;
 }
 
 void BodyStore::swap_remove(std::size_t index) {
+  trait_table.release(traits[index]);
   // The removed body's force goes (the list's last entry takes its place), then the last body's
   // entry follows it to `index`.
   if (const uint32_t k = applied[index]; k != kNoForce) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/body_traits.hpp"
 #include "core/base/column.hpp"
 #include "elan/defs.hpp"
 #include "elan/math.hpp"
@@ -35,18 +36,17 @@ struct BodyStore {
   Column<Real> wx, wy, wz;              // rad/s, world
   Column<Real> inv_mass;                // 1/kg (0: static or kinematic)
   Column<Real> inv_ix, inv_iy, inv_iz;  // 1/(kg m^2), principal axes
-  Column<Real> friction, restitution;
-  Column<Real> linear_damping, angular_damping;  // 1/s
-  Column<Real> sleep_time;                       // s spent below the sleep threshold
-  Column<uint32_t> shape;                        // index into the world's shapes
-  Column<uint32_t> category, mask;               // collision filter bits
-  Column<uint32_t> slot;                         // id slot owning this index
-  Column<uint32_t> applied;                      // index into applied_forces, or kNoForce
-  Column<uint8_t> motion;                        // MotionType
-  Column<uint8_t> flags;                         // BodyFlags
-  // The forces and torques applied for the next step, in the order their bodies were first given
-  // one. Not a column: for_each_column does not walk it.
+  Column<Real> sleep_time;              // s spent below the sleep threshold
+  Column<uint32_t> shape;               // index into the world's shapes
+  Column<uint32_t> traits;              // index into trait_table
+  Column<uint32_t> slot;                // id slot owning this index
+  Column<uint32_t> applied;             // index into applied_forces, or kNoForce
+  Column<uint8_t> motion;               // MotionType
+  Column<uint8_t> flags;                // BodyFlags
+  // Not columns (for_each_column does not walk them): the forces and torques applied for the
+  // next step, in the order their bodies were first given one; the bodies' distinct traits.
   std::vector<AppliedForce> applied_forces;
+  TraitTable trait_table;
 
   std::size_t size() const { return px.size(); }
 
@@ -86,6 +86,14 @@ struct BodyStore {
   bool is_dynamic(std::size_t i) const { return motion[i] == uint8_t(MotionType::Dynamic); }
   bool is_static(std::size_t i) const { return motion[i] == uint8_t(MotionType::Static); }
   bool is_awake(std::size_t i) const { return (flags[i] & kAwake) != 0; }
+
+  const BodyTraits& traits_of(std::size_t i) const { return trait_table[traits[i]]; }
+  void set_traits(std::size_t i, const BodyTraits& t) {
+    const uint32_t k =
+        trait_table.acquire(t);  // before the release: the same values keep their entry
+    trait_table.release(traits[i]);
+    traits[i] = k;
+  }
 
   // The force and torque applied to body i for the next step (zero if none).
   Vec3 force(std::size_t i) const {
@@ -133,14 +141,9 @@ void for_each_column(S& s, F&& f) {
   f(s.inv_ix);
   f(s.inv_iy);
   f(s.inv_iz);
-  f(s.friction);
-  f(s.restitution);
-  f(s.linear_damping);
-  f(s.angular_damping);
   f(s.sleep_time);
   f(s.shape);
-  f(s.category);
-  f(s.mask);
+  f(s.traits);
   f(s.slot);
   f(s.applied);
   f(s.motion);

@@ -44,16 +44,16 @@ void store_pose(WorldState& s, std::size_t i, const Vec3& position, const Quat& 
 }  // namespace
 
 Real World::friction(BodyId id) const {
-  return state_->bodies.friction[index_of(*state_, id)];
+  return state_->bodies.traits_of(index_of(*state_, id)).friction;
 }
 Real World::restitution(BodyId id) const {
-  return state_->bodies.restitution[index_of(*state_, id)];
+  return state_->bodies.traits_of(index_of(*state_, id)).restitution;
 }
 uint32_t World::category_bits(BodyId id) const {
-  return state_->bodies.category[index_of(*state_, id)];
+  return state_->bodies.traits_of(index_of(*state_, id)).category;
 }
 uint32_t World::mask_bits(BodyId id) const {
-  return state_->bodies.mask[index_of(*state_, id)];
+  return state_->bodies.traits_of(index_of(*state_, id)).mask;
 }
 
 void World::set_linear_velocity(BodyId id, const Vec3& v) {
@@ -178,13 +178,21 @@ void World::sleep(BodyId id) {
 
 void World::set_friction(BodyId id, Real friction) {
   check_arg(std::isfinite(friction) && friction >= 0, "friction", "must be finite and >= 0");
-  state_->bodies.friction[index_of(*state_, id)] = friction;
+  detail::BodyStore& b = state_->bodies;
+  const std::size_t i = index_of(*state_, id);
+  detail::BodyTraits t = b.traits_of(i);
+  t.friction = friction;
+  b.set_traits(i, t);
 }
 
 void World::set_restitution(BodyId id, Real restitution) {
   check_arg(std::isfinite(restitution) && restitution >= 0, "restitution",
             "must be finite and >= 0");
-  state_->bodies.restitution[index_of(*state_, id)] = restitution;
+  detail::BodyStore& b = state_->bodies;
+  const std::size_t i = index_of(*state_, id);
+  detail::BodyTraits t = b.traits_of(i);
+  t.restitution = restitution;
+  b.set_traits(i, t);
 }
 
 void World::set_mass(BodyId id, Real mass) {
@@ -200,9 +208,12 @@ void World::set_mass(BodyId id, Real mass) {
 }
 
 void World::set_collision_filter(BodyId id, uint32_t category_bits, uint32_t mask_bits) {
+  detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
-  state_->bodies.category[i] = category_bits;
-  state_->bodies.mask[i] = mask_bits;
+  detail::BodyTraits t = b.traits_of(i);
+  t.category = category_bits;
+  t.mask = mask_bits;
+  b.set_traits(i, t);
 }
 
 }  // namespace elan

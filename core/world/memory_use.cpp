@@ -25,8 +25,8 @@ std::size_t hull_bytes(const ConvexHull& h) {
 MemoryUse memory_use(const WorldState& w) {
   MemoryUse m;
   for_each_column(w.bodies, [&](const auto& c) { m.bodies += heap_bytes(c); });
-  m.bodies += heap_bytes(w.bodies.applied_forces) + heap_bytes(w.slot_index) +
-              heap_bytes(w.slot_generation) + heap_bytes(w.free_slots);
+  m.bodies += heap_bytes(w.bodies.applied_forces) + w.bodies.trait_table.heap_bytes() +
+              heap_bytes(w.slot_index) + heap_bytes(w.slot_generation) + heap_bytes(w.free_slots);
 
   // Shapes may share a hull (copies of one shape): count each once.
   std::vector<const ConvexHull*> hulls;

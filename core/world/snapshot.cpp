@@ -364,6 +364,20 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
     a.force = r.vec3();
     a.torque = r.vec3();
   }
+  std::vector<detail::BodyTraits> traits(r.count(4 * sizeof(Real) + 8, "body traits"));
+  for (detail::BodyTraits& t : traits) {
+    t.friction = r.real();
+    t.restitution = r.real();
+    t.linear_damping = r.real();
+    t.angular_damping = r.real();
+    t.category = r.u32();
+    t.mask = r.u32();
+  }
+  std::vector<uint32_t> free_traits(r.count(4, "free body traits"));
+  for (uint32_t& k : free_traits) k = r.u32();
+  if (!d.bodies.trait_table.restore(std::move(traits), std::move(free_traits), d.bodies.traits)) {
+    r.fail("body traits: a body's entry, or the free list, does not match the table");
+  }
 
   const uint32_t slots = r.count(8, "id slot");
   d.slot_index.resize(slots);
@@ -560,6 +574,17 @@ std::vector<uint8_t> save_snapshot(const World& world) {
     w.vec3(a.force);
     w.vec3(a.torque);
   }
+  w.u32(uint32_t(s.bodies.trait_table.entries().size()));
+  for (const detail::BodyTraits& t : s.bodies.trait_table.entries()) {
+    w.real(t.friction);
+    w.real(t.restitution);
+    w.real(t.linear_damping);
+    w.real(t.angular_damping);
+    w.u32(t.category);
+    w.u32(t.mask);
+  }
+  w.u32(uint32_t(s.bodies.trait_table.free_entries().size()));
+  for (uint32_t k : s.bodies.trait_table.free_entries()) w.u32(k);
 
   w.u32(uint32_t(s.slot_index.size()));
   for (uint32_t v : s.slot_index) w.u32(v);

@@ -55,7 +55,8 @@ uint32_t run_step(WorldState& w, Real dt) {
     w.idle[i] =
         kind == BroadKind::Static || (kind == BroadKind::Sleeping && !(bodies.flags[i] & kFrozen));
   }
-  BroadphaseInput input{&w.bounds, w.broad_kind, bodies.category, bodies.mask, w.is_plane};
+  BroadphaseInput input{&w.bounds, w.broad_kind, bodies.traits, bodies.trait_table.entries(),
+                        w.is_plane};
   take_from(w.pairs, w.scratch);
   if (w.def.broadphase == BroadphaseType::AllPairs) {
     w.all_pairs.find_pairs(input, w.pairs);

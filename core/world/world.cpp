@@ -155,13 +155,9 @@ BodyId World::create_body(const BodyDef& def) {
     b.inv_iy[i] = 1 / inertia.y();
     b.inv_iz[i] = 1 / inertia.z();
   }
-  b.friction[i] = def.friction;
-  b.restitution[i] = def.restitution;
-  b.linear_damping[i] = def.linear_damping;
-  b.angular_damping[i] = def.angular_damping;
+  b.set_traits(i, {def.friction, def.restitution, def.linear_damping, def.angular_damping,
+                   def.category_bits, def.mask_bits});
   b.shape[i] = def.shape.index;
-  b.category[i] = def.category_bits;
-  b.mask[i] = def.mask_bits;
   b.motion[i] = uint8_t(def.motion);
   b.flags[i] =
       (def.motion == MotionType::Static || (def.motion == MotionType::Dynamic && !def.awake))

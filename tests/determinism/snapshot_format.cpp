@@ -109,29 +109,47 @@ TEST(SnapshotFormat, OtherVersionAndRealSizeAreRefusedByName) {
 std::size_t bytes_after_columns(const detail::WorldState& s) {
   constexpr std::size_t kR = sizeof(Real);
   const std::size_t forces = 4 + s.bodies.applied_forces.size() * (4 + 6 * kR);
+  const std::size_t traits = 4 + s.bodies.trait_table.entries().size() * (4 * kR + 8) + 4 +
+                             4 * s.bodies.trait_table.free_entries().size();
   // Per manifold: key and bodies, normal, point count, points, friction, whether it has cache
   // poses; then the poses of those that have them.
   const std::size_t contacts = 4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (5 * kR + 4) + 1) +
                                s.pair_cache.size() * (14 * kR + 7);
   const std::size_t slots = 4 + 8 * s.slot_index.size() + 4 + 4 * s.free_slots.size();
-  return forces + contacts + slots + 8;
+  return forces + traits + contacts + slots + 8;
 }
 
 TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
   // A body pointing at a shape that does not exist passes the checksum once resealed; the
   // reader must still refuse it. The shape column's offset is counted back from the end: the
-  // bytes after the columns, then the columns after `shape` (category, mask, slot and applied:
-  // 4 bytes each, motion and flags: 1 byte each).
+  // bytes after the columns, then the columns after `shape` (traits, slot and applied: 4 bytes
+  // each, motion and flags: 1 byte each).
   World world = small_world();
   std::vector<uint8_t> bytes = save_snapshot(world);
   const detail::WorldState& s = world.state();
   const std::size_t n = s.bodies.size();
-  const std::size_t last_shape = bytes.size() - bytes_after_columns(s) - 18 * n - 4;
+  const std::size_t last_shape = bytes.size() - bytes_after_columns(s) - 14 * n - 4;
   ASSERT_EQ(bytes[last_shape], s.bodies.shape[n - 1]);
   bytes[last_shape] = 200;
   reseal(bytes);
   World target;
   EXPECT_NE(error_of(target, bytes).find("body 3: bad shape index"), std::string::npos)
+      << error_of(target, bytes);
+}
+
+TEST(SnapshotFormat, ResealedTraitsEntryPastTheTableIsRefused) {
+  // The last body's `traits` entry (followed by the slot and applied columns, then motion and
+  // flags) made to point past the table of traits.
+  World world = small_world();
+  std::vector<uint8_t> bytes = save_snapshot(world);
+  const detail::WorldState& s = world.state();
+  const std::size_t n = s.bodies.size();
+  const std::size_t last_traits = bytes.size() - bytes_after_columns(s) - 10 * n - 4;
+  ASSERT_EQ(bytes[last_traits], s.bodies.traits[n - 1]);
+  bytes[last_traits] = 200;
+  reseal(bytes);
+  World target;
+  EXPECT_NE(error_of(target, bytes).find("body traits: a body's entry"), std::string::npos)
       << error_of(target, bytes);
 }
 
@@ -189,8 +207,9 @@ TEST(SnapshotFormat, SavesEveryColumnOfTheBodyStore) {
   std::size_t columns = 0;
   detail::BodyStore probe;
   detail::for_each_column(probe, [&columns](auto&) { ++columns; });
-  // The one member that is not a column, saved on its own: the applied forces.
-  EXPECT_EQ(columns * sizeof(detail::Column<Real>) + sizeof(std::vector<detail::AppliedForce>),
+  // The members that are not columns, saved on their own: the applied forces, the traits table.
+  EXPECT_EQ(columns * sizeof(detail::Column<Real>) + sizeof(std::vector<detail::AppliedForce>) +
+                sizeof(detail::TraitTable),
             sizeof(detail::BodyStore));
 }
 

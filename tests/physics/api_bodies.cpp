@@ -180,6 +180,31 @@ TEST(WorldApi, ForcesStayWithTheirBodiesWhenOthersAreDestroyed) {
   EXPECT_NEAR(w.linear_velocity(ids[3]).z(), 4 * kDt, 1e-6);
 }
 
+// Bodies made alike share their traits' entry; changing one body's must leave the others'.
+TEST(WorldApi, ChangingOneBodysMaterialOrFilterLeavesTheOthers) {
+  World w;
+  const ShapeId box = make_box(w, Vec3::Constant(Real(0.5)));
+  std::vector<BodyId> ids;
+  for (int k = 0; k < 3; ++k) ids.push_back(add(w, box, Vec3(Real(3 * k), 0, 0)));
+  w.set_friction(ids[1], Real(0.9));
+  w.set_restitution(ids[2], Real(0.4));
+  w.set_collision_filter(ids[0], 2, 4);
+  EXPECT_EQ(w.friction(ids[0]), BodyDef{}.friction);
+  EXPECT_EQ(w.friction(ids[1]), Real(0.9));
+  EXPECT_EQ(w.friction(ids[2]), BodyDef{}.friction);
+  EXPECT_EQ(w.restitution(ids[1]), 0);
+  EXPECT_EQ(w.restitution(ids[2]), Real(0.4));
+  EXPECT_EQ(w.category_bits(ids[0]), 2u);
+  EXPECT_EQ(w.mask_bits(ids[0]), 4u);
+  EXPECT_EQ(w.category_bits(ids[1]), 1u);
+  EXPECT_EQ(w.mask_bits(ids[2]), UINT32_MAX);
+  w.destroy_body(ids[0]);
+  EXPECT_EQ(w.friction(ids[1]), Real(0.9));
+  EXPECT_EQ(w.restitution(ids[2]), Real(0.4));
+  EXPECT_EQ(w.category_bits(ids[2]), 1u);
+  EXPECT_LE(w.state().bodies.trait_table.entries().size(), 5u);
+}
+
 TEST(WorldApi, MoveKinematicReachesTheTargetInOneStep) {
   WorldDef def;
   def.gravity = Vec3::Zero();

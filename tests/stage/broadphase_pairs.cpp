@@ -23,6 +23,9 @@ struct BoxSet {
   BoundsColumns bounds;
   std::vector<uint8_t> kind, is_plane;
   std::vector<uint32_t> category, mask;
+  // What input() hands the broadphase: an entry of traits a body, holding its filter.
+  mutable std::vector<BodyTraits> trait_table;
+  mutable std::vector<uint32_t> traits;
 
   std::size_t size() const { return kind.size(); }
   void resize(std::size_t n) {
@@ -40,7 +43,16 @@ struct BoxSet {
     bounds.max_y[i] = hi.y();
     bounds.max_z[i] = hi.z();
   }
-  BroadphaseInput input() const { return {&bounds, kind, category, mask, is_plane}; }
+  BroadphaseInput input() const {
+    trait_table.resize(size());
+    traits.resize(size());
+    for (std::size_t i = 0; i < size(); ++i) {
+      trait_table[i].category = category[i];
+      trait_table[i].mask = mask[i];
+      traits[i] = uint32_t(i);
+    }
+    return {&bounds, kind, traits, trait_table, is_plane};
+  }
 };
 
 enum class Layout {

@@ -35,6 +35,9 @@ inline constexpr uint32_t kSnapshotVersion = 7;
 ///     | u32 bodies n, then each BodyStore column in declaration order, n values each
 ///     | u32 applied forces, each: u32 body, 3R force, 3R torque (the force and torque applied
 ///       for the next step; the body's `applied` column holds its entry's index)
+///     | u32 body traits t, each: R friction, R restitution, R linear damping, R angular damping,
+///       u32 category bits, u32 mask bits | u32 free traits, each u32 (the body's `traits`
+///       column holds its entry's index; entries no body uses are listed as free)
 ///     | u32 slots m, m x u32 slot index, m x u32 generation | u32 f, f x u32 free slots
 ///     | u32 manifolds, each: u64 key, u32 body a, u32 body b, 3R normal, u8 point count,
 ///       4 points x (3R anchor a, R separation, u32 feature id, R normal impulse),
