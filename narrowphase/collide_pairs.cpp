@@ -208,6 +208,37 @@ bool ended(uint64_t apart_key) {
   return apart_key == kEndedKey;
 }
 
+// Files a pair the exact test found apart in one of the two lists of them (see collide_pairs):
+// with what its rejection measured where an entry can hold it and the test is not a closed form
+// (which costs about what checking the entry does), else by its key alone. `kept` and `by_key`
+// are its entries in the two lists, if any: the one not used is ended. Returns the entries that
+// ended: 1 for `kept`, 2 for `by_key`.
+// perf: out of line, off the path of the touching pairs, so that the pair loop stays small enough
+// for the compiler to inline its rotations (jolt_pyramid's collide stage ran 15 % longer inline).
+[[gnu::noinline]] unsigned file_apart(uint64_t key, const Shape& a, const Shape& b,
+                                      const Separation& separation, const Vec3& relative,
+                                      const Quat& rotation, SeparatedPair* kept, uint64_t* by_key,
+                                      ScratchVector<SeparatedPair>& added_kept,
+                                      ScratchVector<uint64_t>& added_keys) {
+  SeparatedPair s;
+  if (!exact_test_is_closed_form(a, b) &&
+      SeparatedPair::make(key, separation, relative, rotation, SeparatedPair::position_step(a, b),
+                          s)) {
+    if (kept != nullptr) {
+      *kept = s;
+    } else {
+      added_kept.push_back(s);
+    }
+    if (by_key == nullptr) return 0;
+    *by_key = kEndedKey;
+    return 2;
+  }
+  if (by_key == nullptr) added_keys.push_back(key);
+  if (kept == nullptr) return 0;
+  kept->end();
+  return 1;
+}
+
 // Before the blocks run: per-thread buffers emptied, and each block's range of the list found
 // (block p owns the keys from its first pair's up to the next block's first pair's).
 template <class T>
@@ -431,8 +462,6 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       for (; prev_it != prev_end && prev_it->key() < key; ++prev_it) keep_if_carried(*prev_it);
       for (; tail_it != tail_end && tail_it->key < key; ++tail_it)
         keep_side_if_carried(*tail_it, dead_tail);
-      for (; apart_it != apart_end && apart_it->key < key; ++apart_it) end_apart(*apart_it);
-      for (; key_it != key_end && *key_it < key; ++key_it) end_key(*key_it);
       for (; cache_it != cache_end && cache_it->key < key; ++cache_it) {
         keep_side_if_carried(*cache_it, dead_cache);
       }
@@ -470,8 +499,6 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
           end_side(*tail, dead_tail);
         }
       };
-      SeparatedPair* apart = (apart_it != apart_end && apart_it->key == key) ? apart_it++ : nullptr;
-      uint64_t* apart_key = (key_it != key_end && *key_it == key) ? key_it++ : nullptr;
       PairCache* cache = (cache_it != cache_end && cache_it->key == key) ? cache_it++ : nullptr;
       const bool cacheable = !rolls(shape_a) && !rolls(shape_b);
       if (has_old && old.point_count > 0 && cache != nullptr && cacheable &&
@@ -479,6 +506,12 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         store();
         continue;
       }
+      // perf: the lists of pairs found apart are walked past the pairs that reuse their points
+      // (most of a resting pile's), which touched last step, so neither list has them.
+      for (; apart_it != apart_end && apart_it->key < key; ++apart_it) end_apart(*apart_it);
+      for (; key_it != key_end && *key_it < key; ++key_it) end_key(*key_it);
+      SeparatedPair* apart = (apart_it != apart_end && apart_it->key == key) ? apart_it++ : nullptr;
+      uint64_t* apart_key = (key_it != key_end && *key_it == key) ? key_it++ : nullptr;
       const Real approach =
           (bodies.linear_velocity(a) - bodies.linear_velocity(b)).norm() * settings.dt;
       const Real speculative = settings.speculative_distance + approach;
@@ -499,22 +532,11 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         if (tail != nullptr) keep_side_if_carried(*tail, dead_tail);
         if (cache != nullptr) keep_side_if_carried(*cache, dead_cache);
         // Every pair found apart is in one of the two lists: the continuous stage's candidates.
-        // A closed-form test costs about what checking a cached separation does, so its pairs
-        // keep their key alone, as do separations an entry cannot hold.
-        SeparatedPair s;
-        if (!exact_test_is_closed_form(shape_a, shape_b) &&
-            SeparatedPair::make(key, separation, relative, rotation,
-                                SeparatedPair::position_step(shape_a, shape_b), s)) {
-          if (apart != nullptr) {
-            *apart = s;
-          } else {
-            added_apart.push_back(s);
-          }
-          if (apart_key != nullptr) end_key(*apart_key);
-        } else {
-          if (apart != nullptr) end_apart(*apart);
-          if (apart_key == nullptr) added_key.push_back(key);
-        }
+        const unsigned ended_entries =
+            file_apart(key, shape_a, shape_b, separation, relative, rotation, apart, apart_key,
+                       added_apart, added_key);
+        dead_apart += ended_entries & 1u;
+        dead_key += ended_entries >> 1;
         continue;
       }
       if (apart != nullptr) end_apart(*apart);
