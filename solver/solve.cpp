@@ -75,6 +75,9 @@ void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
   // of their own (solve()).
   const std::size_t n = bodies.size();
   st.simulated.clear();
+  // Room for every body, reserved once the store has grown: push_back's doubling left up to half
+  // of it unused for good (pile10k: 6.6 bytes a body for 4).
+  if (st.simulated.capacity() < n) st.simulated.reserve(n);
   uint32_t kinematic = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (bodies.is_dynamic(i) && bodies.is_awake(i) && !(bodies.flags[i] & kFrozen)) {
