@@ -10,6 +10,10 @@
 // taking memory is a bump of an atomic offset, so the sweep's chunks may grow theirs in parallel.
 // Giving back the buffer taken last moves the offset back (a stack), so the solver's colouring
 // arrays, dead before its bundles are laid out, lend them their bytes within one phase.
+// A buffer that outlives the ones taken around it (the pair list: written at the end of the sweep,
+// read through the collide stage) is taken from the back of the block instead, a second stack
+// growing down: the sweep's buffers then all go back from the front, which starts over
+// (rewind_front) under the collide stage's, even where one of them grew and left a hole.
 // What the block cannot hold comes from the heap; the next phase then starts with a block large
 // enough for what this one asked (a sixteenth more: growing it copies nothing, since nothing is
 // held then), so a scene allocates while it grows and then never. Which thread took which bytes
@@ -46,7 +50,14 @@ class StepScratch {
 
   // Thread-safe. `bytes` rounded up to kAlign.
   void* allocate(std::size_t bytes);
-  void deallocate(void* p, std::size_t bytes);
+  // From the back of the block. Serial: no other buffer may be taken or given back meanwhile.
+  void* allocate_back(std::size_t bytes);
+  // `back`: the buffer came from allocate_back. Serial for those.
+  void deallocate(void* p, std::size_t bytes, bool back = false);
+  // Starts the front of the block over when none of its buffers is held (the back's may be), so
+  // bytes left unused behind a buffer that grew, or given back out of order, are used again. A
+  // no-op while one is held (a debug build asserts). Serial.
+  void rewind_front();
 
   std::size_t heap_bytes() const { return capacity_; }
   std::size_t held_bytes() const { return held_.load(std::memory_order_relaxed); }
@@ -60,6 +71,11 @@ class StepScratch {
   std::atomic<std::size_t> top_{0};   // where the next buffer starts (past the block: heap)
   std::atomic<std::size_t> peak_{0};  // the furthest top_ reached in this phase
   std::atomic<std::size_t> held_{0};  // bytes handed out and not yet given back
+  // Bytes taken from the back (a stack: the lowest buffer is the last taken), and of the bytes
+  // held those of back buffers. Changed serially only; atomic for the front's concurrent reads.
+  std::atomic<std::size_t> back_{0};
+  std::size_t held_back_ = 0;
+  void note_peak(std::size_t end);
   SpikeTrim trim_;
 };
 
@@ -73,20 +89,23 @@ struct ScratchAllocator {
   using propagate_on_container_swap = std::true_type;
 
   StepScratch* scratch = nullptr;
+  bool back = false;  // from the back of the block (StepScratch::allocate_back)
 
   ScratchAllocator() = default;
-  explicit ScratchAllocator(StepScratch* s) : scratch(s) {}
+  explicit ScratchAllocator(StepScratch* s, bool from_back = false) : scratch(s), back(from_back) {}
   template <class U>
-  ScratchAllocator(const ScratchAllocator<U>& other) : scratch(other.scratch) {}
+  ScratchAllocator(const ScratchAllocator<U>& other) : scratch(other.scratch), back(other.back) {}
 
   T* allocate(std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
-    if (scratch) return static_cast<T*>(scratch->allocate(bytes));
+    if (scratch) {
+      return static_cast<T*>(back ? scratch->allocate_back(bytes) : scratch->allocate(bytes));
+    }
     return static_cast<T*>(::operator new(bytes, std::align_val_t(StepScratch::kAlign)));
   }
   void deallocate(T* p, std::size_t n) {
     if (scratch) {
-      scratch->deallocate(p, n * sizeof(T));
+      scratch->deallocate(p, n * sizeof(T), back);
     } else {
       ::operator delete(p, std::align_val_t(StepScratch::kAlign));
     }
@@ -106,7 +125,7 @@ struct ScratchAllocator {
   }
   template <class U>
   bool operator==(const ScratchAllocator<U>& other) const {
-    return scratch == other.scratch;
+    return scratch == other.scratch && back == other.back;
   }
 };
 
@@ -117,6 +136,13 @@ using ScratchVector = std::vector<T, ScratchAllocator<T>>;
 template <class T>
 void take_from(ScratchVector<T>& v, StepScratch& scratch) {
   ScratchVector<T>(ScratchAllocator<T>(&scratch)).swap(v);
+}
+
+// As take_from, its buffers taken from the back of the block: one that outlives the buffers
+// taken around it (see StepScratch).
+template <class T>
+void take_from_back(ScratchVector<T>& v, StepScratch& scratch) {
+  ScratchVector<T>(ScratchAllocator<T>(&scratch, true)).swap(v);
 }
 
 // As take_from, then sized to n elements, left unset (ScratchAllocator::construct).

@@ -57,13 +57,16 @@ uint32_t run_step(WorldState& w, Real dt) {
   }
   BroadphaseInput input{&w.bounds, w.broad_kind, bodies.traits, bodies.trait_table.entries(),
                         w.is_plane};
-  take_from(w.pairs, w.scratch);
+  take_from_back(w.pairs, w.scratch);
   if (w.def.broadphase == BroadphaseType::AllPairs) {
     w.all_pairs.find_pairs(input, w.pairs);
   } else {
     w.sap.find_pairs(input, w.pairs, w.scratch);
   }
   w.bounds.release();
+  // The sweep's buffers are all back; the pair list, at the back, is held through the collide
+  // stage, whose buffers start at the front again.
+  w.scratch.rewind_front();
   filter_pairs(w);
   const auto t2 = clock::now();
 

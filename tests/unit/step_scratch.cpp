@@ -102,6 +102,52 @@ TEST(StepScratch, TheLastBufferGivenBackLendsItsBytesToTheNext) {
   release(second);
 }
 
+// The sweep and the collide stage: the sweep's buffers (one of which grew, leaving its old bytes
+// behind it, and given back out of order), then the pair list taken from the back and held while
+// the collide stage's buffers start over at the front. They never share bytes, and once warm the
+// phase asks only for the larger of the two stages' fronts, plus the back.
+TEST(StepScratch, TheBackHoldsABufferWhileTheFrontStartsOver) {
+  StepScratch s;
+  ScratchVector<uint32_t> entries, blocks, collide;
+  ScratchVector<uint64_t> pairs;
+  std::size_t warm = 0;
+  for (int step = 0; step < 4; ++step) {
+    s.begin_phase();
+    if (step == 2) warm = s.heap_bytes();
+    take_from(entries, s);
+    entries.resize(1000);
+    const void* front = entries.data();
+    take_room(blocks, s, 100);
+    for (uint32_t k = 0; k < 150; ++k) blocks.push_back(k);  // grows past its room, to 200
+    take_from_back(pairs, s);
+    pairs.resize(500);
+    std::iota(pairs.begin(), pairs.end(), uint64_t{1});
+    release(entries);  // out of order: the bytes stay taken until the rewind
+    release(blocks);
+    s.rewind_front();
+    take_from(collide, s);
+    collide.assign(2000, 0xFFFFFFFFu);
+    if (step > 1) {
+      EXPECT_EQ(static_cast<const void*>(collide.data()), front) << "the front started over";
+      const auto* lo = reinterpret_cast<const char*>(front);
+      EXPECT_TRUE(inside(s, pairs.data() + 499, lo)) << "the back is in the block";
+      EXPECT_GE(reinterpret_cast<const char*>(pairs.data()),
+                reinterpret_cast<const char*>(collide.data() + 2000))
+          << "front and back apart";
+    }
+    for (std::size_t k = 0; k < pairs.size(); ++k) ASSERT_EQ(pairs[k], k + 1) << "step " << step;
+    release(collide);
+    release(pairs);
+  }
+  s.begin_phase();
+  EXPECT_EQ(s.heap_bytes(), warm) << "no growth once warm";
+  // The phase asks for the larger front with the back's 4032 bytes (500 pairs, to a cache line):
+  // the sweep's 4032 + 448 + 832 (its entries, the block's room and its grown copy) or the collide
+  // stage's 8000; a sixteenth more. Without the rewind the collide stage's buffer would start past
+  // the grown block (4480) and the phase would ask 16512.
+  EXPECT_LE(s.heap_bytes(), (8000 + 4032) * 17 / 16 + 64);
+}
+
 TEST(StepScratch, APhaseLargerThanTheBlockGetsItsBytesAndTheNextFits) {
   StepScratch s;
   s.begin_phase();
