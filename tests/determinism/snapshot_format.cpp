@@ -119,38 +119,41 @@ std::size_t bytes_after_columns(const detail::WorldState& s) {
   return forces + traits + contacts + slots + 8;
 }
 
+// The error a fresh world gives for `bytes` with the byte at `at` (which must hold `was`) set to
+// `value` and resealed.
+std::string error_with_byte(std::vector<uint8_t> bytes, std::size_t at, uint32_t was,
+                            uint8_t value) {
+  EXPECT_EQ(bytes[at], was);
+  bytes[at] = value;
+  reseal(bytes);
+  World target;
+  return error_of(target, bytes);
+}
+
 TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
   // A body pointing at a shape that does not exist passes the checksum once resealed; the
   // reader must still refuse it. The shape column's offset is counted back from the end: the
   // bytes after the columns, then the columns after `shape` (traits, slot and applied: 4 bytes
   // each, motion and flags: 1 byte each).
   World world = small_world();
-  std::vector<uint8_t> bytes = save_snapshot(world);
+  const std::vector<uint8_t> bytes = save_snapshot(world);
   const detail::WorldState& s = world.state();
   const std::size_t n = s.bodies.size();
   const std::size_t last_shape = bytes.size() - bytes_after_columns(s) - 14 * n - 4;
-  ASSERT_EQ(bytes[last_shape], s.bodies.shape[n - 1]);
-  bytes[last_shape] = 200;
-  reseal(bytes);
-  World target;
-  EXPECT_NE(error_of(target, bytes).find("body 3: bad shape index"), std::string::npos)
-      << error_of(target, bytes);
+  const std::string error = error_with_byte(bytes, last_shape, s.bodies.shape[n - 1], 200);
+  EXPECT_NE(error.find("body 3: bad shape index"), std::string::npos) << error;
 }
 
 TEST(SnapshotFormat, ResealedTraitsEntryPastTheTableIsRefused) {
   // The last body's `traits` entry (followed by the slot and applied columns, then motion and
   // flags) made to point past the table of traits.
   World world = small_world();
-  std::vector<uint8_t> bytes = save_snapshot(world);
+  const std::vector<uint8_t> bytes = save_snapshot(world);
   const detail::WorldState& s = world.state();
   const std::size_t n = s.bodies.size();
   const std::size_t last_traits = bytes.size() - bytes_after_columns(s) - 10 * n - 4;
-  ASSERT_EQ(bytes[last_traits], s.bodies.traits[n - 1]);
-  bytes[last_traits] = 200;
-  reseal(bytes);
-  World target;
-  EXPECT_NE(error_of(target, bytes).find("body traits: a body's entry"), std::string::npos)
-      << error_of(target, bytes);
+  const std::string error = error_with_byte(bytes, last_traits, s.bodies.traits[n - 1], 200);
+  EXPECT_NE(error.find("body traits: a body's entry"), std::string::npos) << error;
 }
 
 TEST(SnapshotFormat, ResealedForceSlotWithoutItsForceIsRefused) {
