@@ -69,7 +69,7 @@ class StepScratch {
   std::byte* block_ = nullptr;
   std::size_t capacity_ = 0;
   std::atomic<std::size_t> top_{0};   // where the next buffer starts (past the block: heap)
-  std::atomic<std::size_t> peak_{0};  // the furthest top_ reached in this phase
+  std::atomic<std::size_t> peak_{0};  // the most both ends held at once in this phase
   std::atomic<std::size_t> held_{0};  // bytes handed out and not yet given back
   // Bytes taken from the back (a stack: the lowest buffer is the last taken), and of the bytes
   // held those of back buffers. Changed serially only; atomic for the front's concurrent reads.
