@@ -18,20 +18,26 @@ namespace {
 using PairFn = bool (*)(const Shape&, const Transform&, const Shape&, const Transform&, Real,
                         Manifold&, Separation*);
 
-// Both in one working frame: world rotation, origin at A's centre of mass, so coordinates stay
-// small far from the world origin. A's polyhedron comes from `cache` when it holds A as it is.
-bool collide_sat_cached(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                        Real speculative_distance, Manifold& out, PolyhedronCache& cache,
-                        Separation* separation) {
+// A's polyhedron in the working frame, from `cache` when it holds A as it is.
+const Polyhedron& polyhedron_of_a(const Shape& a, const Transform& xa, PolyhedronCache& cache) {
   if (cache.shape != &a ||
       std::memcmp(cache.rotation.coeffs().data(), xa.rotation.coeffs().data(), sizeof(Quat)) != 0) {
     make_polyhedron(a, xa.rotation, Vec3::Zero(), cache.polyhedron);
     cache.shape = &a;
     cache.rotation = xa.rotation;
   }
+  return cache.polyhedron;
+}
+
+// Both in one working frame: world rotation, origin at A's centre of mass, so coordinates stay
+// small far from the world origin. A's polyhedron comes from `cache` when it holds A as it is.
+bool collide_sat_cached(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                        Real speculative_distance, Manifold& out, PolyhedronCache& cache,
+                        Separation* separation) {
+  const Polyhedron& pa = polyhedron_of_a(a, xa, cache);
   Polyhedron pb;
   make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
-  return collide_polyhedra(cache.polyhedron, pb, speculative_distance, out, separation);
+  return collide_polyhedra(pa, pb, speculative_distance, out, separation);
 }
 
 bool collide_sat(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
@@ -134,6 +140,17 @@ bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transfo
 }
 
 }  // namespace
+
+bool edge_pair_separates(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                         int edge_a, int edge_b, Real speculative_distance,
+                         PolyhedronCache& cache) {
+  if (!is_sat_polyhedron(a) || !is_sat_polyhedron(b)) return false;
+  // The polyhedra as collide_sat_cached places them, so the gap has the SAT's bits.
+  const Polyhedron& pa = polyhedron_of_a(a, xa, cache);
+  Polyhedron pb;
+  make_polyhedron(b, xb.rotation, xb.position - xa.position, pb);
+  return edge_pair_separation(pa, pb, edge_a, edge_b) > speculative_distance;
+}
 
 bool exact_test_is_closed_form(const Shape& a, const Shape& b) {
   PairFn f = pick(a, b);

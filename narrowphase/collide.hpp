@@ -45,6 +45,13 @@ bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transfor
              Real speculative_distance, Manifold& out, PolyhedronCache& cache,
              Separation& separation);
 
+// Whether the SAT of the box or hull pair (a, b) would reject it on the axis of A's edge `edge_a`
+// and B's edge `edge_b` (a Separation::Kind::EdgePair it reported before): the two edges still
+// make a face of the Minkowski difference and its gap is above `speculative_distance`, computed
+// as the SAT's edge query computes it. False when that is not so or the edges are not theirs.
+bool edge_pair_separates(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                         int edge_a, int edge_b, Real speculative_distance, PolyhedronCache& cache);
+
 struct CollideSettings {
   Real speculative_distance = Real(0.02);  // m: contacts kept this far apart, plus motion below
   Real dt = Real(1.0 / 60.0);              // s: for the motion allowance
@@ -69,11 +76,18 @@ struct SeparatedPair {
     return 2 * (a.bounding_radius + b.bounding_radius) / 32767;
   }
   // The entry, or false (`out` untouched) where the codes cannot hold it: an unknown kind, a gap
-  // that is not positive and finite, a centre out of the position code's range.
+  // that is not positive and finite, a centre out of the position code's range, an edge index
+  // past int16.
   static bool make(uint64_t key, const Separation& separation, const Vec3& position,
                    const Quat& rotation, Real step, SeparatedPair& out);
 
-  Separation::Kind kind() const { return Separation::Kind(gap_bits & 3u); }
+  // An EdgePair entry (the gap's sign bit set, which no kept gap has) holds the two edges in
+  // position[0] and [1] and nothing else (no gap: gap() is -0).
+  Separation::Kind kind() const {
+    return gap_bits >> 31 ? Separation::Kind::EdgePair : Separation::Kind(gap_bits & 3u);
+  }
+  int edge_a() const { return position[0]; }
+  int edge_b() const { return position[1]; }
   // m: at most the measured gap.
   Real gap() const;
   Vec3 position_at(Real step) const {
@@ -81,7 +95,7 @@ struct SeparatedPair {
   }
   Quat rotation_value() const { return PackedRotation::unpack(rotation, int(gap_bits >> 2 & 3u)); }
   // Marks the entry as ended (kind Unknown).
-  void end() { gap_bits &= ~3u; }
+  void end() { gap_bits = 0; }
 };
 static_assert(sizeof(Real) != 4 || sizeof(SeparatedPair) == 24, "SeparatedPair: 24 bytes in float");
 

@@ -21,6 +21,18 @@ namespace elan::detail {
 bool SeparatedPair::make(uint64_t key, const Separation& separation, const Vec3& position,
                          const Quat& rotation, Real step, SeparatedPair& out) {
   if (separation.kind == Separation::Kind::Unknown) return false;
+  if (separation.kind == Separation::Kind::EdgePair) {
+    if (!(separation.edge_a >= 0 && separation.edge_a <= 32767 && separation.edge_b >= 0 &&
+          separation.edge_b <= 32767)) {
+      return false;
+    }
+    out = SeparatedPair{};
+    out.key = key;
+    out.gap_bits = 0x80000000u;
+    out.position[0] = int16_t(separation.edge_a);
+    out.position[1] = int16_t(separation.edge_b);
+    return true;
+  }
   if (!(separation.gap > 0 && separation.gap <= std::numeric_limits<float>::max())) return false;
   if (!(step > 0 && step <= std::numeric_limits<Real>::max())) return false;
   const Vec3 steps = position / step;
@@ -516,7 +528,12 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
           (bodies.linear_velocity(a) - bodies.linear_velocity(b)).norm() * settings.dt;
       const Real speculative = settings.speculative_distance + approach;
       const Quat rotation = xa.rotation.conjugate() * xb.rotation;
-      if (apart != nullptr) {
+      if (apart != nullptr && apart->kind() == Separation::Kind::EdgePair) {
+        if (edge_pair_separates(shape_a, xa, shape_b, xb, apart->edge_a(), apart->edge_b(),
+                                speculative, polyhedron_cache)) {
+          continue;  // the SAT would find this axis again, and reject the pair on it or earlier
+        }
+      } else if (apart != nullptr) {
         const Real slack =
             kSeparationSlack + kSeparationSlackPerMetre * (xa.position.cwiseAbs().maxCoeff() +
                                                            xb.position.cwiseAbs().maxCoeff());

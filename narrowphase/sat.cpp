@@ -168,6 +168,22 @@ int extreme_box_edge(const Polyhedron& p, int i, const Vec3& d) {
   return 4 * i + (j < k ? bit_j + 2 * bit_k : bit_k + 2 * bit_j);
 }
 
+// The separation of boxes a and b along A's edge direction i x B's direction j, oriented from A
+// to B (`d`), or the lowest Real when the two are nearly parallel.
+Real box_edge_axis_separation(const Polyhedron& a, const Polyhedron& b, int i, int j, Vec3& d) {
+  const Vec3 t = b.centre - a.centre;
+  const Vec3& ua = a.normals[2 * i];  // unit: the box's +x, +y, +z face normals
+  d = ua.cross(b.normals[2 * j]);
+  const Real len = d.norm();
+  if (len <= kParallelSine) return kLowest;
+  d /= len;
+  if (t.dot(d) < 0) d = -d;
+  const Real extents = std::abs(d.dot(a.half_axes[0])) + std::abs(d.dot(a.half_axes[1])) +
+                       std::abs(d.dot(a.half_axes[2])) + std::abs(d.dot(b.half_axes[0])) +
+                       std::abs(d.dot(b.half_axes[1])) + std::abs(d.dot(b.half_axes[2]));
+  return t.dot(d) - extents;
+}
+
 // Two boxes: each has edges along three directions only, so the edge-edge faces of A - B are the
 // nine direction pairs, each facing both ways. Along the unit d = ua x ub oriented from A to B
 // the separation is T.d - ra - rb (T: B's centre from A's; ra, rb: the boxes' extents along d;
@@ -175,19 +191,10 @@ int extreme_box_edge(const Polyhedron& p, int i, const Vec3& d) {
 // and -d. perf: nine axes instead of the 144 edge pairs (BM_BoxBox 407 -> 277 ns).
 EdgeQuery query_box_edges(const Polyhedron& a, const Polyhedron& b) {
   EdgeQuery q;
-  const Vec3 t = b.centre - a.centre;
   for (int i = 0; i < 3; ++i) {
-    const Vec3& ua = a.normals[2 * i];  // unit: the box's +x, +y, +z face normals
     for (int j = 0; j < 3; ++j) {
-      Vec3 d = ua.cross(b.normals[2 * j]);
-      const Real len = d.norm();
-      if (len <= kParallelSine) continue;
-      d /= len;
-      if (t.dot(d) < 0) d = -d;
-      const Real extents = std::abs(d.dot(a.half_axes[0])) + std::abs(d.dot(a.half_axes[1])) +
-                           std::abs(d.dot(a.half_axes[2])) + std::abs(d.dot(b.half_axes[0])) +
-                           std::abs(d.dot(b.half_axes[1])) + std::abs(d.dot(b.half_axes[2]));
-      const Real separation = t.dot(d) - extents;
+      Vec3 d;
+      const Real separation = box_edge_axis_separation(a, b, i, j, d);
       if (separation > q.separation) {
         q.separation = separation;
         q.normal = d;
@@ -251,6 +258,39 @@ EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b) {
     q.normal = axis.dot(pa - a.centre) < 0 ? Vec3(-axis) : axis;
   }
   return q;
+}
+
+// One edge pair of query_edges: the arcs' crossing (crossing_arcs) and then the separation
+// (candidate_separations), the same operations in the same order, so the same bits.
+Real gauss_edge_pair_separation(const Polyhedron& a, const Polyhedron& b, int ea, int eb) {
+  const Vec3& na = a.normals[a.edge_faces[ea][0]];
+  const Vec3& nb = a.normals[a.edge_faces[ea][1]];
+  const Vec3 bxa = nb.cross(na);
+  const Vec3 c = -b.normals[b.edge_faces[eb][0]];
+  const Vec3 d = -b.normals[b.edge_faces[eb][1]];
+  const Vec3 dxc = d.cross(c);
+  const Real cba = c.x() * bxa.x() + c.y() * bxa.y() + c.z() * bxa.z();
+  const Real dba = d.x() * bxa.x() + d.y() * bxa.y() + d.z() * bxa.z();
+  const Real adc = na.x() * dxc.x() + na.y() * dxc.y() + na.z() * dxc.z();
+  const Real bdc = nb.x() * dxc.x() + nb.y() * dxc.y() + nb.z() * dxc.z();
+  if (!((cba * dba < 0) & (adc * bdc < 0) & (cba * bdc > 0))) return kLowest;
+  const Vec3& pa = a.vertices[a.edges[ea][0]];
+  const Vec3 ua = a.vertices[a.edges[ea][1]] - pa;
+  const Vec3 oa = pa - a.centre;
+  const Vec3& pb = b.vertices[b.edges[eb][0]];
+  const Vec3 ub = b.vertices[b.edges[eb][1]] - pb;
+  const Real va_len2 = ua.squaredNorm(), vb_len2 = ub.squaredNorm();
+  Real nx = ua.y() * ub.z() - ua.z() * ub.y();
+  Real ny = ua.z() * ub.x() - ua.x() * ub.z();
+  Real nz = ua.x() * ub.y() - ua.y() * ub.x();
+  const Real len = std::sqrt(nx * nx + (ny * ny + nz * nz));
+  if (len <= kParallelSine * std::sqrt(va_len2 * vb_len2)) return kLowest;
+  nx /= len;
+  ny /= len;
+  nz /= len;
+  const Real sep = nx * (pb.x() - pa.x()) + (ny * (pb.y() - pa.y()) + nz * (pb.z() - pa.z()));
+  const Real out = nx * oa.x() + (ny * oa.y() + nz * oa.z());
+  return out < 0 ? -sep : sep;
 }
 
 // Closest points of segments p1 + s d1 and p2 + t d2, s, t in [0, 1] (Ericson, Real-Time
@@ -463,7 +503,12 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
     return false;
   }
   const EdgeQuery ee = query_edges(a, b);
-  if (ee.separation > speculative_distance) return false;
+  if (ee.separation > speculative_distance) {
+    if (separation != nullptr) {
+      *separation = {Separation::Kind::EdgePair, ee.separation, ee.edge_a, ee.edge_b};
+    }
+    return false;
+  }
 
   const bool use_b = beats(fb.separation, fa.separation, kFaceRelTol);
   const Real face_sep = use_b ? fb.separation : fa.separation;
@@ -482,6 +527,15 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
   }
   if (use_b) return face_contact(b, fb.face, a, false, speculative_distance, out);
   return face_contact(a, fa.face, b, true, speculative_distance, out);
+}
+
+Real edge_pair_separation(const Polyhedron& a, const Polyhedron& b, int edge_a, int edge_b) {
+  if (edge_a < 0 || edge_a >= a.edge_count || edge_b < 0 || edge_b >= b.edge_count) return kLowest;
+  if (a.is_box && b.is_box) {
+    Vec3 d;
+    return box_edge_axis_separation(a, b, edge_a / 4, edge_b / 4, d);
+  }
+  return gauss_edge_pair_separation(a, b, edge_a, edge_b);
 }
 
 SegmentFaceQuery query_segment_faces(const Vec3& s0, const Vec3& s1, const Polyhedron& b) {

@@ -20,9 +20,16 @@ inline constexpr uint32_t kFeatureSegment = 3u << 30;  // capsule segment or gen
 // A and B in one working frame (positions relative to A's centre of mass). Writes out.normal
 // (A to B, working = world rotation), point_count, and each point's anchor_a (offset from A's
 // centre, which is the frame origin), separation and feature id.
-// A rejection on a face of A or of B reports that face's gap to `separation` (collide.hpp).
+// A rejection on a face of A or of B reports that face's gap to `separation` (collide.hpp), one
+// on an edge axis the two edges.
 bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculative_distance,
                        Manifold& out, Separation* separation = nullptr);
+
+// The separation query_edges gives A's edge `edge_a` and B's edge `edge_b` when they build a face
+// of the Minkowski difference (their Gauss-map arcs cross; for two boxes, the direction pair of
+// the edges), bit for bit; the lowest Real when they do not, are nearly parallel, or are not
+// edges of a and b. collide_polyhedra's rejection on an edge axis reports that pair.
+Real edge_pair_separation(const Polyhedron& a, const Polyhedron& b, int edge_a, int edge_b);
 
 // B's face of largest separation from the segment s0-s1 (the height of its nearer end above the
 // face's plane) and whether the foot of that end lies on the face. When it does and the

@@ -303,7 +303,7 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   std::vector<PairCache> cached_poses, exact_poses;
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1, 1);
-  int kept = 0, closed_in = 0, closed_form_pairs = 0, closed_form_apart = 0;
+  int kept = 0, closed_in = 0, closed_form_pairs = 0, closed_form_apart = 0, edge_pairs = 0;
   std::vector<SeparatedPair> before;
   for (int step = 0; step < 24; ++step) {
     collide_list(p.pairs, p, settings, {}, slots_cached, cached, apart, cached_poses);
@@ -336,6 +336,13 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
     for (uint64_t key : apart.keys) closed_form_apart += closed_form(key) ? 1 : 0;
     for (const SeparatedPair& s : apart.separated) {
       EXPECT_FALSE(closed_form(s.key));
+      if (s.kind() == Separation::Kind::EdgePair) {
+        // An SAT rejection on an edge axis: the two edges, re-tested while they still separate.
+        ++edge_pairs;
+        EXPECT_GE(s.edge_a(), 0);
+        EXPECT_GE(s.edge_b(), 0);
+        continue;
+      }
       EXPECT_GT(s.gap(), 0);
       uint32_t a = pair_first(s.key), b = pair_second(s.key);
       if (a == 0) std::swap(a, b);  // the static ground is B
@@ -365,7 +372,26 @@ TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   EXPECT_GT(closed_form_pairs, 100) << "the pile has pairs the cache leaves out";
   EXPECT_GT(closed_form_apart, 100) << "closed-form pairs found apart, kept by key";
   EXPECT_GT(kept, 2000) << "pairs skipped: entries kept from an earlier pose";
+  EXPECT_GT(edge_pairs, 50) << "SAT pairs apart along an edge axis, kept by their two edges";
   EXPECT_GT(closed_in, 20) << "cached pairs that went on to touch";
+}
+
+// An edge pair's entry holds its two edges and no gap; ended, it is of kind Unknown like any.
+TEST(SeparatedPair, HoldsAnEdgePairByItsEdges) {
+  Separation edges{Separation::Kind::EdgePair, Real(0.1), 37, 12};
+  SeparatedPair s;
+  ASSERT_TRUE(SeparatedPair::make(5, edges, Vec3::Zero(), Quat::Identity(), Real(1e-4), s));
+  EXPECT_EQ(s.key, 5u);
+  EXPECT_EQ(s.kind(), Separation::Kind::EdgePair);
+  EXPECT_EQ(s.edge_a(), 37);
+  EXPECT_EQ(s.edge_b(), 12);
+  EXPECT_FALSE(s.gap() > 0) << "no gap for closing() to trust";
+  s.end();
+  EXPECT_EQ(s.kind(), Separation::Kind::Unknown);
+  edges.edge_a = 40000;  // past int16
+  EXPECT_FALSE(SeparatedPair::make(5, edges, Vec3::Zero(), Quat::Identity(), Real(1e-4), s));
+  edges.edge_a = -1;
+  EXPECT_FALSE(SeparatedPair::make(5, edges, Vec3::Zero(), Quat::Identity(), Real(1e-4), s));
 }
 
 // The separation cache's 24-byte entry: each code errs on the side closing() can account for.

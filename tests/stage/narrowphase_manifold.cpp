@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -165,6 +166,14 @@ TEST(ManifoldFeatureIds, StableUnderSmallMotionAndChangedWithFeatures) {
   EXPECT_TRUE(common.empty());
 }
 
+// A pose turned at random, its centre within `reach` of `around` on each axis.
+Transform random_pose(std::mt19937& rng, std::uniform_real_distribution<float>& u,
+                      const Vec3& around, Real reach) {
+  const Vec3 offset(u(rng), u(rng), u(rng));
+  return pose(around + reach * offset,
+              Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.1)).normalized());
+}
+
 // A rejection reports what it measured: a gap above the speculative distance and no larger than
 // the distance between the shapes (any separating axis's gap is at most the distance), in the
 // frame the routine measured it. Random poses of every pair of the engine's shape types.
@@ -180,10 +189,8 @@ TEST(Collide, RejectionsReportAGapNoLargerThanTheDistance) {
   for (int i = 0; i < 6000; ++i) {
     const Shape& a = shapes[i % 6];
     const Shape& b = shapes[(i / 6) % 6];
-    const Transform xa = pose(Vec3(u(rng), u(rng), u(rng)),
-                              Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.1)).normalized());
-    const Transform xb = pose(xa.position + Real(1.2) * Vec3(u(rng), u(rng), u(rng)),
-                              Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.1)).normalized());
+    const Transform xa = random_pose(rng, u, Vec3::Zero(), 1);
+    const Transform xb = random_pose(rng, u, xa.position, Real(1.2));
     Manifold m;
     PolyhedronCache cache;
     Separation separation;
@@ -205,6 +212,45 @@ TEST(Collide, RejectionsReportAGapNoLargerThanTheDistance) {
   EXPECT_GT(rejected, 1500);
   EXPECT_GT(reported, rejected * 9 / 10) << "edge axes and parallel capsules only";
   EXPECT_GT(faces, 100);
+}
+
+// An SAT rejection on an edge axis names its two edges, and re-testing that one pair gives the
+// SAT's gap to the bit: above the gap less one ulp, not above the gap itself. That is what lets
+// the separation cache skip the SAT while the pair still separates (collide_pairs) and still give
+// the exact tests' bits. Boxes against boxes (the nine direction pairs) and hulls, random poses.
+TEST(Collide, AnEdgeAxisRejectionIsFoundAgainBitForBit) {
+  const Shape shapes[] = {test::box(Real(0.4), Real(0.3), Real(0.5)),
+                          test::round_hull(16, Real(0.45)),
+                          test::box_hull(Real(0.3), Real(0.5), Real(0.4))};
+  constexpr Real kSpeculative = Real(0.02);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int box_pairs = 0, hull_pairs = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Shape& a = shapes[i % 3];
+    const Shape& b = shapes[(i / 3) % 3];
+    const Transform xa = random_pose(rng, u, Vec3::Zero(), 1);
+    const Transform xb = random_pose(rng, u, xa.position, Real(1.2));
+    Manifold m;
+    PolyhedronCache cache;
+    Separation separation;
+    if (collide(a, xa, b, xb, kSpeculative, m, cache, separation)) continue;
+    if (separation.kind != Separation::Kind::EdgePair) continue;
+    (a.type == ShapeType::Box && b.type == ShapeType::Box ? box_pairs : hull_pairs) += 1;
+    const Real gap = separation.gap;
+    EXPECT_GT(gap, kSpeculative) << i;
+    PolyhedronCache fresh;
+    EXPECT_TRUE(edge_pair_separates(a, xa, b, xb, separation.edge_a, separation.edge_b,
+                                    std::nextafter(gap, Real(0)), fresh))
+        << i;
+    EXPECT_FALSE(
+        edge_pair_separates(a, xa, b, xb, separation.edge_a, separation.edge_b, gap, fresh))
+        << i;
+    // Edges that are not the shapes' are refused, not read.
+    EXPECT_FALSE(edge_pair_separates(a, xa, b, xb, 100000, separation.edge_b, 0, fresh)) << i;
+  }
+  EXPECT_GT(box_pairs, 40);
+  EXPECT_GT(hull_pairs, 200);
 }
 
 }  // namespace narrowphase_manifold_test
