@@ -311,6 +311,25 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
                           (dot(dtheta_a, dtheta_a) + dot(dtheta_b, dtheta_b) >=
                            splat(kRefreshAngle * kRefreshAngle)));
     if (!any_lane(refresh)) continue;
+    // perf: the lanes' manifolds and their bodies' positions, read below, are scattered over
+    // the contact list and the body columns (a bundle's lanes are one colour's, in no order of
+    // memory). Where this bundle moved the next ones likely did too (a pile in motion, not a
+    // stack at rest): theirs are fetched while this one is refreshed, the heads two bundles
+    // ahead and what they point at one ahead.
+    if (i + 2 < end) {
+      for (const uint32_t m : ctx.manifolds_of(i + 2)) prefetch(manifolds[m]);
+    }
+    if (i + 1 < end) {
+      for (const uint32_t m : ctx.manifolds_of(i + 1)) {
+        const ManifoldHead& head = manifolds[m];
+        for (const uint32_t body : {uint32_t(head.body_a), uint32_t(head.body_b)}) {
+          __builtin_prefetch(&bodies.px[body]);
+          __builtin_prefetch(&bodies.py[body]);
+          __builtin_prefetch(&bodies.pz[body]);
+        }
+        if (head.point_count > 1) prefetch(tails[head.tail]);
+      }
+    }
     // Lane by lane, for the lanes refreshed only: B's centre from A's at the step's start, the
     // point count and the mean of the contact points of the step's start (A's arms then), summed
     // and scaled as prepare_bundle does, so that it is the centre the offsets were taken from.
