@@ -216,17 +216,15 @@ inline void prefetch(const T& entry) {
   }
 }
 
-// Deterministic tangent basis from the normal (pick the axis least aligned with n, as Box2D's
-// b2ComputeBasis does): the same normal always gives the same basis. Manifold::tangent_impulse
-// is expressed in it.
+// Deterministic tangent basis of the unit normal n, right-handed (t2 = n x t1), with one division
+// and no square root: Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 6(1), 2017).
+// The same normal always gives the same basis. Manifold::tangent_impulse is expressed in it.
 inline void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
-  if (std::abs(n.x()) >= Real(0.57735027)) {
-    t1 = Vec3(n.y(), -n.x(), 0);
-  } else {
-    t1 = Vec3(0, n.z(), -n.y());
-  }
-  t1.normalize();
-  t2 = n.cross(t1);
+  const Real sign = n.z() >= 0 ? Real(1) : Real(-1);
+  const Real a = Real(-1) / (sign + n.z());
+  const Real b = n.x() * n.y() * a;
+  t1 = Vec3(Real(1) + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
+  t2 = Vec3(b, sign + n.y() * n.y() * a, -n.y());
 }
 
 // Re-expresses the friction impulse `old_t` of a manifold with normal `old_n` in the basis of
