@@ -2,9 +2,11 @@
 // the solver body packets[l]. gather_velocity reads v and w, gather_pose dp and dtheta,
 // gather_mass the inverse mass and inertia, and scatter_velocity writes v and w back to the
 // lanes whose packet is written (written_packet: static, kinematic and unused sides are
-// read-only). The packets of a bundle are scattered in memory.
+// read-only). The packets of a bundle are scattered in memory. gather_packets and
+// scatter_packets move all of kLanes consecutive packets, for the substep integration.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -28,6 +30,16 @@ struct WideMass {
   Wide inv_mass{};
   WideSym3 inv_inertia;
 };
+
+// A packet's sixteen floats: v, w, dp, dtheta, then dq's x, y, z and w (Eigen's storage order).
+static_assert(sizeof(SolverBody) == 16 * sizeof(Real) &&
+              offsetof(SolverBody, dq) == 12 * sizeof(Real));
+inline const Real* floats_of(const SolverBody& b) {
+  return reinterpret_cast<const Real*>(&b);
+}
+inline Real* floats_of(SolverBody& b) {
+  return reinterpret_cast<Real*>(&b);
+}
 
 #if defined(ELAN_TRANSPOSED_LANES)
 // perf: inserting the 6 velocity components lane by lane was a quarter of solve_contacts on
@@ -135,6 +147,38 @@ inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, uint32
                           _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows[l]), 1)));
   }
 }
+
+// Component j of the kLanes packets from `first` on in cols[j] (floats_of's order). Lanes from
+// `count` on repeat the last packet, so their arithmetic stays finite; they are never stored.
+// perf: two 8x8 transposes instead of 256 lane inserts, and as many extracts for the stores:
+// integrate_positions went from 3.0 to 2.3 % of pile4k's profile.
+inline void gather_packets(const SolverBody* first, int count, Wide cols[16]) {
+  for (int half = 0; half < 2; ++half) {
+    __m512 rows[8], out[8];
+    for (int l = 0; l < 8; ++l) {
+      rows[l] = two_rows(floats_of(first[std::min(l, count - 1)]) + 8 * half,
+                         floats_of(first[std::min(l + 8, count - 1)]) + 8 * half);
+    }
+    transpose_8x8_halves(rows, out);
+    for (int j = 0; j < 8; ++j) cols[8 * half + j] = Wide(out[j]);
+  }
+}
+
+// Stores lanes 0 to count - 1 of cols back into the packets from `first` on.
+inline void scatter_packets(SolverBody* first, int count, const Wide cols[16]) {
+  for (int half = 0; half < 2; ++half) {
+    __m512 in[8], rows[8];
+    for (int j = 0; j < 8; ++j) in[j] = __m512(cols[8 * half + j]);
+    transpose_8x8_halves(in, rows);
+    for (int l = 0; l < 8 && l < count; ++l) {
+      _mm256_storeu_ps(floats_of(first[l]) + 8 * half, _mm512_castps512_ps256(rows[l]));
+      if (l + 8 < count) {
+        _mm256_storeu_ps(floats_of(first[l + 8]) + 8 * half,
+                         _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows[l]), 1)));
+      }
+    }
+  }
+}
 #if defined(__GNUC__) && !defined(__clang__) && __GNUC__ < 13
 #pragma GCC diagnostic pop
 #endif
@@ -172,6 +216,20 @@ inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, uint32
     SolverBody& b = written_packet(packets[l], written_end) ? bodies[packets[l]] : sink;
     b.v = lane(in.v, l);
     b.w = lane(in.w, l);
+  }
+}
+
+inline void gather_packets(const SolverBody* first, int count, Wide cols[16]) {
+  for (int l = 0; l < kLanes; ++l) {
+    const Real* f = floats_of(first[std::min(l, count - 1)]);
+    for (int j = 0; j < 16; ++j) cols[j][l] = f[j];
+  }
+}
+
+inline void scatter_packets(SolverBody* first, int count, const Wide cols[16]) {
+  for (int l = 0; l < count; ++l) {
+    Real* f = floats_of(first[l]);
+    for (int j = 0; j < 16; ++j) f[j] = cols[j][l];
   }
 }
 #endif

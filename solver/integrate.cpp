@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/body_lanes.hpp"
+
 namespace elan::detail {
 
 void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyMass> masses,
@@ -139,18 +141,18 @@ void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyMass
                          const BodyStore& bodies, Real h, uint32_t begin, uint32_t end) {
   for (uint32_t first = begin; first < end; first += kLanes) {
     const int count = int(std::min<uint32_t>(kLanes, end - first));
-    // Unused lanes hold a body at rest with unit inertia.
-    WideVec3 v, w, dp, dtheta, d{splat(1), splat(1), splat(1)};
-    WideQuat dq{splat(1), Wide{}, Wide{}, Wide{}}, q0 = dq;
+    // Unused lanes repeat the last packet (gather_packets), with unit inertia and no gyroscopic
+    // term; they are not stored.
+    Wide cols[16];
+    gather_packets(&packets[first], count, cols);
+    const WideVec3 v{cols[0], cols[1], cols[2]};
+    WideVec3 w{cols[3], cols[4], cols[5]}, dp{cols[6], cols[7], cols[8]};
+    WideVec3 dtheta{cols[9], cols[10], cols[11]}, d{splat(1), splat(1), splat(1)};
+    const WideQuat dq{cols[15], cols[12], cols[13], cols[14]};
+    WideQuat q0{splat(1), Wide{}, Wide{}, Wide{}};
     Wide gyroscopic{};
     for (int l = 0; l < count; ++l) {
-      const SolverBody& b = packets[first + l];
       const SolverBodyMass& m = masses[first + l];
-      set_lane(v, l, b.v);
-      set_lane(w, l, b.w);
-      set_lane(dp, l, b.dp);
-      set_lane(dtheta, l, b.dtheta);
-      set_lane(dq, l, b.dq);
       if (m.gyroscopic) {
         gyroscopic[l] = 1;
         set_lane(d, l, principal_moments(bodies, m.body));
@@ -186,13 +188,9 @@ void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyMass
              inv_inertia.xy[l], inv_inertia.xz[l], inv_inertia.yz[l]};
       }
     }
-    for (int l = 0; l < count; ++l) {
-      SolverBody& b = packets[first + l];
-      b.w = lane(w, l);
-      b.dp = lane(dp, l);
-      b.dtheta = lane(dtheta, l);
-      b.dq = lane(next, l);
-    }
+    const Wide out[16] = {v.x,  v.y,      v.z,      w.x,      w.y,    w.z,    dp.x,   dp.y,
+                          dp.z, dtheta.x, dtheta.y, dtheta.z, next.x, next.y, next.z, next.w};
+    scatter_packets(&packets[first], count, out);
   }
 }
 
