@@ -94,6 +94,11 @@ inline __m512 two_rows(const Real* lo, const Real* hi) {
   return _mm512_castpd_ps(_mm512_insertf64x4(low, _mm256_castps_pd(_mm256_loadu_ps(hi)), 1));
 }
 
+// The row in the upper 256-bit half of `rows`: two_rows' `hi`, as a transpose leaves it.
+inline __m256 upper_row(__m512 rows) {
+  return _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows), 1));
+}
+
 // Components of two consecutive Vec3 members of the bundle's bodies, from `first` on: six
 // floats, and the two that follow are read and dropped (SolverBody is 64 bytes, so they exist).
 template <Vec3 SolverBody::*first>
@@ -143,8 +148,7 @@ inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, uint32
     // The first six floats of the row, v and w; a lane not written stores nothing.
     const __mmask8 lo = (write >> l) & 1 ? 0x3F : 0, hi = (write >> (l + 8)) & 1 ? 0x3F : 0;
     _mm256_mask_storeu_ps(bodies[packets[l]].v.data(), lo, _mm512_castps512_ps256(rows[l]));
-    _mm256_mask_storeu_ps(bodies[packets[l + 8]].v.data(), hi,
-                          _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows[l]), 1)));
+    _mm256_mask_storeu_ps(bodies[packets[l + 8]].v.data(), hi, upper_row(rows[l]));
   }
 }
 
@@ -173,8 +177,7 @@ inline void scatter_packets(SolverBody* first, int count, const Wide cols[16]) {
     for (int l = 0; l < 8 && l < count; ++l) {
       _mm256_storeu_ps(floats_of(first[l]) + 8 * half, _mm512_castps512_ps256(rows[l]));
       if (l + 8 < count) {
-        _mm256_storeu_ps(floats_of(first[l + 8]) + 8 * half,
-                         _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(rows[l]), 1)));
+        _mm256_storeu_ps(floats_of(first[l + 8]) + 8 * half, upper_row(rows[l]));
       }
     }
   }

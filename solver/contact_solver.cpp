@@ -119,22 +119,6 @@ inline void apply_row(const ContactBundle& c, const WideMass& ma, const WideMass
   b.w = b.w + lambda * ib_rb_n;
 }
 
-// The solver's tangent basis of each lane's normal: tangent_basis() across the lanes, the same
-// operations in the same order. perf: derived in every pass, not kept in the bundle (12 bytes a
-// lane): a compare and one division a bundle (with a square root and three divisions, as the
-// basis was, the solve stage took 4 % longer on pile4k and jolt_pyramid). Unused lanes (zero
-// normal) get the x and y axes, which move nothing: their masses are zero.
-struct WideTangents {
-  WideVec3 t0, t1;
-};
-inline WideTangents tangents_of(const WideVec3& n) {
-  const Wide one = splat(1);
-  const Wide sign = n.z >= Wide{} ? one : -one;
-  const Wide a = splat(-1) / (sign + n.z);
-  const Wide b = n.x * n.y * a;
-  return {{one + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}};
-}
-
 // The tangent impulse (t0, t1) at the centre, applied as one impulse p there: the angular
 // parts are I^-1 (r x p), one product per side instead of one per tangent.
 inline void apply_friction(const ContactBundle& c, const WideTangents& t, const WideMass& ma,

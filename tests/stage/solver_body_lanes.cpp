@@ -1,6 +1,8 @@
 // Loads and stores of a bundle's bodies: each lane gets exactly its body's values, and a store
-// touches only v and w of the lanes whose packet is written. With AVX-512 these run as a transpose
-// of whole rows, which must move the same bits as the lane-by-lane loop.
+// touches only v and w of the lanes whose packet is written. The substep integration's loads and
+// stores of consecutive packets: all sixteen floats of each, and only the first `count`. With
+// AVX-512 these run as a transpose of whole rows, which must move the same bits as the lane-by-lane
+// loop.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -97,6 +99,49 @@ TEST(BodyLanes, ScatterWritesOnlyTheWrittenPacketsVelocities) {
     for (std::size_t i = 0; i < before.size(); ++i) {
       ASSERT_EQ(std::memcmp(&after[i], &expected[i], sizeof(SolverBody)), 0)
           << "trial " << trial << ", body " << i;
+    }
+  }
+}
+
+// gather_packets: lane l holds every float of packet first + l, and lanes past `count` repeat the
+// last packet (never one past the range).
+TEST(BodyLanes, ConsecutivePacketsGatherWholeAndRepeatTheLast) {
+  std::mt19937 rng(13);
+  const std::vector<SolverBody> bodies = random_bodies(3 * kLanes, rng);
+  for (int count = 1; count <= kLanes; ++count) {
+    const std::size_t first = rng() % (bodies.size() - std::size_t(count) + 1);
+    Wide cols[16];
+    gather_packets(bodies.data() + first, count, cols);
+    for (int l = 0; l < kLanes; ++l) {
+      const Real* expected = floats_of(bodies[first + std::size_t(std::min(l, count - 1))]);
+      for (int j = 0; j < 16; ++j) {
+        ASSERT_EQ(std::memcmp(&cols[j][l], &expected[j], sizeof(Real)), 0)
+            << "count " << count << ", lane " << l << ", float " << j;
+      }
+    }
+  }
+}
+
+// scatter_packets writes all sixteen floats of the first `count` packets and nothing else.
+TEST(BodyLanes, ConsecutivePacketsScatterOnlyTheirCount) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-5, 5);
+  for (int count = 1; count <= kLanes; ++count) {
+    const std::vector<SolverBody> before = random_bodies(3 * kLanes, rng);
+    std::vector<SolverBody> after = before;
+    const std::size_t first = rng() % (before.size() - std::size_t(count) + 1);
+    Wide cols[16];
+    for (Wide& c : cols) {
+      for (int l = 0; l < kLanes; ++l) c[l] = u(rng);
+    }
+    scatter_packets(after.data() + first, count, cols);
+    for (std::size_t i = 0; i < before.size(); ++i) {
+      const bool stored = i >= first && i < first + std::size_t(count);
+      for (int j = 0; j < 16; ++j) {
+        const Real expected = stored ? cols[j][int(i - first)] : floats_of(before[i])[j];
+        ASSERT_EQ(std::memcmp(&floats_of(after[i])[j], &expected, sizeof(Real)), 0)
+            << "count " << count << ", packet " << i << ", float " << j;
+      }
     }
   }
 }
