@@ -53,7 +53,7 @@ struct BodyDef {
 struct WorldDef {
   Vec3 gravity = Vec3(0, Real(-9.81), 0);  ///< m/s^2, world
   int substeps = 4;                        ///< soft-step substeps per step
-  int iterations = 4;                      ///< solver iterations per substep
+  int iterations = 2;                      ///< solver iterations per substep
   bool allow_sleep = true;
   int threads = 0;  ///< worker count; 0 = all cores (ignored when `arena` is set)
   BroadphaseType broadphase = BroadphaseType::SweepAndPrune;
