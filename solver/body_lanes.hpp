@@ -3,7 +3,8 @@
 // gather_mass the inverse mass and inertia, and scatter_velocity writes v and w back to the
 // lanes whose packet is written (written_packet: static, kinematic and unused sides are
 // read-only). The packets of a bundle are scattered in memory. gather_packets and
-// scatter_packets move all of kLanes consecutive packets, for the substep integration.
+// scatter_packets move all of kLanes consecutive packets, for the substep integration, and
+// gather_rows any kLanes rows of sixteen floats.
 #pragma once
 
 #include <algorithm>
@@ -152,20 +153,27 @@ inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, uint32
   }
 }
 
-// Component j of the kLanes packets from `first` on in cols[j] (floats_of's order). Lanes from
-// `count` on repeat the last packet, so their arithmetic stays finite; they are never stored.
-// perf: two 8x8 transposes instead of 256 lane inserts, and as many extracts for the stores:
-// integrate_positions went from 3.0 to 2.3 % of pile4k's profile.
-inline void gather_packets(const SolverBody* first, int count, Wide cols[16]) {
+// Float j of the sixteen floats at row[l] in lane l of cols[j], for the kLanes rows.
+// perf: two 8x8 transposes instead of 256 lane inserts. Each insert is a store into the vector
+// on the stack, and its first read as a vector waits for all of them (a failed store-to-load
+// forward).
+inline void gather_rows(const Real* const row[kLanes], Wide cols[16]) {
   for (int half = 0; half < 2; ++half) {
     __m512 rows[8], out[8];
-    for (int l = 0; l < 8; ++l) {
-      rows[l] = two_rows(floats_of(first[std::min(l, count - 1)]) + 8 * half,
-                         floats_of(first[std::min(l + 8, count - 1)]) + 8 * half);
-    }
+    for (int l = 0; l < 8; ++l) rows[l] = two_rows(row[l] + 8 * half, row[l + 8] + 8 * half);
     transpose_8x8_halves(rows, out);
     for (int j = 0; j < 8; ++j) cols[8 * half + j] = Wide(out[j]);
   }
+}
+
+// Component j of the kLanes packets from `first` on in cols[j] (floats_of's order). Lanes from
+// `count` on repeat the last packet, so their arithmetic stays finite; they are never stored.
+// perf: with the transposes of the stores, integrate_positions went from 3.0 to 2.3 % of
+// pile4k's profile.
+inline void gather_packets(const SolverBody* first, int count, Wide cols[16]) {
+  const Real* row[kLanes];
+  for (int l = 0; l < kLanes; ++l) row[l] = floats_of(first[std::min(l, count - 1)]);
+  gather_rows(row, cols);
 }
 
 // Stores lanes 0 to count - 1 of cols back into the packets from `first` on.
@@ -222,11 +230,16 @@ inline void scatter_velocity(SolverBody* bodies, const uint32_t* packets, uint32
   }
 }
 
-inline void gather_packets(const SolverBody* first, int count, Wide cols[16]) {
+inline void gather_rows(const Real* const row[kLanes], Wide cols[16]) {
   for (int l = 0; l < kLanes; ++l) {
-    const Real* f = floats_of(first[std::min(l, count - 1)]);
-    for (int j = 0; j < 16; ++j) cols[j][l] = f[j];
+    for (int j = 0; j < 16; ++j) cols[j][l] = row[l][j];
   }
+}
+
+inline void gather_packets(const SolverBody* first, int count, Wide cols[16]) {
+  const Real* row[kLanes];
+  for (int l = 0; l < kLanes; ++l) row[l] = floats_of(first[std::min(l, count - 1)]);
+  gather_rows(row, cols);
 }
 
 inline void scatter_packets(SolverBody* first, int count, const Wide cols[16]) {

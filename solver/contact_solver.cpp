@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include "solver/body_lanes.hpp"
 
@@ -173,11 +174,26 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   BundleRestitution unused;
   BundleRestitution& bounce = ctx.restitution.empty() ? unused : ctx.restitution[bundle];
   const int lane_count = int(lanes.size());
-  // Lane by lane: the inputs, scattered over manifolds, bodies and packets, into lanes.
-  // Unused lanes stay zero (packet 0, no mass), so every product below is zero there.
+  // The heads, one sixteen-float row a lane, transposed (gather_rows): the normal, the carried
+  // friction impulses and the first point in lanes at once. Unused lanes read a zero head.
+  static_assert(sizeof(Real) != 4 || sizeof(ManifoldHead) == 16 * sizeof(Real));
+  alignas(64) static constexpr Real kNoHead[sizeof(ManifoldHead) / sizeof(Real)] = {};
+  const Real* head_row[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    head_row[l] = l < lane_count ? reinterpret_cast<const Real*>(&manifolds[lanes[l]]) : kNoHead;
+  }
+  Wide head[16];
+  gather_rows(head_row, head);
+  auto column = [&](std::size_t offset) -> const Wide& { return head[offset / sizeof(Real)]; };
+  c.normal = {column(offsetof(ManifoldHead, normal)),
+              column(offsetof(ManifoldHead, normal) + sizeof(Real)),
+              column(offsetof(ManifoldHead, normal) + 2 * sizeof(Real))};
+  c.tangent_impulse[0] = column(offsetof(ManifoldHead, tangent_impulse));
+  c.tangent_impulse[1] = column(offsetof(ManifoldHead, tangent_impulse) + sizeof(Real));
+  c.twist_impulse = column(offsetof(ManifoldHead, twist_impulse));
+  // The rest lane by lane: what lies in the bodies and their traits. Unused lanes stay zero
+  // (packet 0, no mass), so every product below is zero there.
   c.friction = bounce.restitution = Wide{};
-  c.normal = WideVec3{};
-  c.tangent_impulse[0] = c.tangent_impulse[1] = c.twist_impulse = Wide{};
   Wide point_count{};
   // B's centre from A's: the bodies are where the collide stage left them, so B's arm to a
   // point is A's arm minus this.
@@ -195,10 +211,6 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     const BodyTraits &traits_a = bodies.traits_of(a), &traits_b = bodies.traits_of(b);
     c.friction[l] = std::sqrt(traits_a.friction * traits_b.friction);
     bounce.restitution[l] = std::max(traits_a.restitution, traits_b.restitution);
-    set_lane(c.normal, l, m.normal);
-    c.tangent_impulse[0][l] = m.tangent_impulse[0];
-    c.tangent_impulse[1][l] = m.tangent_impulse[1];
-    c.twist_impulse[l] = m.twist_impulse;
     point_count[l] = Real(m.point_count);
     set_lane(b_from_a, l, bodies.position(b) - bodies.position(a));
   }
@@ -216,7 +228,14 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   // The points' arms from A (zero in lanes without the point, and in unused lanes), and their
   // rows but for the arms.
   WideVec3 ra[kMaxManifoldPoints], center_ra;
-  for (int k = 0; k < points; ++k) {
+  constexpr std::size_t first = offsetof(ManifoldHead, first);
+  ra[0] = {column(first + offsetof(ContactPoint, anchor_a)),
+           column(first + offsetof(ContactPoint, anchor_a) + sizeof(Real)),
+           column(first + offsetof(ContactPoint, anchor_a) + 2 * sizeof(Real))};
+  c.first.separation = column(first + offsetof(ContactPoint, separation));
+  c.first.normal_impulse = column(first + offsetof(ContactPoint, normal_impulse));
+  center_ra = center_ra + ra[0];  // from zero, as the lanes were summed before (a -0 becomes +0)
+  for (int k = 1; k < points; ++k) {
     WideNormalRow& p = row_of(c, rows, k);
     p.separation = p.normal_impulse = Wide{};
     for (int l = 0; l < lane_count; ++l) {
