@@ -176,7 +176,11 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   const int lane_count = int(lanes.size());
   // The heads, one sixteen-float row a lane, transposed (gather_rows): the normal, the carried
   // friction impulses and the first point in lanes at once. Unused lanes read a zero head.
-  static_assert(sizeof(Real) != 4 || sizeof(ManifoldHead) == 16 * sizeof(Real));
+  static_assert(sizeof(ManifoldHead) == 16 * sizeof(Real) &&
+                offsetof(ManifoldHead, normal) % sizeof(Real) == 0 &&
+                offsetof(ManifoldHead, first) % sizeof(Real) == 0 &&
+                offsetof(ContactPoint, separation) % sizeof(Real) == 0 &&
+                offsetof(ContactPoint, normal_impulse) % sizeof(Real) == 0);
   alignas(64) static constexpr Real kNoHead[sizeof(ManifoldHead) / sizeof(Real)] = {};
   const Real* head_row[kLanes];
   for (int l = 0; l < kLanes; ++l) {
