@@ -122,6 +122,30 @@ TEST(BodyLanes, ConsecutivePacketsGatherWholeAndRepeatTheLast) {
   }
 }
 
+// gather_rows: lane l holds the sixteen floats at row[l], wherever the rows are and in whatever
+// order (prepare_bundle's manifold heads are scattered over the contact list); two lanes may
+// share a row.
+TEST(BodyLanes, RowsGatherFromAnyAddresses) {
+  std::mt19937 rng(19);
+  const std::vector<SolverBody> bodies = random_bodies(4 * kLanes, rng);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Real* row[kLanes];
+    std::size_t picked[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      picked[l] = rng() % bodies.size();
+      row[l] = floats_of(bodies[picked[l]]);
+    }
+    Wide cols[16];
+    gather_rows(row, cols);
+    for (int l = 0; l < kLanes; ++l) {
+      for (int j = 0; j < 16; ++j) {
+        ASSERT_EQ(std::memcmp(&cols[j][l], &floats_of(bodies[picked[l]])[j], sizeof(Real)), 0)
+            << "trial " << trial << ", lane " << l << ", float " << j;
+      }
+    }
+  }
+}
+
 // scatter_packets writes all sixteen floats of the first `count` packets and nothing else.
 TEST(BodyLanes, ConsecutivePacketsScatterOnlyTheirCount) {
   std::mt19937 rng(17);
