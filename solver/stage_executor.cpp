@@ -53,12 +53,19 @@ void StageExecutor::run_parallel(const std::vector<StageSpec>& stages, int parti
       };
       // Outward from this participant's start until a block another one has taken: the blocks
       // each participant takes form one run of blocks around its start, so none is left over.
-      const uint32_t start = uint32_t(uint64_t(count) * t / uint32_t(participants));
-      uint32_t finished = 0;
-      for (uint32_t b = start; b < count && take(b); ++b, ++finished)
-        work.call(work.object, stages[i], b);
-      for (uint32_t b = start; b-- > 0 && take(b); ++finished) work.call(work.object, stages[i], b);
-      if (finished) done_[i].value.fetch_add(finished, std::memory_order_release);
+      // perf: a stage of one block is the caller's (participant 0, always present), so the data
+      // it writes stays in one core's cache from pass to pass. The solver's cut, taken by
+      // whichever thread came first, ran at half its 1-thread speed (2-thread solve, A/B
+      // medians: jolt_pyramid 1.083 -> 1.029 ms, pile10k 3.86 -> 3.62).
+      if (count > 1 || t == 0) {
+        const uint32_t start = uint32_t(uint64_t(count) * t / uint32_t(participants));
+        uint32_t finished = 0;
+        for (uint32_t b = start; b < count && take(b); ++b, ++finished)
+          work.call(work.object, stages[i], b);
+        for (uint32_t b = start; b-- > 0 && take(b); ++finished)
+          work.call(work.object, stages[i], b);
+        if (finished) done_[i].value.fetch_add(finished, std::memory_order_release);
+      }
       // threading: every claimed block is finished by the thread that claimed it, so this wait
       // ends even if other participants never arrive; a late one finds stages done and skips.
       int spins = 0;

@@ -9,7 +9,8 @@
 // flag, as b2ExecuteMainStage does: the participants claim in different cache lines until they
 // meet, instead of all contending for one cursor (two contended atomics per block cost a third
 // of the 2-thread solve on pile10k), and each keeps working on the same part of every pass, the
-// part its cache already holds. Completed blocks are counted once per participant and stage.
+// part its cache already holds. A stage of one block is always the caller's (participant 0),
+// for the same reason. Completed blocks are counted once per participant and stage.
 // determinism: a block's work and its writes are fixed by (stage, block); which thread runs a
 // block is not, but blocks of one stage touch disjoint data, so the result is the same.
 #pragma once
