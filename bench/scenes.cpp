@@ -1,6 +1,8 @@
 // Whole steps: the standard scenes and a generated pile sweep at 1 and 2 threads, the same scenes
 // in Bullet, heap bytes per body, and the 2-thread ceiling of this machine (an FMA kernel and a
-// streaming kernel) measured in the same run. bench/run_suite.sh drives it; flags in usage().
+// streaming kernel) measured in the same run; the target scenes' speedups and the FMA ceiling
+// also from 1- and 2-thread runs paired back to back. bench/run_suite.sh drives it; flags in
+// usage().
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 #include <tbb/parallel_for.h>
@@ -240,63 +242,101 @@ void set_hash_counters(benchmark::State& state, uint64_t hash) {
   state.SetLabel(label);
 }
 
-void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType bp,
-             HashBook* book) {
-  tbb::task_arena arena(threads);
-  const auto tops = top_bodies(*c.scene);
-  elan::StepProfile sum;
+// One timed run of a scene: a fresh world, `warmup` steps, then `steps` timed.
+struct ElanRun {
+  double seconds = 0;
+  elan::StepProfile sum;  // per-stage ms, summed over the timed steps
   elan::StepStats last;
   uint64_t hash = 0;
   TopMotion moved;
+};
+
+ElanRun run_elan(const Case& c, int threads, elan::BroadphaseType bp,
+                 const std::vector<std::size_t>& tops) {
+  tbb::task_arena arena(threads);
+  ElanRun r;
+  arena.execute([&] {
+    elan::WorldDef def = c.scene->world;
+    def.threads = threads;
+    def.broadphase = bp;
+    elan::World world(def);
+    elan::load_into(*c.scene, world, c.name);
+    for (int i = 0; i < c.warmup; ++i) world.step(c.scene->timestep);
+    elan::StepProfile& sum = r.sum;
+    const auto t0 = Clock::now();
+    for (int i = 0; i < c.steps; ++i) {
+      world.step(c.scene->timestep);
+      const elan::StepProfile& p = world.last_step().profile;
+      sum.bounds += p.bounds, sum.pairs += p.pairs, sum.collide += p.collide;
+      sum.islands += p.islands, sum.color += p.color, sum.solve += p.solve, sum.ccd += p.ccd;
+      sum.finalize += p.finalize, sum.total += p.total;
+    }
+    r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    r.last = world.last_step();
+    r.hash = world.state_hash();
+    r.moved =
+        top_motion(*c.scene, tops, [&](std::size_t i) { return world.position(world.body_at(i)); });
+  });
+  return r;
+}
+
+std::string hash_key(const Case& c) {
+  return c.name + "/" + std::to_string(c.warmup) + "+" + std::to_string(c.steps);
+}
+
+void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType bp,
+             HashBook* book) {
+  const auto tops = top_bodies(*c.scene);
+  ElanRun r;
   for (auto _ : state) {
-    double seconds = 0;
-    arena.execute([&] {
-      elan::WorldDef def = c.scene->world;
-      def.threads = threads;
-      def.broadphase = bp;
-      elan::World world(def);
-      elan::load_into(*c.scene, world, c.name);
-      for (int i = 0; i < c.warmup; ++i) world.step(c.scene->timestep);
-      sum = {};
-      const auto t0 = Clock::now();
-      for (int i = 0; i < c.steps; ++i) {
-        world.step(c.scene->timestep);
-        const elan::StepProfile& p = world.last_step().profile;
-        sum.bounds += p.bounds, sum.pairs += p.pairs, sum.collide += p.collide;
-        sum.islands += p.islands, sum.color += p.color, sum.solve += p.solve, sum.ccd += p.ccd;
-        sum.finalize += p.finalize, sum.total += p.total;
-      }
-      seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-      last = world.last_step();
-      hash = world.state_hash();
-      moved = top_motion(*c.scene, tops,
-                         [&](std::size_t i) { return world.position(world.body_at(i)); });
-    });
-    state.SetIterationTime(seconds);
-    state.counters["ms_per_step"] = 1000 * seconds / c.steps;
+    r = run_elan(c, threads, bp, tops);
+    state.SetIterationTime(r.seconds);
+    state.counters["ms_per_step"] = 1000 * r.seconds / c.steps;
   }
   const double n = c.steps;
-  state.counters["bounds_ms"] = sum.bounds / n;
-  state.counters["pairs_ms"] = sum.pairs / n;
-  state.counters["collide_ms"] = sum.collide / n;
-  state.counters["islands_ms"] = sum.islands / n;
-  state.counters["color_ms"] = sum.color / n;
-  state.counters["solve_ms"] = sum.solve / n;
-  state.counters["ccd_ms"] = sum.ccd / n;
-  state.counters["finalize_ms"] = sum.finalize / n;
-  state.counters["total_ms"] = sum.total / n;
-  state.counters["pairs"] = double(last.pairs);
-  state.counters["contacts"] = double(last.contacts);
-  state.counters["colors"] = double(last.colors);
-  state.counters["awake"] = double(last.awake);
+  state.counters["bounds_ms"] = r.sum.bounds / n;
+  state.counters["pairs_ms"] = r.sum.pairs / n;
+  state.counters["collide_ms"] = r.sum.collide / n;
+  state.counters["islands_ms"] = r.sum.islands / n;
+  state.counters["color_ms"] = r.sum.color / n;
+  state.counters["solve_ms"] = r.sum.solve / n;
+  state.counters["ccd_ms"] = r.sum.ccd / n;
+  state.counters["finalize_ms"] = r.sum.finalize / n;
+  state.counters["total_ms"] = r.sum.total / n;
+  state.counters["pairs"] = double(r.last.pairs);
+  state.counters["contacts"] = double(r.last.contacts);
+  state.counters["colors"] = double(r.last.colors);
+  state.counters["awake"] = double(r.last.awake);
   state.counters["bodies"] = double(c.scene->bodies.size());
-  state.counters["top_drift_cm"] = moved.drift_cm;
-  state.counters["top_drop_cm"] = moved.drop_cm;
+  state.counters["top_drift_cm"] = r.moved.drift_cm;
+  state.counters["top_drop_cm"] = r.moved.drop_cm;
   state.counters["expected_drop_cm"] = expected_drop_cm(*c.scene, tops);
   state.SetItemsProcessed(int64_t(c.scene->bodies.size()) * c.steps * state.iterations());
-  set_hash_counters(state, hash);
-  const std::string key = c.name + "/" + std::to_string(c.warmup) + "+" + std::to_string(c.steps);
-  if (!book->check(key, hash)) state.SkipWithError("state hash differs between runs of this scene");
+  set_hash_counters(state, r.hash);
+  if (!book->check(hash_key(c), r.hash))
+    state.SkipWithError("state hash differs between runs of this scene");
+}
+
+// A repetition runs the scene at 1 thread and at 2 back to back, the order alternating from one
+// repetition to the next, and reports the ratio of the pair. Load from other processes changes
+// over minutes on this shared machine, and the two halves of a pair are seconds apart, so the
+// median of the pairs' ratios follows the engine, where a ratio of the two thread counts' medians
+// (runs minutes apart under random interleaving) also follows the load.
+void bm_paired(benchmark::State& state, Case c, HashBook* book, std::shared_ptr<int> repetition) {
+  const auto tops = top_bodies(*c.scene);
+  for (auto _ : state) {
+    const bool one_first = (*repetition)++ % 2 == 0;
+    ElanRun r1, r2;
+    if (one_first) r1 = run_elan(c, 1, elan::BroadphaseType::SweepAndPrune, tops);
+    r2 = run_elan(c, 2, elan::BroadphaseType::SweepAndPrune, tops);
+    if (!one_first) r1 = run_elan(c, 1, elan::BroadphaseType::SweepAndPrune, tops);
+    state.SetIterationTime(r1.seconds + r2.seconds);
+    state.counters["ms_1t"] = 1000 * r1.seconds / c.steps;
+    state.counters["ms_2t"] = 1000 * r2.seconds / c.steps;
+    state.counters["speedup"] = r1.seconds / r2.seconds;
+    if (!book->check(hash_key(c), r1.hash) || !book->check(hash_key(c), r2.hash))
+      state.SkipWithError("state hash differs between runs of this scene");
+  }
 }
 
 #ifdef ELAN_HAVE_BULLET
@@ -377,25 +417,43 @@ void bm_memory(benchmark::State& state, Case c, bool bullet) {
 // arena of 1 or 2 threads; the 2-thread speedup of each is the ceiling this machine allows now.
 constexpr int kChunks = 64;
 
-void bm_calib_fma(benchmark::State& state, int threads) {
+// Seconds for the FMA kernel in an arena of `threads`.
+double run_fma(int threads) {
   tbb::task_arena arena(threads);
   std::vector<float> out(kChunks);
-  for (auto _ : state) {
-    const auto t0 = Clock::now();
-    arena.execute([&] {
-      tbb::parallel_for(0, kChunks, [&](int c) {
-        // 16 independent FMA chains keep the FMA units busy without touching memory.
-        float acc[16];
-        for (int k = 0; k < 16; ++k) acc[k] = float(c + k) * 1e-3f;
-        for (int it = 0; it < 200000; ++it)
-          for (int k = 0; k < 16; ++k) acc[k] = std::fma(acc[k], 0.999999f, 1e-7f);
-        float s = 0;
-        for (float a : acc) s += a;
-        out[std::size_t(c)] = s;
-      });
+  const auto t0 = Clock::now();
+  arena.execute([&] {
+    tbb::parallel_for(0, kChunks, [&](int c) {
+      // 16 independent FMA chains keep the FMA units busy without touching memory.
+      float acc[16];
+      for (int k = 0; k < 16; ++k) acc[k] = float(c + k) * 1e-3f;
+      for (int it = 0; it < 200000; ++it)
+        for (int k = 0; k < 16; ++k) acc[k] = std::fma(acc[k], 0.999999f, 1e-7f);
+      float s = 0;
+      for (float a : acc) s += a;
+      out[std::size_t(c)] = s;
     });
-    benchmark::DoNotOptimize(out.data());
-    state.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
+  });
+  benchmark::DoNotOptimize(out.data());
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void bm_calib_fma(benchmark::State& state, int threads) {
+  for (auto _ : state) state.SetIterationTime(run_fma(threads));
+}
+
+// The FMA ceiling measured as bm_paired measures a scene: 1 and 2 threads back to back.
+void bm_paired_fma(benchmark::State& state, std::shared_ptr<int> repetition) {
+  for (auto _ : state) {
+    const bool one_first = (*repetition)++ % 2 == 0;
+    double t1 = 0, t2 = 0;
+    if (one_first) t1 = run_fma(1);
+    t2 = run_fma(2);
+    if (!one_first) t1 = run_fma(1);
+    state.SetIterationTime(t1 + t2);
+    state.counters["ms_1t"] = 1000 * t1;
+    state.counters["ms_2t"] = 1000 * t2;
+    state.counters["speedup"] = t1 / t2;
   }
 }
 
@@ -438,6 +496,11 @@ void register_all(const Options& o, HashBook* book, std::vector<float>* a, std::
         ->Repetitions(o.calib_reps)
         ->Unit(benchmark::kMillisecond);
   }
+  benchmark::RegisterBenchmark("paired/calib/fma", bm_paired_fma, std::make_shared<int>(0))
+      ->UseManualTime()
+      ->Iterations(1)
+      ->Repetitions(o.calib_reps)
+      ->Unit(benchmark::kMillisecond);
   const auto add = [&](const std::string& name, auto fn, int reps, auto... args) {
     benchmark::RegisterBenchmark(name.c_str(), fn, args...)
         ->UseManualTime()
@@ -450,6 +513,9 @@ void register_all(const Options& o, HashBook* book, std::vector<float>* a, std::
     for (int t : {1, 2})
       add("elan/" + name + "/threads:" + std::to_string(t), bm_elan, o.reps, c, t,
           elan::BroadphaseType::SweepAndPrune, book);
+    // The scenes of the speedup targets (and of the README's): their 2-thread speedup paired too.
+    if (name == "jolt_pyramid" || name == "pile4k" || name == "pile10k")
+      add("paired/elan/" + name, bm_paired, o.reps, c, book, std::make_shared<int>(0));
 #ifdef ELAN_HAVE_BULLET
     if (o.bullet) add("bullet/" + name, bm_bullet, o.reps, c);
 #endif
