@@ -112,6 +112,15 @@ def main():
                                           "ms_1t": median([r["ms_1t"] for r in rs]),
                                           "ms_2t": median([r["ms_2t"] for r in rs])}
     paired_ceiling = paired.get("calib/fma", {}).get("speedup", float("nan"))
+    # Against Bullet the same way: elan at 1 thread and Bullet back to back.
+    paired_bullet = {}
+    for n in names:
+        rs = [r for r in runs[n] if "bullet_ratio" in r and not r.get("error_occurred")]
+        if n.startswith("paired-bullet/") and rs:
+            ratios = [r["bullet_ratio"] for r in rs]
+            paired_bullet[n.split("/")[1]] = {"ratio": median(ratios), "lo": min(ratios), "hi": max(ratios),
+                                              "pairs": len(rs), "ms_1t": median([r["ms_1t"] for r in rs]),
+                                              "ms_bullet": median([r["ms_bullet"] for r in rs])}
     with open(os.path.join(a.out, "paired.csv"), "w") as f:
         f.write("name,pairs,ms_1t,ms_2t,speedup,speedup_min,speedup_max\n")
         for k, v in paired.items():
@@ -269,6 +278,15 @@ def main():
         for k, v in sorted(paired.items(), key=lambda kv: not kv[0].startswith("calib/")):
             L.append(f"| {k} | {v['pairs']} | {fmt(v['ms_1t'])} | {fmt(v['ms_2t'])} | {fmt(v['speedup'])} | "
                      f"{fmt(v['lo'])}-{fmt(v['hi'])} | {fmt(100 * v['speedup'] / paired_ceiling, 0)} |")
+    if paired_bullet:
+        L.append("\n## Bullet against elan from paired runs\n")
+        L.append("Each repetition runs elan at 1 thread and Bullet back to back (the order alternating); the "
+                 "ratio is the median of the pairs' ratios.\n")
+        L.append("| scene | pairs | elan 1t ms | Bullet ms | Bullet / elan (median) | range |")
+        L.append("|" + " --- |" * 6)
+        for k, v in paired_bullet.items():
+            L.append(f"| {k} | {v['pairs']} | {fmt(v['ms_1t'])} | {fmt(v['ms_bullet'])} | {fmt(v['ratio'])} | "
+                     f"{fmt(v['lo'])}-{fmt(v['hi'])} |")
     L.append("\n## Stages at 1 thread (ms per step, median)\n")
     L.append("| scene | " + " | ".join(STAGES) + " |\n| --- |" + " --- |" * len(STAGES))
     for s in scenes:
@@ -306,8 +324,15 @@ def main():
         # The issue's target is at 1 thread; elan at 2 threads against Bullet's 1 is shown beside it.
         ratio = p4[0]["bullet_ms"] / p4[0]["ms"]
         ratio_2t = p4[0]["bullet_ms"] / p4[1]["ms"]
-        L.append(f"| pile4k ≥ 6× faster than Bullet at 1 thread | {fmt(ratio)}× (elan 2t vs Bullet 1t: "
-                 f"{fmt(ratio_2t)}×) | {'yes' if ratio >= 6 else 'no: ' + fmt(6 / ratio) + '× short'} |")
+        unpaired = f"{fmt(ratio)}× from the medians (elan 2t vs Bullet 1t: {fmt(ratio_2t)}×)"
+        pb = paired_bullet.get("pile4k")
+        if pb:
+            # The paired ratio decides: its two runs were seconds apart, under one load.
+            ratio = pb["ratio"]
+            unpaired = (f"paired: {fmt(ratio)}× (median of {pb['pairs']}, range {fmt(pb['lo'])}-{fmt(pb['hi'])}); "
+                        + unpaired)
+        L.append(f"| pile4k ≥ 6× faster than Bullet at 1 thread | {unpaired} | "
+                 f"{'yes' if ratio >= 6 else 'no: ' + fmt(6 / ratio) + '× short'} |")
     if p10:
         sp = p10[0]["ms"] / p10[1]["ms"]
         frac = sp / calib["fma"][2]

@@ -340,29 +340,61 @@ void bm_paired(benchmark::State& state, Case c, HashBook* book, std::shared_ptr<
 }
 
 #ifdef ELAN_HAVE_BULLET
-void bm_bullet(benchmark::State& state, Case c) {
-  const auto tops = top_bodies(*c.scene);
+// One timed run of a scene in Bullet, as run_elan's.
+struct BulletRun {
+  double seconds = 0;
   elan::peer::BulletCounts counts;
   TopMotion moved;
+};
+
+BulletRun run_bullet(const Case& c, const std::vector<std::size_t>& tops) {
+  BulletRun r;
+  elan::peer::BulletWorld world(*c.scene);
+  for (int i = 0; i < c.warmup; ++i) world.step();
+  const auto t0 = Clock::now();
+  for (int i = 0; i < c.steps; ++i) world.step();
+  r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  r.counts = world.counts();
+  r.moved = top_motion(*c.scene, tops, [&](std::size_t i) { return world.position(i); });
+  return r;
+}
+
+void bm_bullet(benchmark::State& state, Case c) {
+  const auto tops = top_bodies(*c.scene);
+  BulletRun r;
   for (auto _ : state) {
-    elan::peer::BulletWorld world(*c.scene);
-    for (int i = 0; i < c.warmup; ++i) world.step();
-    const auto t0 = Clock::now();
-    for (int i = 0; i < c.steps; ++i) world.step();
-    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    state.SetIterationTime(seconds);
-    state.counters["ms_per_step"] = 1000 * seconds / c.steps;
-    counts = world.counts();
-    moved = top_motion(*c.scene, tops, [&](std::size_t i) { return world.position(i); });
+    r = run_bullet(c, tops);
+    state.SetIterationTime(r.seconds);
+    state.counters["ms_per_step"] = 1000 * r.seconds / c.steps;
   }
-  state.counters["contacts"] = double(counts.contacts);
-  state.counters["manifolds"] = double(counts.manifolds);
-  state.counters["awake"] = double(counts.awake);
+  state.counters["contacts"] = double(r.counts.contacts);
+  state.counters["manifolds"] = double(r.counts.manifolds);
+  state.counters["awake"] = double(r.counts.awake);
   state.counters["bodies"] = double(c.scene->bodies.size());
-  state.counters["top_drift_cm"] = moved.drift_cm;
-  state.counters["top_drop_cm"] = moved.drop_cm;
+  state.counters["top_drift_cm"] = r.moved.drift_cm;
+  state.counters["top_drop_cm"] = r.moved.drop_cm;
   state.counters["expected_drop_cm"] = expected_drop_cm(*c.scene, tops);
   state.SetItemsProcessed(int64_t(c.scene->bodies.size()) * c.steps * state.iterations());
+}
+
+// elan at 1 thread and Bullet back to back in each repetition, the order alternating, for the
+// same reason as bm_paired: the ratio of a pair is measured under one load.
+void bm_paired_bullet(benchmark::State& state, Case c, HashBook* book,
+                      std::shared_ptr<int> repetition) {
+  const auto tops = top_bodies(*c.scene);
+  for (auto _ : state) {
+    const bool elan_first = (*repetition)++ % 2 == 0;
+    ElanRun e;
+    if (elan_first) e = run_elan(c, 1, elan::BroadphaseType::SweepAndPrune, tops);
+    const BulletRun b = run_bullet(c, tops);
+    if (!elan_first) e = run_elan(c, 1, elan::BroadphaseType::SweepAndPrune, tops);
+    state.SetIterationTime(e.seconds + b.seconds);
+    state.counters["ms_1t"] = 1000 * e.seconds / c.steps;
+    state.counters["ms_bullet"] = 1000 * b.seconds / c.steps;
+    state.counters["bullet_ratio"] = b.seconds / e.seconds;
+    if (!book->check(hash_key(c), e.hash))
+      state.SkipWithError("state hash differs between runs of this scene");
+  }
 }
 #endif
 
@@ -518,6 +550,9 @@ void register_all(const Options& o, HashBook* book, std::vector<float>* a, std::
       add("paired/elan/" + name, bm_paired, o.reps, c, book, std::make_shared<int>(0));
 #ifdef ELAN_HAVE_BULLET
     if (o.bullet) add("bullet/" + name, bm_bullet, o.reps, c);
+    // The scene of the against-Bullet target: the ratio paired too.
+    if (o.bullet && name == "pile4k")
+      add("paired-bullet/" + name, bm_paired_bullet, o.reps, c, book, std::make_shared<int>(0));
 #endif
   }
   for (int n : o.sweep) {
