@@ -101,30 +101,24 @@ def main():
         for k, (t1, t2, s) in calib.items():
             f.write(f"{k},{t1:.3f},{t2:.3f},{s:.3f}\n")
 
-    # Paired: each repetition ran 1 and 2 threads back to back (seconds apart, where the random
-    # interleaving puts a scene's 1- and 2-thread runs minutes apart); the median of their ratios.
-    paired = {}
-    for n in names:
-        rs = [r for r in runs[n] if "speedup" in r and not r.get("error_occurred")]
-        if n.startswith("paired/") and rs:
-            sps = [r["speedup"] for r in rs]
-            paired[n[len("paired/"):]] = {"speedup": median(sps), "lo": min(sps), "hi": max(sps), "pairs": len(rs),
-                                          "ms_1t": median([r["ms_1t"] for r in rs]),
-                                          "ms_2t": median([r["ms_2t"] for r in rs])}
-    paired_ceiling = paired.get("calib/fma", {}).get("speedup", float("nan"))
-    # Against Bullet the same way: elan at 1 thread and Bullet back to back.
-    paired_bullet = {}
-    for n in names:
-        rs = [r for r in runs[n] if "bullet_ratio" in r and not r.get("error_occurred")]
-        if n.startswith("paired-bullet/") and rs:
-            ratios = [r["bullet_ratio"] for r in rs]
-            paired_bullet[n.split("/")[1]] = {"ratio": median(ratios), "lo": min(ratios), "hi": max(ratios),
-                                              "pairs": len(rs), "ms_1t": median([r["ms_1t"] for r in rs]),
-                                              "ms_bullet": median([r["ms_bullet"] for r in rs])}
+    # Paired: each repetition ran two things back to back (1 and 2 threads; elan and Bullet), seconds
+    # apart where the random interleaving puts them minutes apart; the median of their ratios.
+    def paired_runs(prefix, ratio, times):
+        out = {}
+        for n in names:
+            rs = [r for r in runs[n] if ratio in r and not r.get("error_occurred")]
+            if n.startswith(prefix) and rs:
+                ratios = [r[ratio] for r in rs]
+                out[n[len(prefix):]] = {"ratio": median(ratios), "lo": min(ratios), "hi": max(ratios),
+                                        "pairs": len(rs), **{t: median([r[t] for r in rs]) for t in times}}
+        return out
+    paired = paired_runs("paired/", "speedup", ("ms_1t", "ms_2t"))
+    paired_ceiling = paired.get("calib/fma", {}).get("ratio", float("nan"))
+    paired_bullet = paired_runs("paired-bullet/", "bullet_ratio", ("ms_1t", "ms_bullet"))
     with open(os.path.join(a.out, "paired.csv"), "w") as f:
         f.write("name,pairs,ms_1t,ms_2t,speedup,speedup_min,speedup_max\n")
         for k, v in paired.items():
-            f.write(f"{k},{v['pairs']},{v['ms_1t']:.4f},{v['ms_2t']:.4f},{v['speedup']:.4f},{v['lo']:.4f},"
+            f.write(f"{k},{v['pairs']},{v['ms_1t']:.4f},{v['ms_2t']:.4f},{v['ratio']:.4f},{v['lo']:.4f},"
                     f"{v['hi']:.4f}\n")
 
     scenes = [n.split("/")[1] for n in names if n.startswith("elan/") and n.endswith("threads:1")]
@@ -276,8 +270,8 @@ def main():
         L.append("| run | pairs | 1 thread ms | 2 threads ms | speedup (median) | range | % of paired FMA ceiling |")
         L.append("|" + " --- |" * 7)
         for k, v in sorted(paired.items(), key=lambda kv: not kv[0].startswith("calib/")):
-            L.append(f"| {k} | {v['pairs']} | {fmt(v['ms_1t'])} | {fmt(v['ms_2t'])} | {fmt(v['speedup'])} | "
-                     f"{fmt(v['lo'])}-{fmt(v['hi'])} | {fmt(100 * v['speedup'] / paired_ceiling, 0)} |")
+            L.append(f"| {k} | {v['pairs']} | {fmt(v['ms_1t'])} | {fmt(v['ms_2t'])} | {fmt(v['ratio'])} | "
+                     f"{fmt(v['lo'])}-{fmt(v['hi'])} | {fmt(100 * v['ratio'] / paired_ceiling, 0)} |")
     if paired_bullet:
         L.append("\n## Bullet against elan from paired runs\n")
         L.append("Each repetition runs elan at 1 thread and Bullet back to back (the order alternating); the "
@@ -339,17 +333,15 @@ def main():
         # The repetitions' spread shows how much of the figure is the machine's load. The paired
         # figure, where present, decides: its two halves ran under the same load.
         (lo1, hi1), (lo2, hi2) = p10[0]["ms_range"], p10[1]["ms_range"]
-        unpaired = (f"ratio of the interleaved runs' medians {fmt(sp)}×, {fmt(100 * frac, 0)} % of FMA ceiling "
+        measured = (f"ratio of the interleaved runs' medians {fmt(sp)}×, {fmt(100 * frac, 0)} % of FMA ceiling "
                     f"{fmt(calib['fma'][2])} (repetitions: 1t {fmt(lo1)}-{fmt(hi1)} ms, 2t {fmt(lo2)}-{fmt(hi2)} ms)")
         pp = paired.get("elan/pile10k")
         if pp:
-            psp, pfrac = pp["speedup"], pp["speedup"] / paired_ceiling
-            L.append(f"| pile10k 2-thread speedup ≥ 1.6× and ≥ 80 % of ceiling | paired: {fmt(psp)}× (median of "
-                     f"{pp['pairs']}, range {fmt(pp['lo'])}-{fmt(pp['hi'])}), {fmt(100 * pfrac, 0)} % of the paired FMA "
-                     f"ceiling {fmt(paired_ceiling)}; {unpaired} | {'yes' if psp >= 1.6 and pfrac >= 0.8 else 'no'} |")
-        else:
-            L.append(f"| pile10k 2-thread speedup ≥ 1.6× and ≥ 80 % of ceiling | {unpaired} | "
-                     f"{'yes' if sp >= 1.6 and frac >= 0.8 else 'no'} |")
+            sp, frac = pp["ratio"], pp["ratio"] / paired_ceiling
+            measured = (f"paired: {fmt(sp)}× (median of {pp['pairs']}, range {fmt(pp['lo'])}-{fmt(pp['hi'])}), "
+                        f"{fmt(100 * frac, 0)} % of the paired FMA ceiling {fmt(paired_ceiling)}; " + measured)
+        L.append(f"| pile10k 2-thread speedup ≥ 1.6× and ≥ 80 % of ceiling | {measured} | "
+                 f"{'yes' if sp >= 1.6 and frac >= 0.8 else 'no'} |")
     # The issue counts store + broadphase + contacts + solver; the shapes are the scene's own
     # geometry (pile10k's are 10k distinct boxes, hulls, spheres and capsules), shown apart.
     parts = dict(mem_parts)

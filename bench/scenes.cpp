@@ -317,19 +317,32 @@ void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType 
     state.SkipWithError("state hash differs between runs of this scene");
 }
 
-// A repetition runs the scene at 1 thread and at 2 back to back, the order alternating from one
-// repetition to the next, and reports the ratio of the pair. Load from other processes changes
-// over minutes on this shared machine, and the two halves of a pair are seconds apart, so the
-// median of the pairs' ratios follows the engine, where a ratio of the two thread counts' medians
-// (runs minutes apart under random interleaving) also follows the load.
+// The paired benchmarks: a repetition runs two things back to back (1 and 2 threads; elan and
+// Bullet) and reports their ratio. Load from other processes changes over minutes on this shared
+// machine, and the two halves of a pair are seconds apart, so the median of the pairs' ratios
+// follows the engines, where a ratio of two medians (runs minutes apart under random
+// interleaving) also follows the load. The order alternates from one repetition to the next, so
+// neither side always runs with a warm or a cold cache.
+template <class A, class B>
+void back_to_back(int& repetition, A&& a, B&& b) {
+  if (repetition++ % 2 == 0) {
+    a();
+    b();
+  } else {
+    b();
+    a();
+  }
+}
+
 void bm_paired(benchmark::State& state, Case c, HashBook* book, std::shared_ptr<int> repetition) {
   const auto tops = top_bodies(*c.scene);
+  const auto run = [&](int threads) {
+    return run_elan(c, threads, elan::BroadphaseType::SweepAndPrune, tops);
+  };
   for (auto _ : state) {
-    const bool one_first = (*repetition)++ % 2 == 0;
     ElanRun r1, r2;
-    if (one_first) r1 = run_elan(c, 1, elan::BroadphaseType::SweepAndPrune, tops);
-    r2 = run_elan(c, 2, elan::BroadphaseType::SweepAndPrune, tops);
-    if (!one_first) r1 = run_elan(c, 1, elan::BroadphaseType::SweepAndPrune, tops);
+    back_to_back(
+        *repetition, [&] { r1 = run(1); }, [&] { r2 = run(2); });
     state.SetIterationTime(r1.seconds + r2.seconds);
     state.counters["ms_1t"] = 1000 * r1.seconds / c.steps;
     state.counters["ms_2t"] = 1000 * r2.seconds / c.steps;
@@ -377,17 +390,16 @@ void bm_bullet(benchmark::State& state, Case c) {
   state.SetItemsProcessed(int64_t(c.scene->bodies.size()) * c.steps * state.iterations());
 }
 
-// elan at 1 thread and Bullet back to back in each repetition, the order alternating, for the
-// same reason as bm_paired: the ratio of a pair is measured under one load.
+// elan at 1 thread and Bullet back to back (back_to_back).
 void bm_paired_bullet(benchmark::State& state, Case c, HashBook* book,
                       std::shared_ptr<int> repetition) {
   const auto tops = top_bodies(*c.scene);
   for (auto _ : state) {
-    const bool elan_first = (*repetition)++ % 2 == 0;
     ElanRun e;
-    if (elan_first) e = run_elan(c, 1, elan::BroadphaseType::SweepAndPrune, tops);
-    const BulletRun b = run_bullet(c, tops);
-    if (!elan_first) e = run_elan(c, 1, elan::BroadphaseType::SweepAndPrune, tops);
+    BulletRun b;
+    back_to_back(
+        *repetition, [&] { e = run_elan(c, 1, elan::BroadphaseType::SweepAndPrune, tops); },
+        [&] { b = run_bullet(c, tops); });
     state.SetIterationTime(e.seconds + b.seconds);
     state.counters["ms_1t"] = 1000 * e.seconds / c.steps;
     state.counters["ms_bullet"] = 1000 * b.seconds / c.steps;
@@ -477,11 +489,9 @@ void bm_calib_fma(benchmark::State& state, int threads) {
 // The FMA ceiling measured as bm_paired measures a scene: 1 and 2 threads back to back.
 void bm_paired_fma(benchmark::State& state, std::shared_ptr<int> repetition) {
   for (auto _ : state) {
-    const bool one_first = (*repetition)++ % 2 == 0;
     double t1 = 0, t2 = 0;
-    if (one_first) t1 = run_fma(1);
-    t2 = run_fma(2);
-    if (!one_first) t1 = run_fma(1);
+    back_to_back(
+        *repetition, [&] { t1 = run_fma(1); }, [&] { t2 = run_fma(2); });
     state.SetIterationTime(t1 + t2);
     state.counters["ms_1t"] = 1000 * t1;
     state.counters["ms_2t"] = 1000 * t2;
