@@ -1,0 +1,103 @@
+// Golden state hashes: every standard scene in scenes/, stepped 120 times from its file, must give
+// the state hash written below, for 1 and 2 threads and both broadphases (Box3D's
+// test_determinism.c keeps such constants). A change of behaviour, however small, changes a hash,
+// so it is always a deliberate edit of a constant here, never a side effect of a refactor.
+//
+// The constants are those of the portable float build (no -march=native), which is what a
+// package or a plain `cmake -DCMAKE_BUILD_TYPE=Release` makes; its Debug and sanitized builds
+// give the same bits (no FMA contraction, no fast-math: CMakeLists.txt). A -march=native build
+// may take other code paths (AVX-512 lanes, other Eigen packets) and so other bits; there, and
+// in a double build, the test checks that the four runs of a scene agree with each other only.
+//
+// To update after a deliberate change of behaviour: build portable Release and run
+//   for f in scenes/*.json; do build/tools/elan run $f --steps 120 | grep state_hash; done
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "physics/physics_util.hpp"
+
+namespace elan {
+namespace golden_hashes_test {
+
+constexpr int kSteps = 120;
+
+#if defined(ELAN_NATIVE_BUILD) || defined(ELAN_DOUBLE)
+constexpr bool kCompareConstants = false;
+#else
+constexpr bool kCompareConstants = true;
+#endif
+
+// Scene file (without .json) -> state hash after kSteps steps, portable float build.
+const std::map<std::string, uint64_t>& golden() {
+  static const std::map<std::string, uint64_t> table = {
+      {"jolt_pyramid", 0xab344d7ada962341ull},   {"many_pyramids", 0xe3fb7ffc9f7b0a61ull},
+      {"pile10k", 0x5626c14c21beaef7ull},        {"pile1k", 0x35e775c6da6f834eull},
+      {"pile4k", 0xc1db09a113ae9053ull},         {"pyramid10", 0x3043830915c9b8b9ull},
+      {"pyramid20", 0x81f2803d6709df6eull},      {"rain", 0x1e950f7aa4c06425ull},
+      {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xb04d6f6367a54153ull},
+      {"tumbler", 0x18aee926573c0210ull},
+  };
+  return table;
+}
+
+uint64_t hash_after(const std::string& scene, int threads, BroadphaseType broadphase) {
+  Real dt = 0;
+  World world = test::load_world(scene + ".json", threads, dt, broadphase);
+  for (int n = 0; n < kSteps; ++n) world.step(dt);
+  return world.state_hash();
+}
+
+std::string hex(uint64_t h) {
+  char text[19];
+  std::snprintf(text, sizeof text, "0x%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+class GoldenHash : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GoldenHash, SameHashForOneAndTwoThreadsAndBothBroadphases) {
+  const std::string scene = GetParam();
+  // Under the sanitizers a step is about ten times slower: two of the four runs there (one
+  // thread with the sweep, two threads with all-pairs) still cover both axes.
+  struct Run {
+    int threads;
+    BroadphaseType broadphase;
+  };
+  const Run all[] = {{1, BroadphaseType::SweepAndPrune},
+                     {2, BroadphaseType::AllPairs},
+                     {2, BroadphaseType::SweepAndPrune},
+                     {1, BroadphaseType::AllPairs}};
+  const int runs = test::kSanitized ? 2 : 4;
+  const uint64_t first = hash_after(scene, all[0].threads, all[0].broadphase);
+  if (kCompareConstants) {
+    EXPECT_EQ(hex(first), hex(golden().at(scene)))
+        << scene << ": the behaviour changed; if deliberately, update the constant";
+  }
+  for (int k = 1; k < runs; ++k) {
+    EXPECT_EQ(hex(hash_after(scene, all[k].threads, all[k].broadphase)), hex(first))
+        << scene << " with " << all[k].threads << " threads, "
+        << (all[k].broadphase == BroadphaseType::AllPairs ? "all-pairs" : "sap");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GoldenHash,
+                         ::testing::Values("jolt_pyramid", "many_pyramids", "pile10k", "pile1k",
+                                           "pile4k", "pyramid10", "pyramid20", "rain",
+                                           "spheres_in_box", "tower20", "tumbler"));
+
+// Every scene in scenes/ has a golden hash, so a scene added without one fails here.
+TEST(GoldenHash, EveryStandardSceneHasAConstant) {
+  for (const auto& entry : std::filesystem::directory_iterator(ELAN_SCENE_DIR)) {
+    if (entry.path().extension() != ".json") continue;
+    EXPECT_TRUE(golden().count(entry.path().stem().string()))
+        << entry.path().filename() << " has no golden hash";
+  }
+}
+
+}  // namespace golden_hashes_test
+}  // namespace elan
