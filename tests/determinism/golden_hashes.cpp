@@ -62,8 +62,8 @@ class GoldenHash : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GoldenHash, SameHashForOneAndTwoThreadsAndBothBroadphases) {
   const std::string scene = GetParam();
-  // Under the sanitizers a step is about ten times slower: two of the four runs there (one
-  // thread with the sweep, two threads with all-pairs) still cover both axes.
+  // Under the sanitizers a step is about ten times slower (pile10k's two runs took 145 s): there
+  // one run checks the constant, and the unsanitized build checks that the others agree.
   struct Run {
     int threads;
     BroadphaseType broadphase;
@@ -72,7 +72,7 @@ TEST_P(GoldenHash, SameHashForOneAndTwoThreadsAndBothBroadphases) {
                      {2, BroadphaseType::AllPairs},
                      {2, BroadphaseType::SweepAndPrune},
                      {1, BroadphaseType::AllPairs}};
-  const int runs = test::kSanitized ? 2 : 4;
+  const int runs = test::kSanitized ? 1 : 4;
   const uint64_t first = hash_after(scene, all[0].threads, all[0].broadphase);
   if (kCompareConstants) {
     EXPECT_EQ(hex(first), hex(golden().at(scene)))
