@@ -2,10 +2,15 @@
 # The benchmark suite in one command: builds Release (-march=native) into build/bench, runs the
 # calibration kernels, the scenes, the pile sweep and the Bullet peer in one interleaved run,
 # measures peak RSS of elan and Bullet on pile10k in separate processes, and writes CSVs, a
-# Markdown summary and plots to bench/results/<cpu-model>/.
+# Markdown summary and plots to bench/results/<cpu-model>/ (the raw output stays in its raw/,
+# which git ignores). Needs gnuplot for the plots (tools/setup.sh installs gnuplot-nox).
 # Usage: bench/run_suite.sh [--quick|--full]   (quick: under 3 minutes on 2 cores)
 # Environment: ELAN_BENCH_BUILD (build dir, default build/bench), ELAN_BENCH_JOBS (default 1).
 set -euo pipefail
+if ! command -v gnuplot >/dev/null; then
+  echo "bench/run_suite.sh: gnuplot is needed for the plots: apt-get install gnuplot-nox" >&2
+  exit 2
+fi
 
 mode=quick
 for arg in "$@"; do
@@ -60,10 +65,7 @@ if [ -x "$build/bench/peer/bullet_runner" ]; then
 fi
 uptime >"$raw/uptime_end.txt"
 
+# The CSVs, then summary.md and the plots from them; fails if a plot cannot be drawn.
 python3 "$root/bench/report.py" --raw "$raw" --out "$out" --build "$build" --mode "$mode" \
   --rss-steps "$rss_steps"
-# gnuplot ends lines with spaces and the file with a blank line; keep the committed SVGs clean.
-for svg in "$out"/*.svg; do
-  [ -f "$svg" ] && sed -i -e 's/[[:space:]]*$//' -e '${/^$/d}' "$svg"
-done
-echo "results: $out/summary.md"
+echo "results: $out/summary.md (raw/ is not committed)"

@@ -478,7 +478,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         keep_side_if_carried(*cache_it, dead_cache);
       }
       uint32_t a = pair_first(key), b = pair_second(key);
-      // The static or kinematic body, if any, is B (architecture rule 4).
+      // The static or kinematic body, if any, is B (ARCHITECTURE.md, determinism rule 4).
       if (!bodies.is_dynamic(a) && bodies.is_dynamic(b)) std::swap(a, b);
       m.body_a = a;
       m.body_b = b;

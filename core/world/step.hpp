@@ -1,4 +1,4 @@
-// The step pipeline: the stages of architecture.md called in order over the world's arrays.
+// The step pipeline: the stages of ARCHITECTURE.md called in order over the world's arrays.
 #pragma once
 
 #include "core/world/world_state.hpp"
