@@ -106,7 +106,7 @@ void World::set_pair_filter(PairFilter filter) {
 
 uint32_t step_all(std::span<World* const> worlds, Real dt, ThreadPool* pool) {
   if (!(std::isfinite(dt) && dt > 0)) {
-    for (World* w : worlds) w->state().stats.status = kStepBadTimestep;
+    for (World* w : worlds) detail::state_of(*w).stats.status = kStepBadTimestep;
     return kStepBadTimestep;
   }
   std::vector<uint32_t> status(worlds.size(), 0);
@@ -118,7 +118,7 @@ uint32_t step_all(std::span<World* const> worlds, Real dt, ThreadPool* pool) {
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           // perf: the worlds already fill the pool, so each solve runs on
                           // its caller alone instead of spinning up stage workers.
-                          detail::WorldState& w = worlds[k]->state();
+                          detail::WorldState& w = detail::state_of(*worlds[k]);
                           const int threads = w.threads;
                           w.threads = 1;
                           status[k] = detail::run_step(w, dt);

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "core/base/convex_hull.hpp"
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 
 namespace elan {
 namespace {
@@ -672,7 +672,7 @@ void load_into(const Scene& scene, World& world, const std::string& file_name) {
     shapes.emplace(key, ShapeId{});
   }
   world.reserve(world.body_count() + scene.bodies.size(),
-                world.state().shapes.size() + shapes.size());
+                detail::state_of(world).shapes.size() + shapes.size());
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const SceneBody& b = scene.bodies[i];
     const Ctx ctx{file_name, body_where(i, b.name), ""};

@@ -20,7 +20,8 @@ namespace elan {
 
 namespace detail {
 struct WorldState;
-}
+struct WorldAccess;
+}  // namespace detail
 
 class ThreadPool;
 
@@ -183,11 +184,9 @@ class World {
   Vec3 linear_momentum() const;   ///< kg m/s, dynamic bodies
   Vec3 angular_momentum() const;  ///< kg m^2/s, dynamic bodies, about the world origin
 
-  /// Internal state, for the engine's own tools, tests and benchmarks.
-  detail::WorldState& state() { return *state_; }
-  const detail::WorldState& state() const { return *state_; }
-
  private:
+  // The engine's own code reaches the state through detail::state_of (core/world/world_access.hpp).
+  friend struct detail::WorldAccess;
   std::unique_ptr<detail::WorldState> state_;
 };
 
