@@ -1,7 +1,6 @@
 // The embedding API's costs: all poses of 1M bodies through bulk views vs per-body calls, ray
 // casts into a settled pile10k, and 256 small worlds stepped with step_all vs one by one.
 #include <benchmark/benchmark.h>
-#include <tbb/task_arena.h>
 
 #include <memory>
 #include <random>
@@ -137,10 +136,10 @@ void BM_ManyWorlds(benchmark::State& state) {
   std::vector<World> worlds = make_worlds(threads);
   std::vector<World*> ptrs;
   for (World& w : worlds) ptrs.push_back(&w);
-  tbb::task_arena arena(threads);
+  ThreadPool pool(threads);
   for (auto _ : state) {
     if (together) {
-      arena.execute([&] { step_all(ptrs, kDt); });
+      step_all(ptrs, kDt, &pool);
     } else {
       for (World* w : ptrs) w->step(kDt);
     }

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/world/memory_use.hpp"
+#include "core/world/world_access.hpp"
 #include "elan/scene.hpp"
 #include "elan/world.hpp"
 #ifdef ELAN_HAVE_BULLET
@@ -445,7 +446,7 @@ void bm_memory(benchmark::State& state, Case c, bool bullet) {
       elan::load_into(*c.scene, world, c.name);
       for (int i = 0; i < c.warmup + c.steps; ++i) world.step(c.scene->timestep);
       after = heap_in_use();
-      use = elan::detail::memory_use(world.state());
+      use = elan::detail::memory_use(elan::detail::state_of(world));
     }
     per_body = (after - before) / double(c.scene->bodies.size());
     state.SetIterationTime(1e-3);

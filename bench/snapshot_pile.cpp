@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 #include "elan/scene.hpp"
 #include "elan/snapshot.hpp"
 #include "elan/world.hpp"
@@ -41,7 +41,7 @@ void report_size(benchmark::State& state, const World& world, std::size_t bytes)
   const double bodies = double(world.body_count());
   state.counters["bytes"] = double(bytes);
   state.counters["bytes_per_body"] = double(bytes) / bodies;
-  state.counters["manifolds"] = double(world.state().contacts.size());
+  state.counters["manifolds"] = double(elan::detail::state_of(world).contacts.size());
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(world.body_count()));
   state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(bytes));
 }
@@ -75,7 +75,7 @@ void BM_SaveRollback(benchmark::State& state) {
   // The bodies' share: 81 bytes per non-static body; the rest is contacts and framing.
   std::size_t moving = 0;
   for (std::size_t i = 0; i < world.body_count(); ++i) {
-    moving += !world.state().bodies.is_static(i);
+    moving += !elan::detail::state_of(world).bodies.is_static(i);
   }
   state.counters["body_bytes_per_moving_body"] = double(20 * sizeof(Real) + 1);
   state.counters["contact_bytes"] = double(out.size()) - double(moving * (20 * sizeof(Real) + 1));

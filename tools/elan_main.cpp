@@ -20,7 +20,7 @@
 #include <malloc.h>  // mallopt
 #endif
 
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 #include "elan/elan.hpp"
 #include "elan/snapshot.hpp"
 #include "tools/options.hpp"
@@ -83,7 +83,7 @@ void warn_status(uint32_t fresh, uint64_t step) {
 
 // The testing aid of --perturb: one ulp up on the stored x of the body's centre of mass.
 void nudge(World& world, uint64_t body) {
-  Real& px = world.state().bodies.px[body];
+  Real& px = detail::state_of(world).bodies.px[body];
   px = std::nextafter(px, std::numeric_limits<Real>::infinity());
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/world/events.hpp"
 #include "core/world/step.hpp"
+#include "core/world/thread_pool_access.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/world.hpp"
 
@@ -103,26 +104,33 @@ void World::set_pair_filter(PairFilter filter) {
   state_->api.pair_filter = std::move(filter);
 }
 
-uint32_t step_all(std::span<World* const> worlds, Real dt) {
+uint32_t step_all(std::span<World* const> worlds, Real dt, ThreadPool* pool) {
   if (!(std::isfinite(dt) && dt > 0)) {
-    for (World* w : worlds) w->state().stats.status = kStepBadTimestep;
+    for (World* w : worlds) detail::state_of(*w).stats.status = kStepBadTimestep;
     return kStepBadTimestep;
   }
   std::vector<uint32_t> status(worlds.size(), 0);
   // determinism: worlds share nothing, and each world's step is thread-count independent, so
   // running them side by side in one pool gives each the bits it gets alone.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, worlds.size(), 1),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                        // perf: the worlds already fill the pool, so each solve runs on
-                        // its caller alone instead of spinning up stage workers.
-                        detail::WorldState& w = worlds[k]->state();
-                        const int threads = w.threads;
-                        w.threads = 1;
-                        status[k] = detail::run_step(w, dt);
-                        w.threads = threads;
-                      }
-                    });
+  auto step_worlds = [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, worlds.size(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                          // perf: the worlds already fill the pool, so each solve runs on
+                          // its caller alone instead of spinning up stage workers.
+                          detail::WorldState& w = detail::state_of(*worlds[k]);
+                          const int threads = w.threads;
+                          w.threads = 1;
+                          status[k] = detail::run_step(w, dt);
+                          w.threads = threads;
+                        }
+                      });
+  };
+  if (pool) {
+    detail::arena_of(*pool).execute(step_worlds);
+  } else {
+    step_worlds();
+  }
   uint32_t all = 0;
   for (uint32_t f : status) all |= f;
   return all;

@@ -9,6 +9,7 @@
 #include "core/base/body_store.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/world/byte_io.hpp"
+#include "core/world/world_access.hpp"
 #include "core/world/world_state.hpp"
 
 namespace elan {
@@ -543,7 +544,7 @@ uint64_t bits_of(T v) {
 }  // namespace
 
 std::vector<uint8_t> save_snapshot(const World& world) {
-  const WorldState& s = world.state();
+  const WorldState& s = detail::state_of(world);
   std::vector<uint8_t> out;
   out.reserve(4096 + s.bodies.size() * detail::BodyStore{}.bytes_per_body() +
               s.contacts.size() * (32 + detail::kMaxManifoldPoints * 52));
@@ -609,18 +610,18 @@ std::vector<uint8_t> save_snapshot(const World& world) {
 }
 
 void restore_snapshot(World& world, std::span<const uint8_t> bytes) {
-  commit(world.state(), decode_snapshot(bytes));
+  commit(detail::state_of(world), decode_snapshot(bytes));
 }
 
 World load_snapshot(std::span<const uint8_t> bytes) {
   Decoded d = decode_snapshot(bytes);
   World world(d.def);
-  commit(world.state(), std::move(d));
+  commit(detail::state_of(world), std::move(d));
   return world;
 }
 
 void save_rollback(const World& world, std::vector<uint8_t>& out) {
-  const WorldState& s = world.state();
+  const WorldState& s = detail::state_of(world);
   const BodyStore& b = s.bodies;
   out.clear();
   ByteWriter w(out);
@@ -662,7 +663,7 @@ std::vector<uint8_t> save_rollback(const World& world) {
 void restore_rollback(World& world, std::span<const uint8_t> bytes) {
   const std::span<const uint8_t> payload =
       open(bytes, kRollbackMagic, "rollback", "rollback state");
-  WorldState& s = world.state();
+  WorldState& s = detail::state_of(world);
   ByteReader check(payload, "rollback");
   read_rollback<false>(check, s);
   ByteReader apply(payload, "rollback");
@@ -672,8 +673,8 @@ void restore_rollback(World& world, std::span<const uint8_t> bytes) {
 }
 
 Divergence compare_worlds(const World& a, const World& b) {
-  const BodyStore& x = a.state().bodies;
-  const BodyStore& y = b.state().bodies;
+  const BodyStore& x = detail::state_of(a).bodies;
+  const BodyStore& y = detail::state_of(b).bodies;
   Divergence d;
   if (x.size() != y.size()) {
     d.found = true;

@@ -5,9 +5,9 @@
 
 #include <chrono>
 
+#include "core/world/continuous.hpp"
 #include "core/world/events.hpp"
 #include "narrowphase/collide.hpp"
-#include "solver/continuous.hpp"
 
 namespace elan::detail {
 

@@ -11,6 +11,7 @@
 #include "core/base/state_hash.hpp"
 #include "core/world/events.hpp"
 #include "core/world/step.hpp"
+#include "core/world/thread_pool_access.hpp"
 #include "core/world/world_access.hpp"
 #include "core/world/world_state.hpp"
 
@@ -63,8 +64,8 @@ void rename_beside(std::vector<T>& list, uint32_t i, uint32_t last, bool resort)
 World::World(const WorldDef& def) : state_(std::make_unique<WorldState>()) {
   validate(def);
   state_->def = def;
-  if (def.arena) {
-    state_->threads = std::max(1, def.arena->max_concurrency());
+  if (def.thread_pool) {
+    state_->threads = def.thread_pool->threads();
   } else {
     state_->threads = resolve_threads(def.threads);
     state_->arena = std::make_unique<tbb::task_arena>(state_->threads);
@@ -237,8 +238,8 @@ uint32_t World::step(Real dt) {
     return kStepBadTimestep;
   }
   uint32_t status = 0;
-  tbb::task_arena* arena = s.def.arena ? s.def.arena : s.arena.get();
-  arena->execute([&] { status = detail::run_step(s, dt); });
+  tbb::task_arena& arena = s.def.thread_pool ? detail::arena_of(*s.def.thread_pool) : *s.arena;
+  arena.execute([&] { status = detail::run_step(s, dt); });
   return status;
 }
 
@@ -312,7 +313,7 @@ void World::set_broadphase(BroadphaseType type) {
 void World::set_threads(int threads) {
   check_arg(threads >= 0 && threads <= 1024, "threads", "must be in 0..1024");
   state_->def.threads = threads;
-  state_->def.arena = nullptr;
+  state_->def.thread_pool = nullptr;
   state_->threads = resolve_threads(threads);
   state_->arena = std::make_unique<tbb::task_arena>(state_->threads);
 }

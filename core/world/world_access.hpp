@@ -1,12 +1,27 @@
-// Checks shared by the World API's source files: id lookup and argument validation.
+// The engine's own access to a World's state (for its source files, tools, tests and benchmarks;
+// the public header keeps it private), and the checks shared by the World API's source files:
+// id lookup and argument validation.
 #pragma once
 
 #include <string>
 
 #include "core/world/world_state.hpp"
 #include "elan/error.hpp"
+#include "elan/world.hpp"
 
 namespace elan::detail {
+
+struct WorldAccess {
+  static WorldState& state(World& world) { return *world.state_; }
+  static const WorldState& state(const World& world) { return *world.state_; }
+};
+
+inline WorldState& state_of(World& world) {
+  return WorldAccess::state(world);
+}
+inline const WorldState& state_of(const World& world) {
+  return WorldAccess::state(world);
+}
 
 inline void check_arg(bool ok, const char* field, const std::string& message) {
   if (!ok) throw Error(field, message);

@@ -1,11 +1,13 @@
 // The embedding API keeps determinism: creating and destroying bodies mid-run (in contact and
-// asleep), caller arenas, and many worlds stepped at once give the same bits as the plain runs.
+// asleep), shared thread pools and caller arenas, and many worlds stepped at once give the same
+// bits as the plain runs.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
 #include <vector>
 
 #include "elan/elan.hpp"
+#include "elan/tbb_interop.hpp"
 
 namespace elan {
 namespace api_mutations_test {
@@ -94,8 +96,10 @@ TEST(WorldApi, MutationsAreDeterministicAcrossThreadsAndBroadphases) {
 
 TEST(WorldApi, CallerArenaGivesTheSameBitsAsOwnArena) {
   tbb::task_arena arena(2);
+  ThreadPool pool = wrap_tbb_arena(arena);
+  EXPECT_EQ(pool.threads(), 2);
   WorldDef with_arena;
-  with_arena.arena = &arena;
+  with_arena.thread_pool = &pool;
   World a(with_arena), b(WorldDef{});
   build_pile(a, 16);
   build_pile(b, 16);
@@ -104,6 +108,36 @@ TEST(WorldApi, CallerArenaGivesTheSameBitsAsOwnArena) {
     b.step(kDt);
     ASSERT_EQ(a.state_hash(), b.state_hash()) << "step " << k;
   }
+}
+
+TEST(WorldApi, SharedThreadPoolGivesTheSameBitsAsOwnPool) {
+  ThreadPool pool(2);
+  EXPECT_EQ(pool.threads(), 2);
+  WorldDef shared;
+  shared.thread_pool = &pool;
+  World a(shared), b(shared), alone(WorldDef{});
+  build_pile(a, 16);
+  build_pile(b, 16, 1);
+  build_pile(alone, 16);
+  for (int k = 0; k < 60; ++k) {
+    a.step(kDt);
+    b.step(kDt);
+    alone.step(kDt);
+    ASSERT_EQ(a.state_hash(), alone.state_hash()) << "step " << k;
+  }
+  EXPECT_NE(a.state_hash(), b.state_hash());
+  // Back to a pool of its own: the same bits go on.
+  a.set_threads(1);
+  EXPECT_EQ(a.settings().thread_pool, nullptr);
+  a.step(kDt);
+  alone.step(kDt);
+  EXPECT_EQ(a.state_hash(), alone.state_hash());
+}
+
+TEST(ThreadPool, RejectsAThreadCountOutOfRange) {
+  EXPECT_THROW(ThreadPool(-1), Error);
+  EXPECT_THROW(ThreadPool(1025), Error);
+  EXPECT_GE(ThreadPool(0).threads(), 1);
 }
 
 TEST(StepAll, EachWorldMatchesSteppingItAlone) {
@@ -120,8 +154,14 @@ TEST(StepAll, EachWorldMatchesSteppingItAlone) {
   std::vector<World*> ptrs;
   for (World& w : many) ptrs.push_back(&w);
   tbb::task_arena arena(2);
+  ThreadPool pool(2);
   for (int step = 0; step < 90; ++step) {
-    arena.execute([&] { step_all(ptrs, kDt); });
+    // Both ways of choosing the threads: the caller's current arena and an elan pool.
+    if (step % 2 == 0) {
+      arena.execute([&] { step_all(ptrs, kDt); });
+    } else {
+      step_all(ptrs, kDt, &pool);
+    }
     for (World& w : alone) w.step(kDt);
   }
   for (int k = 0; k < kWorlds; ++k) {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 #include "determinism/snapshot_scene.hpp"
 #include "elan/snapshot.hpp"
 
@@ -29,7 +29,7 @@ TEST(Divergence, OneUlpNudgeIsFoundAtItsStepBodyAndField) {
     a.step(test::kSnapshotDt);
     b.step(test::kSnapshotDt);
   }
-  Real& vy = b.state().bodies.vy[kBody];
+  Real& vy = detail::state_of(b).bodies.vy[kBody];
   const Real before = vy;
   vy = std::nextafter(vy, std::numeric_limits<Real>::infinity());
   const Divergence now = compare_worlds(a, b);
@@ -45,7 +45,7 @@ TEST(Divergence, OneUlpNudgeIsFoundAtItsStepBodyAndField) {
   EXPECT_FALSE(compare_worlds(a, b).found);
   a.step(test::kSnapshotDt);
   b.step(test::kSnapshotDt);
-  b.state().bodies.pz[kBody] = -b.state().bodies.pz[kBody];
+  detail::state_of(b).bodies.pz[kBody] = -detail::state_of(b).bodies.pz[kBody];
   const Divergence later = find_divergence(a, b, 5, test::kSnapshotDt);
   ASSERT_TRUE(later.found);
   EXPECT_EQ(later.step, 0u);
@@ -62,7 +62,7 @@ TEST(Divergence, SignOfZeroAndBodyCountAreDifferences) {
   a.create_body(body);
   b.create_body(body);
   EXPECT_FALSE(compare_worlds(a, b).found);
-  b.state().bodies.wx[0] = -Real(0);
+  detail::state_of(b).bodies.wx[0] = -Real(0);
   const Divergence zero = compare_worlds(a, b);
   EXPECT_TRUE(zero.found);
   EXPECT_EQ(zero.field, "wx");

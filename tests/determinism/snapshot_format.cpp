@@ -9,7 +9,7 @@
 
 #include "core/base/body_store.hpp"
 #include "core/world/byte_io.hpp"
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 #include "elan/snapshot.hpp"
 
 namespace elan {
@@ -60,7 +60,7 @@ void reseal(std::vector<uint8_t>& bytes) {
 
 TEST(SnapshotFormat, EveryTruncationIsRefusedAndTheWorldIsUnchanged) {
   World source = small_world();
-  ASSERT_GT(source.state().contacts.size(), 0u);
+  ASSERT_GT(detail::state_of(source).contacts.size(), 0u);
   const std::vector<uint8_t> bytes = save_snapshot(source);
   World target = small_world();
   target.step(Real(1.0 / 60.0));
@@ -137,7 +137,7 @@ TEST(SnapshotFormat, ResealedInconsistentContentsAreRefused) {
   // each, motion and flags: 1 byte each).
   World world = small_world();
   const std::vector<uint8_t> bytes = save_snapshot(world);
-  const detail::WorldState& s = world.state();
+  const detail::WorldState& s = detail::state_of(world);
   const std::size_t n = s.bodies.size();
   const std::size_t last_shape = bytes.size() - bytes_after_columns(s) - 14 * n - 4;
   const std::string error = error_with_byte(bytes, last_shape, s.bodies.shape[n - 1], 200);
@@ -149,7 +149,7 @@ TEST(SnapshotFormat, ResealedTraitsEntryPastTheTableIsRefused) {
   // flags) made to point past the table of traits.
   World world = small_world();
   const std::vector<uint8_t> bytes = save_snapshot(world);
-  const detail::WorldState& s = world.state();
+  const detail::WorldState& s = detail::state_of(world);
   const std::size_t n = s.bodies.size();
   const std::size_t last_traits = bytes.size() - bytes_after_columns(s) - 10 * n - 4;
   const std::string error = error_with_byte(bytes, last_traits, s.bodies.traits[n - 1], 200);
@@ -161,7 +161,7 @@ TEST(SnapshotFormat, ResealedForceSlotWithoutItsForceIsRefused) {
   // list of applied forces.
   World world = small_world();
   std::vector<uint8_t> bytes = save_snapshot(world);
-  const detail::WorldState& s = world.state();
+  const detail::WorldState& s = detail::state_of(world);
   const std::size_t n = s.bodies.size();
   ASSERT_TRUE(s.bodies.applied_forces.empty());
   const std::size_t last_applied = bytes.size() - bytes_after_columns(s) - 2 * n - 4;
@@ -181,7 +181,7 @@ TEST(SnapshotFormat, ResealedBadPackedRotationIsRefused) {
   // ends it: the byte before the checksum says which component was left out, 0..3. Before the
   // poses, a byte says whether they follow.
   World world = small_world();
-  const detail::WorldState& s = world.state();
+  const detail::WorldState& s = detail::state_of(world);
   ASSERT_FALSE(s.contacts.empty());
   ASSERT_FALSE(s.pair_cache.empty());
   ASSERT_EQ(s.pair_cache.back().key, s.contacts.back().key()) << "the last manifold has poses";
@@ -252,8 +252,8 @@ TEST(SnapshotFormat, RestoresIdsAndTheirGenerations) {
   const World copy = load_snapshot(save_snapshot(world));
   EXPECT_TRUE(copy.is_valid(id));
   EXPECT_EQ(copy.position(id), world.position(id));
-  EXPECT_EQ(copy.state().slot_generation, world.state().slot_generation);
-  EXPECT_EQ(copy.state().free_slots, world.state().free_slots);
+  EXPECT_EQ(detail::state_of(copy).slot_generation, detail::state_of(world).slot_generation);
+  EXPECT_EQ(detail::state_of(copy).free_slots, detail::state_of(world).free_slots);
 }
 
 TEST(SnapshotFormat, DestroyedBodiesAndShapesRoundTripAndContinueIdentically) {
@@ -269,8 +269,9 @@ TEST(SnapshotFormat, DestroyedBodiesAndShapesRoundTripAndContinueIdentically) {
   world.step(Real(1.0 / 60.0));
   World copy = load_snapshot(save_snapshot(world));
   EXPECT_FALSE(copy.is_valid(gone));
-  EXPECT_EQ(copy.state().free_slots, world.state().free_slots);
-  EXPECT_EQ(copy.state().api.shape_destroyed, world.state().api.shape_destroyed);
+  EXPECT_EQ(detail::state_of(copy).free_slots, detail::state_of(world).free_slots);
+  EXPECT_EQ(detail::state_of(copy).api.shape_destroyed,
+            detail::state_of(world).api.shape_destroyed);
   BodyDef b;
   b.shape = ShapeId{1};
   b.position = Vec3(0, 2, 0);

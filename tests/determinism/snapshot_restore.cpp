@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 #include "determinism/snapshot_scene.hpp"
 #include "elan/snapshot.hpp"
 
@@ -39,7 +39,7 @@ const Reference& reference() {
     for (int s = 0; s < kSaveAt; ++s) world.step(test::kSnapshotDt);
     r.snapshot = save_snapshot(world);
     r.asleep_at_save = asleep(world);
-    for (const detail::ManifoldHead& m : world.state().contacts) {
+    for (const detail::ManifoldHead& m : detail::state_of(world).contacts) {
       r.contacts_with_impulse += m.point_count > 0 && m.first.normal_impulse != 0;
     }
     const BodyId stack_bottom = world.body_at(world.body_count() - 4);
@@ -115,7 +115,7 @@ TEST(Snapshot, ForcesAppliedForTheNextStepAreSavedAndRestored) {
     world.apply_force(id, Vec3(Real(40 + i), Real(300), Real(-25)));
     world.apply_torque(id, Vec3(0, Real(3), Real(1)));
   }
-  ASSERT_GT(world.state().bodies.applied_forces.size(), 5u);
+  ASSERT_GT(detail::state_of(world).bodies.applied_forces.size(), 5u);
   const std::vector<uint8_t> snapshot = save_snapshot(world);
   const std::vector<uint8_t> rollback = save_rollback(world);
   world.step(test::kSnapshotDt);
@@ -132,14 +132,14 @@ TEST(Snapshot, ForcesAppliedForTheNextStepAreSavedAndRestored) {
 
 TEST(Snapshot, RestoresSettingsStepCountAndShapes) {
   const World world = load_snapshot(reference().snapshot);
-  EXPECT_EQ(world.state().step_count, uint64_t(kSaveAt));
+  EXPECT_EQ(detail::state_of(world).step_count, uint64_t(kSaveAt));
   const World original = test::make_snapshot_world(1);
   EXPECT_EQ(world.settings().substeps, original.settings().substeps);
   EXPECT_EQ(world.settings().gravity, original.settings().gravity);
-  ASSERT_EQ(world.state().shapes.size(), original.state().shapes.size());
-  for (std::size_t i = 0; i < world.state().shapes.size(); ++i) {
-    const detail::Shape& a = world.state().shapes[i];
-    const detail::Shape& b = original.state().shapes[i];
+  ASSERT_EQ(detail::state_of(world).shapes.size(), detail::state_of(original).shapes.size());
+  for (std::size_t i = 0; i < detail::state_of(world).shapes.size(); ++i) {
+    const detail::Shape& a = detail::state_of(world).shapes[i];
+    const detail::Shape& b = detail::state_of(original).shapes[i];
     EXPECT_EQ(a.type, b.type);
     EXPECT_EQ(a.frame_position, b.frame_position);
     EXPECT_EQ(a.frame_rotation.coeffs(), b.frame_rotation.coeffs());

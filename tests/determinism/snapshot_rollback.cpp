@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 #include "determinism/snapshot_scene.hpp"
 #include "elan/snapshot.hpp"
 
@@ -43,7 +43,7 @@ TEST(Rollback, RollingBackAndRunningAgainGivesTheSameHashes) {
     world.set_threads(threads);
     restore_rollback(world, saved);
     EXPECT_EQ(world.state_hash(), hash_at_save);
-    EXPECT_EQ(world.state().step_count, uint64_t(kSaveAt));
+    EXPECT_EQ(detail::state_of(world).step_count, uint64_t(kSaveAt));
     EXPECT_EQ(run_to_end(world), first);
   }
   restore_rollback(world, saved);
@@ -52,7 +52,7 @@ TEST(Rollback, RollingBackAndRunningAgainGivesTheSameHashes) {
 TEST(Rollback, SizeIsEightyOneBytesPerMovingBodyPlusContacts) {
   const World& world = world_at_save();
   const std::vector<uint8_t> saved = save_rollback(world);
-  const detail::WorldState& s = world.state();
+  const detail::WorldState& s = detail::state_of(world);
   std::size_t moving = 0;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) moving += !s.bodies.is_static(i);
   std::size_t contact_bytes = 4;
@@ -102,7 +102,7 @@ TEST(Rollback, CorruptOrTruncatedStateIsRefusedAndNothingChanges) {
   World& world = world_at_save();
   const std::vector<uint8_t> saved = save_rollback(world);
   const uint64_t before = world.state_hash();
-  const std::size_t contacts = world.state().contacts.size();
+  const std::size_t contacts = detail::state_of(world).contacts.size();
   for (std::size_t at : {std::size_t(0), std::size_t(9), saved.size() / 2, saved.size() - 1}) {
     std::vector<uint8_t> bad = saved;
     bad[at] ^= 0x10;
@@ -112,7 +112,7 @@ TEST(Rollback, CorruptOrTruncatedStateIsRefusedAndNothingChanges) {
     EXPECT_THROW(restore_rollback(world, std::span(saved).first(n)), Error) << "length " << n;
   }
   EXPECT_EQ(world.state_hash(), before);
-  EXPECT_EQ(world.state().contacts.size(), contacts);
+  EXPECT_EQ(detail::state_of(world).contacts.size(), contacts);
 }
 
 }  // namespace snapshot_rollback_test

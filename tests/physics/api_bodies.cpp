@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 #include "elan/elan.hpp"
 
 namespace elan {
@@ -112,7 +112,7 @@ TEST(WorldApi, DestroyingATouchingBodyDropsItsContactsWithEndEvents) {
   // The manifolds' tails and body pair cache went with them: only floor-other is left, renamed
   // with `other`, which took `low`'s index (a box resting on a face has four points, and boxes
   // keep their poses).
-  const detail::WorldState& s = w.state();
+  const detail::WorldState& s = detail::state_of(w);
   ASSERT_EQ(s.contacts.size(), 1u);
   ASSERT_EQ(s.contacts[0].point_count, 4u);
   ASSERT_EQ(s.contact_tails.size(), 1u);
@@ -174,7 +174,7 @@ TEST(WorldApi, ForcesStayWithTheirBodiesWhenOthersAreDestroyed) {
   EXPECT_GT(w.angular_velocity(ids[2]).z(), 0);
   EXPECT_NEAR(w.linear_velocity(ids[3]).z(), 4 * kDt, 1e-6);
   EXPECT_NEAR(w.linear_velocity(ids[3]).x(), 0, 1e-9);
-  EXPECT_EQ(w.state().bodies.applied_forces.size(), 0u) << "spent by the step";
+  EXPECT_EQ(detail::state_of(w).bodies.applied_forces.size(), 0u) << "spent by the step";
   w.step(kDt);
   EXPECT_NEAR(w.linear_velocity(ids[2]).y(), 2 * kDt, 1e-6);
   EXPECT_NEAR(w.linear_velocity(ids[3]).z(), 4 * kDt, 1e-6);
@@ -202,7 +202,7 @@ TEST(WorldApi, ChangingOneBodysMaterialOrFilterLeavesTheOthers) {
   EXPECT_EQ(w.friction(ids[1]), Real(0.9));
   EXPECT_EQ(w.restitution(ids[2]), Real(0.4));
   EXPECT_EQ(w.category_bits(ids[2]), 1u);
-  EXPECT_LE(w.state().bodies.trait_table.entries().size(), 5u);
+  EXPECT_LE(detail::state_of(w).bodies.trait_table.entries().size(), 5u);
 }
 
 TEST(WorldApi, MoveKinematicReachesTheTargetInOneStep) {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 #include "elan/elan.hpp"
 
 namespace elan {
@@ -175,7 +175,7 @@ TEST(SceneLoader, CreatesBodiesInSceneOrderAndSharesIdenticalShapes) {
   }
   EXPECT_EQ(world.motion_type(world.body_at(0)), MotionType::Static);
   // One ground box, one sphere for the 12 grid copies, one cube for the 14 pyramid cubes.
-  EXPECT_EQ(world.state().shapes.size(), 3u);
+  EXPECT_EQ(detail::state_of(world).shapes.size(), 3u);
 }
 
 TEST(SceneLoader, LibraryErrorsArePrefixedWithFileAndBody) {

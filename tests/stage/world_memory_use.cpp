@@ -8,7 +8,7 @@
 #include "core/base/grow.hpp"
 #include "core/base/heap_bytes.hpp"
 #include "core/world/memory_use.hpp"
-#include "core/world/world_state.hpp"
+#include "core/world/world_access.hpp"
 #include "elan/scene.hpp"
 #include "elan/world.hpp"
 #include "physics/physics_util.hpp"
@@ -30,15 +30,16 @@ TEST(MemoryUse, PartsAddUpToTheHeapTheWorldHolds) {
   load_into(scene, world, "pile1k");
   for (int i = 0; i < 120; ++i) world.step(scene.timestep);
   const std::size_t held = heap_in_use() - before;
-  const detail::MemoryUse use = detail::memory_use(world.state());
+  const detail::MemoryUse use = detail::memory_use(detail::state_of(world));
   std::printf(
       "held %zu B, reported %zu B: bodies %zu shapes %zu broadphase %zu contacts %zu "
       "solver %zu api %zu\n",
       held, use.total(), use.bodies, use.shapes, use.broadphase, use.contacts, use.solver, use.api);
-  EXPECT_GT(use.contacts, world.state().contacts.size() * sizeof(detail::ManifoldHead) +
-                              world.state().contact_tails.size() * sizeof(detail::ManifoldTail));
+  EXPECT_GT(use.contacts,
+            detail::state_of(world).contacts.size() * sizeof(detail::ManifoldHead) +
+                detail::state_of(world).contact_tails.size() * sizeof(detail::ManifoldTail));
   EXPECT_GT(use.solver, 0u);
-  EXPECT_GT(use.broadphase, world.state().pairs.size() * sizeof(uint64_t));
+  EXPECT_GT(use.broadphase, detail::state_of(world).pairs.size() * sizeof(uint64_t));
   if (test::kSanitized) {
     GTEST_SKIP() << "AddressSanitizer's allocator does not feed glibc's mallinfo2 counters";
   }
@@ -90,7 +91,7 @@ TEST(MemoryUse, StepBuffersAreGivenBackWithinTheStep) {
     def.threads = threads;
     World world(def);
     load_into(scene, world, "pile4k");
-    const detail::WorldState& w = world.state();
+    const detail::WorldState& w = detail::state_of(world);
     auto kept = [&] {
       std::size_t bytes = detail::heap_bytes(w.solver.bundles) + detail::heap_bytes(w.solver.rows);
       for (const auto& b : w.contact_blocks.contacts.added) bytes += detail::heap_bytes(b);

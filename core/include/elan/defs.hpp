@@ -1,8 +1,6 @@
 // Creation structs of the public API: shapes, bodies, worlds. All units SI, frames noted.
 #pragma once
 
-#include <tbb/task_arena.h>
-
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -11,6 +9,8 @@
 #include "elan/math.hpp"
 
 namespace elan {
+
+class ThreadPool;  // elan/thread_pool.hpp
 
 enum class MotionType : uint8_t { Static, Kinematic, Dynamic };
 
@@ -55,11 +55,11 @@ struct WorldDef {
   int substeps = 4;                        ///< soft-step substeps per step
   int iterations = 2;                      ///< solver iterations per substep
   bool allow_sleep = true;
-  int threads = 0;  ///< worker count; 0 = all cores (ignored when `arena` is set)
+  int threads = 0;  ///< worker count; 0 = all cores (ignored when `thread_pool` is set)
   BroadphaseType broadphase = BroadphaseType::SweepAndPrune;
-  /// The caller's arena: when set, the world runs its step inside it (with its concurrency as
-  /// the worker count) instead of creating its own. Must outlive the world.
-  tbb::task_arena* arena = nullptr;
+  /// The caller's pool: when set, the world runs its step in it (with its thread count as the
+  /// worker count) instead of making its own. Must outlive the world.
+  ThreadPool* thread_pool = nullptr;
 };
 
 }  // namespace elan

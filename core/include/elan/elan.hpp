@@ -10,4 +10,5 @@
 #include "elan/queries.hpp"
 #include "elan/scene.hpp"
 #include "elan/snapshot.hpp"
+#include "elan/thread_pool.hpp"
 #include "elan/world.hpp"

@@ -1,7 +1,9 @@
 // Stable, generation-checked handles of the public API.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 
 namespace elan {
 
@@ -22,3 +24,19 @@ struct ShapeId {
 };
 
 }  // namespace elan
+
+/// Ids hash as their bits, so they can key std::unordered_map and std::unordered_set (iterating
+/// such a container is in no fixed order: keep its order out of anything that must replay).
+template <>
+struct std::hash<elan::BodyId> {
+  std::size_t operator()(elan::BodyId id) const noexcept {
+    return std::hash<uint64_t>{}(uint64_t(id.generation) << 32 | id.slot);
+  }
+};
+
+template <>
+struct std::hash<elan::ShapeId> {
+  std::size_t operator()(elan::ShapeId id) const noexcept {
+    return std::hash<uint32_t>{}(id.index);
+  }
+};

@@ -1,4 +1,5 @@
 // Scene files (JSON, see README "Scene file"): parsing with validation, and loading into a World.
+// These functions are in the library elan::elan_scene, so that the core elan links no JSON parser.
 #pragma once
 
 #include <optional>

@@ -57,7 +57,7 @@ std::vector<uint8_t> save_snapshot(const World& world);
 
 /// Replaces the whole state of `world` (bodies, shapes, ids, contacts, gravity, substeps,
 /// iterations, sleep setting, step count) with the snapshot's. The world keeps its own thread
-/// count, broadphase, caller arena and pair filter (results do not depend on the first three;
+/// count, broadphase, thread pool and pair filter (results do not depend on the first three;
 /// the filter is the caller's code); the last step's events are cleared. Throws elan::Error (field
 /// "snapshot") for a file that is not a snapshot, another format version or `Real` size, a
 /// truncated or corrupt file, or inconsistent contents; `world` is then left unchanged.

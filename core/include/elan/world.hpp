@@ -20,11 +20,14 @@ namespace elan {
 
 namespace detail {
 struct WorldState;
-}
+struct WorldAccess;
+}  // namespace detail
+
+class ThreadPool;
 
 /// A physics world. Not thread-safe: call its methods from one thread at a time; the step
-/// itself runs in parallel on the world's own TBB arena of `WorldDef::threads` workers (or on
-/// `WorldDef::arena`). Results are bit-identical for any thread count and broadphase on one
+/// itself runs in parallel on the world's own pool of `WorldDef::threads` workers (or on
+/// `WorldDef::thread_pool`). Results are bit-identical for any thread count and broadphase on one
 /// build, also across creating and destroying bodies between steps.
 ///
 /// Every call taking a BodyId or ShapeId throws elan::Error (field "body" / "shape") for an id
@@ -169,7 +172,7 @@ class World {
   void set_substeps(int substeps);
   void set_iterations(int iterations);
   void set_broadphase(BroadphaseType type);
-  /// Changes the worker count (1 or more; 0 = all cores); the world then uses its own arena.
+  /// Changes the worker count (1 or more; 0 = all cores); the world then uses its own pool.
   void set_threads(int threads);
 
   /// Counts and times of the last step.
@@ -181,19 +184,17 @@ class World {
   Vec3 linear_momentum() const;   ///< kg m/s, dynamic bodies
   Vec3 angular_momentum() const;  ///< kg m^2/s, dynamic bodies, about the world origin
 
-  /// Internal state, for the engine's own tools, tests and benchmarks.
-  detail::WorldState& state() { return *state_; }
-  const detail::WorldState& state() const { return *state_; }
-
  private:
+  // The engine's own code reaches the state through detail::state_of (core/world/world_access.hpp).
+  friend struct detail::WorldAccess;
   std::unique_ptr<detail::WorldState> state_;
 };
 
-/// Steps several independent worlds by `dt` each, concurrently: a tbb::parallel_for over the
-/// worlds inside the caller's current arena, each world's own parallel loops nested in the same
-/// pool and its solver stages run by one thread (the worlds' own arenas are not used). Each world
-/// ends with the same bits as if stepped alone. Worlds must be distinct. Returns the OR of the
-/// worlds' StepStatus flags.
-uint32_t step_all(std::span<World* const> worlds, Real dt);
+/// Steps several independent worlds by `dt` each, concurrently: a parallel loop over the worlds
+/// in `pool` (without one, in the calling thread's current oneTBB arena: by default all cores),
+/// each world's own parallel loops nested in the same pool and its solver stages run by one
+/// thread (the worlds' own pools are not used). Each world ends with the same bits as if stepped
+/// alone. Worlds must be distinct. Returns the OR of the worlds' StepStatus flags.
+uint32_t step_all(std::span<World* const> worlds, Real dt, ThreadPool* pool = nullptr);
 
 }  // namespace elan

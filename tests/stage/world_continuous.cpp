@@ -4,11 +4,11 @@
 #include <gtest/gtest.h>
 
 #include "core/base/pair_key.hpp"
+#include "core/world/continuous.hpp"
 #include "narrowphase_test_shapes.hpp"
-#include "solver/continuous.hpp"
 
 namespace elan::detail {
-namespace solver_continuous_test {
+namespace world_continuous_test {
 
 // Body 0: a static wall 4 cm thick, faces at x = 0.98 and 1.02. Bodies 1..: spheres of 5 cm
 // radius at the origin, each in its own packet with the given step motion.
@@ -114,5 +114,5 @@ TEST(Continuous, EarliestWallWins) {
               Real(0.25) * kContinuousTarget);
 }
 
-}  // namespace solver_continuous_test
+}  // namespace world_continuous_test
 }  // namespace elan::detail

@@ -1,5 +1,5 @@
 // Continuous collision of fast bodies by time of impact.
-#include "solver/continuous.hpp"
+#include "core/world/continuous.hpp"
 
 #include <algorithm>
 #include <cmath>

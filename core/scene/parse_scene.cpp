@@ -1,0 +1,121 @@
+// Scene files: the top level of the schema (world settings, bodies, generators), read from text
+// or from a file.
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/scene/body_schema.hpp"
+#include "core/scene/generators.hpp"
+#include "core/scene/json_reader.hpp"
+#include "core/scene/schema_checks.hpp"
+#include "elan/scene.hpp"
+
+namespace elan {
+
+using namespace detail::scene_file;
+
+namespace {
+
+constexpr int kMaxSolverCount = 10'000;  // substeps, iterations
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& file_name) {
+  const Json root = parse_json(text, file_name);
+  const Ctx ctx{file_name, "", ""};
+  check_keys(
+      ctx, root,
+      {"gravity", "timestep", "substeps", "iterations", "allow_sleep", "bodies", "generators"}, "",
+      "the scene");
+  Scene scene;
+  if (const auto it = root.find("gravity"); it != root.end()) {
+    scene.world.gravity = to_vec3(ctx, *it, "gravity");
+  }
+  if (const auto it = root.find("timestep"); it != root.end()) {
+    scene.timestep = positive(ctx, *it, "timestep");
+  }
+  if (const auto it = root.find("substeps"); it != root.end()) {
+    scene.world.substeps = int(to_int(ctx, *it, "substeps", 1, kMaxSolverCount));
+    scene.has_substeps = true;
+  }
+  if (const auto it = root.find("iterations"); it != root.end()) {
+    scene.world.iterations = int(to_int(ctx, *it, "iterations", 1, kMaxSolverCount));
+    scene.has_iterations = true;
+  }
+  if (const auto it = root.find("allow_sleep"); it != root.end()) {
+    scene.world.allow_sleep = to_bool(ctx, *it, "allow_sleep");
+  }
+
+  static const Json kEmpty = Json::array();
+  const auto bodies_it = root.find("bodies");
+  const Json& bodies = bodies_it == root.end() ? kEmpty : *bodies_it;
+  if (!bodies.is_array()) fail(ctx, "bodies", "expected an array of bodies, got " + show(bodies));
+  const auto gens_it = root.find("generators");
+  const Json& gens = gens_it == root.end() ? kEmpty : *gens_it;
+  if (!gens.is_array()) fail(ctx, "generators", "expected an array, got " + show(gens));
+  if (bodies.size() > kMaxBodies) {
+    fail(ctx, "bodies", "too many bodies: at most " + std::to_string(kMaxBodies) + " are allowed");
+  }
+
+  // determinism: ordered map; only looked up, never iterated into results.
+  std::map<std::string, std::size_t> names;
+  scene.bodies.reserve(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Ctx body_ctx{file_name, body_where(i, ""), ""};
+    if (bodies[i].is_object()) {
+      const auto name = bodies[i].find("name");
+      if (name != bodies[i].end() && name->is_string()) {
+        body_ctx.where = body_where(i, name->get<std::string>());
+      }
+    }
+    SceneBody b = parse_body(body_ctx, bodies[i]);
+    if (!b.name.empty()) {
+      const auto [it, inserted] = names.emplace(b.name, i);
+      if (!inserted) {
+        fail(body_ctx, "name",
+             "duplicate name \"" + b.name + "\" (also body " + std::to_string(it->second) + ")");
+      }
+    }
+    scene.bodies.push_back(std::move(b));
+  }
+
+  std::vector<Generator> generators;
+  uint64_t total = bodies.size();
+  for (std::size_t i = 0; i < gens.size(); ++i) {
+    std::string where = "generator " + std::to_string(i);
+    if (gens[i].is_object()) {
+      const auto type = gens[i].find("type");
+      if (type != gens[i].end() && type->is_string()) {
+        where += " (" + type->get<std::string>() + ")";
+      }
+    }
+    const Ctx gen_ctx{file_name, where, ""};
+    generators.push_back(parse_generator(gen_ctx, gens[i]));
+    total += generators.back().bodies;
+    if (total > kMaxBodies) {
+      fail(gen_ctx, "",
+           "too many bodies: the scene would have " + std::to_string(total) + ", at most " +
+               std::to_string(kMaxBodies) + " are allowed");
+    }
+  }
+  scene.bodies.reserve(total);
+  for (const Generator& g : generators) expand(g, scene.bodies);
+  return scene;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open file: " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(path + ": cannot read file");
+  return parse_scene(text.str(), path);
+}
+
+}  // namespace elan
