@@ -36,7 +36,7 @@ TEST(MemoryUse, PartsAddUpToTheHeapTheWorldHolds) {
       "solver %zu api %zu\n",
       held, use.total(), use.bodies, use.shapes, use.broadphase, use.contacts, use.solver, use.api);
   EXPECT_GT(use.contacts, world.state().contacts.size() * sizeof(detail::ManifoldHead) +
-                              world.state().contact_tails.size() * sizeof(detail::ManifoldTail));
+                              world.state().contacts.tails().size() * sizeof(detail::ManifoldTail));
   EXPECT_GT(use.solver, 0u);
   EXPECT_GT(use.broadphase, world.state().pairs.size() * sizeof(uint64_t));
   if (test::kSanitized) {
@@ -93,10 +93,7 @@ TEST(MemoryUse, StepBuffersAreGivenBackWithinTheStep) {
     const detail::WorldState& w = world.state();
     auto kept = [&] {
       std::size_t bytes = detail::heap_bytes(w.solver.bundles) + detail::heap_bytes(w.solver.rows);
-      for (const auto& b : w.contact_blocks.contacts.added) bytes += detail::heap_bytes(b);
-      for (const auto& b : w.contact_blocks.tails.added) bytes += detail::heap_bytes(b);
-      for (const auto& b : w.contact_blocks.separated.added) bytes += detail::heap_bytes(b);
-      for (const auto& b : w.contact_blocks.apart_keys.added) bytes += detail::heap_bytes(b);
+      bytes += w.contacts.step_buffer_bytes();
       return bytes;
     };
     for (int i = 0; i < 120; ++i) {
