@@ -75,8 +75,11 @@ bool rolls(const Shape& s) {
 
 // `relative`: B's centre of mass minus A's, in A's frame, now.
 // On success `m` is the manifold carried along and `cache` holds the poses of now.
-bool reuse_manifold(const Manifold& old, PairCache& cache, const Transform& xa, const Transform& xb,
-                    const Vec3& relative, Manifold& m) {
+// perf: inline in the pair loop (the path of most of a resting pile's pairs), where its
+// rotations share the loop's.
+[[gnu::always_inline]] inline bool reuse_manifold(const Manifold& old, PairCache& cache,
+                                                  const Transform& xa, const Transform& xb,
+                                                  const Vec3& relative, Manifold& m) {
   if ((relative - cache.exact_position).squaredNorm() > kCacheDistance * kCacheDistance) {
     return false;
   }
@@ -139,6 +142,28 @@ Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& 
   const Real in_b = (q.conjugate() * p - q0.conjugate() * p0).norm() + step +
                     PackedRotation::kError * (p0.norm() + step) + chord * a.bounding_radius;
   return s.kind() == Separation::Kind::FaceOfB ? in_b : std::min(in_a, in_b);
+}
+
+// Whether the separation cache's entry `kept` proves the pair still apart: the exact test would
+// reject it again, so skipping it gives the same bits. `relative` and `rotation`: B's centre and
+// rotation relative to A's now; `speculative`: the exact test's distance.
+// perf: inline in the pair loop, as reuse_manifold.
+[[gnu::always_inline]] inline bool still_apart(const SeparatedPair& kept, const Shape& shape_a,
+                                               const Transform& xa, const Shape& shape_b,
+                                               const Transform& xb, const Vec3& relative,
+                                               const Quat& rotation, Real speculative,
+                                               PolyhedronCache& polyhedron_cache) {
+  if (kept.kind() == Separation::Kind::EdgePair) {
+    // The SAT would find this axis again, and reject the pair on it or earlier.
+    return edge_pair_separates(shape_a, xa, shape_b, xb, kept.edge_a(), kept.edge_b(), speculative,
+                               polyhedron_cache);
+  }
+  const Real slack = kSeparationSlack +
+                     kSeparationSlackPerMetre *
+                         (xa.position.cwiseAbs().maxCoeff() + xb.position.cwiseAbs().maxCoeff());
+  const Real step = SeparatedPair::position_step(shape_a, shape_b);
+  return closing(kept, relative, rotation, shape_a, shape_b, step) <
+         kept.gap() - speculative - slack;
 }
 
 // The separation cache's entry for a pair the exact test found apart: what its rejection
@@ -204,21 +229,10 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
           (bodies.linear_velocity(a) - bodies.linear_velocity(b)).norm() * settings.dt;
       const Real speculative = settings.speculative_distance + approach;
       const Quat rotation = xa.rotation.conjugate() * xb.rotation;
-      const SeparatedPair* kept = apart.separated;
-      if (kept != nullptr && kept->kind() == Separation::Kind::EdgePair) {
-        if (edge_pair_separates(shape_a, xa, shape_b, xb, kept->edge_a(), kept->edge_b(),
-                                speculative, polyhedron_cache)) {
-          continue;  // the SAT would find this axis again, and reject the pair on it or earlier
-        }
-      } else if (kept != nullptr) {
-        const Real slack =
-            kSeparationSlack + kSeparationSlackPerMetre * (xa.position.cwiseAbs().maxCoeff() +
-                                                           xb.position.cwiseAbs().maxCoeff());
-        const Real step = SeparatedPair::position_step(shape_a, shape_b);
-        if (closing(*kept, relative, rotation, shape_a, shape_b, step) <
-            kept->gap() - speculative - slack) {
-          continue;  // still apart: the exact test would reject it again
-        }
+      if (apart.separated != nullptr &&
+          still_apart(*apart.separated, shape_a, xa, shape_b, xb, relative, rotation, speculative,
+                      polyhedron_cache)) {
+        continue;
       }
       // Run the exact test.
       collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation);

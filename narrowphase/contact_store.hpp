@@ -323,20 +323,7 @@ class ContactStore::Block {
   // This step's manifold `m` (with points) of a pair whose last entries are `old`: its head, and
   // its tail if it has more than one point, rewritten in place or added.
   void file_manifold(const Manifold& m, const Touching& old) {
-    if (old.head == nullptr) {
-      added_head_.push_back(head_of(m));
-    } else {
-      store_head(m, *old.head);
-    }
-    if (m.point_count > 1) {
-      if (old.tail == nullptr) {
-        added_tail_.push_back(tail_of(m));
-      } else {
-        store_tail(m, *old.tail);
-      }
-    } else if (old.tail != nullptr) {
-      end_beside(*old.tail, dead_tail_);
-    }
+    dead_tail_ += file_manifold_entries(m, old, added_head_, added_tail_);
   }
   // The poses of a touching pair after its exact test: `cache`, or none (null: it may not reuse
   // its points). Its apart entries, `apart`, end: it touches.
@@ -411,6 +398,29 @@ class ContactStore::Block {
   void end_key(uint64_t& apart_key) {
     apart_key = kEndedKey;
     ++dead_key_;
+  }
+  // file_manifold's filing; returns the tails that ended (0 or 1). perf: static, and taking the
+  // buffers alone, so that where the compiler keeps it out of line the walk's cursors need not
+  // leave the registers.
+  static unsigned file_manifold_entries(const Manifold& m, const Touching& old,
+                                        ScratchVector<ManifoldHead>& added_head,
+                                        ScratchVector<ManifoldTail>& added_tail) {
+    if (old.head == nullptr) {
+      added_head.push_back(head_of(m));
+    } else {
+      store_head(m, *old.head);
+    }
+    if (m.point_count > 1) {
+      if (old.tail == nullptr) {
+        added_tail.push_back(tail_of(m));
+      } else {
+        store_tail(m, *old.tail);
+      }
+      return 0;
+    }
+    if (old.tail == nullptr) return 0;
+    old.tail->key = kEndedKey;
+    return 1;
   }
   // file_apart's filing; returns the entries that ended: 1 for the separated one, 2 for the key.
   // perf: out of line, off the path of the touching pairs, so that the collide stage's pair loop
