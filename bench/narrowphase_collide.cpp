@@ -133,27 +133,19 @@ void BM_CollidePairsPile(benchmark::State& state) {
   const Layout l = make_layout(20, 10);  // 4000 bodies, like scenes/pile4k.json
   tbb::task_arena arena(int(state.range(0)));
   CollideSettings settings;
-  CollideScratch slots;
-  std::vector<ManifoldHead> out;
-  std::vector<ManifoldTail> tails;
-  ApartPairs apart;
-  std::vector<PairCache> poses;
-  arena.execute([&] {
-    collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, slots, out, tails, apart, poses);
-  });
+  ContactStore contacts;
+  arena.execute([&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, contacts); });
   for (auto _ : state) {
     // The poses stay, so each pass updates the list the pass before left, as a step would. The
     // separation cache starts empty each pass: with poses that stay it would skip every pair
     // apart, and this measures the exact tests.
-    apart.clear();
-    arena.execute([&] {
-      collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, slots, out, tails, apart, poses);
-    });
+    contacts.clear_apart();
+    arena.execute([&] { collide_pairs(l.pairs, l.bodies, l.shapes, settings, {}, contacts); });
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(l.pairs.size()));
   state.counters["pairs"] = double(l.pairs.size());
-  state.counters["contacts"] = double(out.size());
+  state.counters["contacts"] = double(contacts.size());
 }
 BENCHMARK(BM_CollidePairsPile)
     ->Arg(1)

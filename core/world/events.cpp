@@ -13,7 +13,8 @@ namespace elan::detail {
 namespace {
 constexpr std::size_t kFilterGrain = 1024;
 
-ContactBeginEvent begin_event(const WorldState& w, const Manifold& m) {
+// `start`: the bodies at the step's start, whose poses the manifold's points were computed at.
+ContactBeginEvent begin_event(const WorldState& w, const BodyStore& start, const Manifold& m) {
   assert(m.point_count > 0);
   ContactBeginEvent e;
   e.body_a = body_id_at(w, m.body_a);
@@ -24,7 +25,7 @@ ContactBeginEvent begin_event(const WorldState& w, const Manifold& m) {
     sum += m.points[k].anchor_a;
     e.normal_impulse += m.points[k].normal_impulse;
   }
-  e.point = w.bodies.position(m.body_a) + sum / Real(m.point_count);
+  e.point = start.position(m.body_a) + sum / Real(m.point_count);
   return e;
 }
 }  // namespace
@@ -50,7 +51,7 @@ void filter_pairs(WorldState& w) {
   w.pairs.resize(kept);
 }
 
-void compute_contact_events(WorldState& w) {
+void compute_contact_events(WorldState& w, const BodyStore& start) {
   std::vector<ContactBeginEvent>& begins = w.api.begin_events;
   std::vector<ContactEndEvent>& ends = w.api.end_events;
   begins.clear();
@@ -58,11 +59,11 @@ void compute_contact_events(WorldState& w) {
   // determinism: both lists are in pair-key order, so the events are too (rule 4). perf: each
   // began key is looked up, not merged along the whole list: a settled pile of 27k manifolds
   // begins and ends a few dozen a step.
-  const std::vector<ManifoldHead>& contacts = w.contacts;
-  const std::vector<ManifoldTail>& tails = w.contact_tails;
+  const std::span<const ManifoldHead> contacts = w.contacts.heads();
+  const std::span<const ManifoldTail> tails = w.contacts.tails();
   auto next = contacts.begin();
   auto next_tail = tails.begin();
-  for (const uint64_t key : w.contact_blocks.began) {
+  for (const uint64_t key : w.contacts.began()) {
     next = std::lower_bound(next, contacts.end(), key,
                             [](const ManifoldHead& m, uint64_t k) { return m.key() < k; });
     assert(next != contacts.end() && next->key() == key && "a began key is in the list");
@@ -73,9 +74,9 @@ void compute_contact_events(WorldState& w) {
       assert(next_tail != tails.end() && next_tail->key == key && "its tail is in the list");
       tail = &*next_tail;
     }
-    begins.push_back(begin_event(w, whole(*next, tail)));
+    begins.push_back(begin_event(w, start, whole(*next, tail)));
   }
-  for (const ContactRecord& r : w.contact_blocks.ended) {
+  for (const ContactRecord& r : w.contacts.ended()) {
     ends.push_back({body_id_at(w, r.body_a), body_id_at(w, r.body_b)});
   }
   trim_spike(begins, w.api.begin_trim);

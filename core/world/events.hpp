@@ -17,9 +17,10 @@ inline BodyId body_id_at(const WorldState& w, uint32_t i) {
 void filter_pairs(WorldState& w);
 
 // Fills w.api.begin_events / end_events (cleared first) from the manifolds the collide stage
-// started and ended (w.contact_blocks.began, .ended): a manifold holds points, so a pair touches
-// while its key is in w.contacts. Call after the solve, before the body columns are updated
-// (event points use the step's start pose).
-void compute_contact_events(WorldState& w);
+// started and ended (w.contacts.began(), .ended()): a manifold holds points, so a pair touches
+// while its key is in w.contacts. Reads the impulses the solve left in the manifolds, and
+// `start`: the bodies' poses at the step's start, which the manifolds' points are measured
+// from (an event's point is A's centre there plus the mean of A's arms).
+void compute_contact_events(WorldState& w, const BodyStore& start);
 
 }  // namespace elan::detail

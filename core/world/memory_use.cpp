@@ -41,12 +41,7 @@ MemoryUse memory_use(const WorldState& w) {
   m.broadphase = bounds_bytes(w.bounds) + heap_bytes(w.broad_kind) + heap_bytes(w.is_plane) +
                  heap_bytes(w.idle) + w.all_pairs.heap_bytes() + w.sap.heap_bytes();
 
-  m.contacts = heap_bytes(w.contacts) + heap_bytes(w.contact_tails) + heap_bytes(w.pair_cache) +
-               heap_bytes(w.apart.separated) + heap_bytes(w.apart.keys) +
-               w.contact_blocks.contacts.heap_bytes() + w.contact_blocks.tails.heap_bytes() +
-               w.contact_blocks.separated.heap_bytes() + w.contact_blocks.apart_keys.heap_bytes() +
-               w.contact_blocks.cached.heap_bytes() + heap_bytes(w.contact_blocks.ended) +
-               heap_bytes(w.contact_blocks.began);
+  m.contacts = w.contacts.heap_bytes();
 
   const SolverState& v = w.solver;
   m.solver = heap_bytes(v.packet_of) + heap_bytes(v.simulated) + heap_bytes(v.side) +

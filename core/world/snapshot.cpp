@@ -230,13 +230,11 @@ ContactPoint read_point(ByteReader& r) {
 
 // The manifold's friction impulses, carried to the next step like the normal impulses, and the
 // poses its points were computed at if it may reuse them (they decide whether the next step
-// does). `cursor` walks the pair cache alongside the manifolds (detail::find_beside).
-void write_friction(ByteWriter& w, const Manifold& m, std::span<const PairCache> poses,
-                    std::size_t& cursor) {
+// does): `cache`, null if it keeps none.
+void write_friction(ByteWriter& w, const Manifold& m, const PairCache* cache) {
   w.real(m.tangent_impulse[0]);
   w.real(m.tangent_impulse[1]);
   w.real(m.twist_impulse);
-  const PairCache* cache = detail::find_beside(poses, cursor, m.key());
   w.u8(cache != nullptr ? 1 : 0);
   if (cache == nullptr) return;
   write_quat(w, cache->orientation_a);
@@ -246,15 +244,14 @@ void write_friction(ByteWriter& w, const Manifold& m, std::span<const PairCache>
   for (uint8_t byte : cache->exact_rotation.bytes) w.u8(byte);
 }
 
-// Reads what write_friction wrote; the manifold's poses, if it has them, are appended to `cache`.
-void read_friction(ByteReader& r, Manifold& m, std::vector<PairCache>* cache) {
+// Reads what write_friction wrote. Returns whether the manifold has poses, then in `c`.
+bool read_friction(ByteReader& r, Manifold& m, PairCache& c) {
   m.tangent_impulse[0] = r.real();
   m.tangent_impulse[1] = r.real();
   m.twist_impulse = r.real();
   const uint8_t cached = r.u8();
   if (cached > 1) r.fail("bad manifold pair cache flag");
-  if (cached == 0) return;
-  PairCache c;
+  if (cached == 0) return false;
   c.key = m.key();
   c.orientation_a = read_quat(r);
   c.orientation_b = read_quat(r);
@@ -262,7 +259,7 @@ void read_friction(ByteReader& r, Manifold& m, std::vector<PairCache>* cache) {
   c.exact_position = r.vec3();
   for (uint8_t& byte : c.exact_rotation.bytes) byte = r.u8();
   if (!c.exact_rotation.valid()) r.fail("manifold exact rotation is not a packed rotation");
-  if (cache != nullptr) cache->push_back(c);
+  return true;
 }
 
 // Everything a snapshot holds, decoded and checked before any of it reaches a world.
@@ -403,7 +400,8 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
     m.body_b = b;
     m.point_count = point_count;
     for (ContactPoint& p : m.points) p = read_point(r);
-    read_friction(r, m, &d.pair_cache);
+    PairCache c;
+    if (read_friction(r, m, c)) d.pair_cache.push_back(c);
   }
   if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
   return d;
@@ -434,10 +432,7 @@ void commit(WorldState& s, Decoded&& d) {
   s.slot_index = std::move(d.slot_index);
   s.slot_generation = std::move(d.slot_generation);
   s.free_slots = std::move(d.free_slots);
-  detail::split_list(d.contacts, s.contacts, s.contact_tails);
-  s.pair_cache = std::move(d.pair_cache);
-  s.apart.clear();
-  s.contact_blocks = {};
+  s.contacts.restore(d.contacts, d.pair_cache);
   s.pairs.clear();
   s.sap = detail::SweepAndPrune{};
   s.all_pairs = detail::AllPairs{};
@@ -498,11 +493,7 @@ void read_rollback(ByteReader& r, WorldState& s) {
     }
   }
   const uint32_t count = r.count(8 + 1 + 6 * sizeof(Real) + 2, "manifold");
-  if constexpr (Apply) {
-    s.contacts.resize(count);
-    s.contact_tails.clear();
-    s.pair_cache.clear();
-  }
+  if constexpr (Apply) s.contacts.begin_restore(count);
   uint64_t previous_key = 0;
   for (uint32_t k = 0; k < count; ++k) {
     Manifold m;
@@ -519,11 +510,9 @@ void read_rollback(ByteReader& r, WorldState& s) {
     m.point_count = point_count;
     previous_key = key;
     for (int p = 0; p < m.point_count; ++p) m.points[p] = read_point(r);
-    read_friction(r, m, Apply ? &s.pair_cache : nullptr);
-    if constexpr (Apply) {
-      s.contacts[k] = detail::head_of(m);
-      if (m.point_count > 1) s.contact_tails.push_back(detail::tail_of(m));
-    }
+    PairCache c;
+    const bool cached = read_friction(r, m, c);
+    if constexpr (Apply) s.contacts.restore_manifold(k, m, cached ? &c : nullptr);
   }
   if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
 }
@@ -594,17 +583,15 @@ std::vector<uint8_t> save_snapshot(const World& world) {
   for (uint32_t v : s.free_slots) w.u32(v);
 
   w.u32(uint32_t(s.contacts.size()));
-  std::size_t cache = 0, tail = 0;
-  for (const ManifoldHead& head : s.contacts) {
-    const Manifold m = detail::whole_at(head, s.contact_tails, tail);
+  s.contacts.for_each_manifold([&](const Manifold& m, const PairCache* cache) {
     w.u64(m.key());
     w.u32(m.body_a);
     w.u32(m.body_b);
     w.vec3(m.normal);
     w.u8(uint8_t(m.point_count));
     for (const ContactPoint& p : m.points) write_point(w, p);
-    write_friction(w, m, s.pair_cache, cache);
-  }
+    write_friction(w, m, cache);
+  });
   seal(out);
   return out;
 }
@@ -641,16 +628,14 @@ void save_rollback(const World& world, std::vector<uint8_t>& out) {
     w.u8(b.flags[i]);
   }
   w.u32(uint32_t(s.contacts.size()));
-  std::size_t cache = 0, tail = 0;
-  for (const ManifoldHead& head : s.contacts) {
-    const Manifold m = detail::whole_at(head, s.contact_tails, tail);
+  s.contacts.for_each_manifold([&](const Manifold& m, const PairCache* cache) {
     w.u64(m.key());
     w.u8(m.body_a > m.body_b ? 1 : 0);
     w.vec3(m.normal);
     w.u8(uint8_t(m.point_count));
     for (int p = 0; p < m.point_count; ++p) write_point(w, m.points[p]);
-    write_friction(w, m, s.pair_cache, cache);
-  }
+    write_friction(w, m, cache);
+  });
   seal(out);
 }
 
@@ -668,7 +653,6 @@ void restore_rollback(World& world, std::span<const uint8_t> bytes) {
   read_rollback<false>(check, s);
   ByteReader apply(payload, "rollback");
   read_rollback<true>(apply, s);
-  s.apart.clear();
   forget_api_caches(s);
 }
 

@@ -74,8 +74,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   collide_settings.speculative_distance = kSpeculativeDistance;
   collide_settings.dt = dt;
   // The same phase of the scratch as the sweep's: the pair list is held through both.
-  collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.idle, w.contact_blocks, w.contacts,
-                w.contact_tails, w.apart, w.pair_cache, &w.scratch);
+  collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.idle, w.contacts, &w.scratch);
   stats.pairs = w.pairs.size();
   release(w.pairs);
   const auto t3 = clock::now();
@@ -89,13 +88,15 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve_settings.participants = w.threads;
   SolveStats solve_stats;
   w.scratch.begin_phase();
-  prepare_solve(bodies, w.contacts, w.contact_tails, solve_settings, w.solver, solve_stats,
-                w.scratch);
+  prepare_solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver,
+                solve_stats, w.scratch);
   const auto t4 = clock::now();
-  solve(bodies, w.contacts, w.contact_tails, solve_settings, w.solver);
-  compute_contact_events(w);
+  solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
+  // The body columns still hold the step's start poses: finalize_bodies writes the new ones.
+  compute_contact_events(w, bodies);
   const auto t5 = clock::now();
-  solve_continuous(bodies, w.shapes, w.apart.separated, w.apart.keys, w.solver);
+  const ApartCandidates candidates = w.contacts.continuous_candidates();
+  solve_continuous(bodies, w.shapes, candidates.separated, candidates.keys, w.solver);
   const auto t6 = clock::now();
   const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   const auto t7 = clock::now();

@@ -39,26 +39,6 @@ int resolve_threads(int threads) {
   return threads > 0 ? threads : std::max(1, tbb::info::default_concurrency());
 }
 
-// A list kept beside the contact list, by key (manifold tails, pair cache poses), after body i
-// is destroyed and the last body takes its index: its entries of i dropped, the last body's
-// renamed, and the list sorted again if `resort` (some were).
-template <class T>
-void rename_beside(std::vector<T>& list, uint32_t i, uint32_t last, bool resort) {
-  std::size_t kept = 0;
-  for (T entry : list) {
-    uint32_t a = detail::pair_first(entry.key), b = detail::pair_second(entry.key);
-    if (a == i || b == i) continue;
-    if (a == last) a = i;
-    if (b == last) b = i;
-    entry.key = detail::make_pair_key(a, b);
-    list[kept++] = entry;
-  }
-  list.resize(kept);
-  if (resort) {
-    std::sort(list.begin(), list.end(), [](const T& x, const T& y) { return x.key < y.key; });
-  }
-}
-
 }  // namespace
 
 World::World(const WorldDef& def) : state_(std::make_unique<WorldState>()) {
@@ -185,42 +165,15 @@ void World::destroy_body(BodyId id) {
   const uint32_t i = uint32_t(index_of(s, id));
   const uint32_t last = uint32_t(s.bodies.size() - 1);
   // Contacts: drop the body's own (an end event for each touching one, partners woken); the
-  // last body takes index i, so its manifolds get new keys and the list is re-sorted by key.
-  std::vector<detail::ManifoldHead>& contacts = s.contacts;
-  std::size_t kept = 0;
-  bool resort = false;
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    detail::ManifoldHead m = contacts[k];
-    if (m.body_a == i || m.body_b == i) {
-      if (m.point_count > 0) {
-        s.api.end_events.push_back(
-            {detail::body_id_at(s, m.body_a), detail::body_id_at(s, m.body_b)});
-      }
-      const uint32_t other = m.body_a == i ? m.body_b : m.body_a;
-      if (s.bodies.is_dynamic(other)) detail::wake_index(s, other);
-      continue;
+  // last body takes index i, so the store renames its manifolds.
+  s.contacts.remove_body(i, last, [&](const detail::ManifoldHead& m) {
+    if (m.point_count > 0) {
+      s.api.end_events.push_back(
+          {detail::body_id_at(s, m.body_a), detail::body_id_at(s, m.body_b)});
     }
-    if (i != last && (m.body_a == last || m.body_b == last)) {
-      if (m.body_a == last) m.body_a = i;
-      if (m.body_b == last) m.body_b = i;
-      resort = true;
-    }
-    contacts[kept++] = m;
-  }
-  contacts.resize(kept);
-  // The manifolds' tails and body pair cache poses go with them: the same keys, dropped and
-  // renamed alike (the poses are A's and B's, which keep their roles).
-  rename_beside(s.contact_tails, i, last, resort);
-  rename_beside(s.pair_cache, i, last, resort);
-  // The separation cache names bodies by index too; it is only a cache, so it starts over.
-  s.apart.clear();
-  if (resort) {
-    // determinism: keys are unique, so the sorted order is a function of the keys alone.
-    std::sort(contacts.begin(), contacts.end(),
-              [](const detail::ManifoldHead& x, const detail::ManifoldHead& y) {
-                return x.key() < y.key();
-              });
-  }
+    const uint32_t other = m.body_a == i ? m.body_b : m.body_a;
+    if (s.bodies.is_dynamic(other)) detail::wake_index(s, other);
+  });
   // The sweep-and-prune's kept order is a permutation of 0..n-1 re-sorted every update (a full
   // sort when the count changes), and its output is canonical, so it needs no fix-up.
   s.bodies.swap_remove(i);

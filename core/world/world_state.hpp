@@ -58,17 +58,9 @@ struct WorldState {
   // between steps was 56 B a body on pile10k.
   ScratchVector<uint64_t> pairs;
 
-  // Contacts, sorted by key: the one list, which collide_pairs reads as last step's and rewrites,
-  // of each manifold's head; the tails of those with more than one point and the poses of the body
-  // pair cache of those that may reuse their points (kept with them); the pairs found apart, with
-  // what proves them apart or by key alone (a cache: cleared when bodies are removed or the world
-  // restored); the
-  // collide stage's per-block buffers, and what it changed in the list (the contact events).
-  std::vector<ManifoldHead> contacts;
-  std::vector<ManifoldTail> contact_tails;
-  std::vector<PairCache> pair_cache;
-  ApartPairs apart;
-  CollideScratch contact_blocks;
+  // Contacts kept from step to step (manifolds, the body pair cache, the separation cache),
+  // which the collide stage rewrites, with what it changed (the contact events).
+  ContactStore contacts;
 
   SolverState solver;
   ApiState api;

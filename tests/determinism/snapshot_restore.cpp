@@ -39,7 +39,7 @@ const Reference& reference() {
     for (int s = 0; s < kSaveAt; ++s) world.step(test::kSnapshotDt);
     r.snapshot = save_snapshot(world);
     r.asleep_at_save = asleep(world);
-    for (const detail::ManifoldHead& m : detail::state_of(world).contacts) {
+    for (const detail::ManifoldHead& m : detail::state_of(world).contacts.heads()) {
       r.contacts_with_impulse += m.point_count > 0 && m.first.normal_impulse != 0;
     }
     const BodyId stack_bottom = world.body_at(world.body_count() - 4);

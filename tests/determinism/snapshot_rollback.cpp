@@ -56,12 +56,12 @@ TEST(Rollback, SizeIsEightyOneBytesPerMovingBodyPlusContacts) {
   std::size_t moving = 0;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) moving += !s.bodies.is_static(i);
   std::size_t contact_bytes = 4;
-  for (const detail::ManifoldHead& m : s.contacts) {
+  for (const detail::ManifoldHead& m : s.contacts.heads()) {
     contact_bytes += 8 + 1 + 6 * sizeof(Real) + 1 + m.point_count * (5 * sizeof(Real) + 4) + 1;
   }
   // The pair cache's rotations and offsets, for the manifolds that have them.
-  contact_bytes += s.pair_cache.size() * (14 * sizeof(Real) + 7);
-  ASSERT_GT(s.pair_cache.size(), 0u);
+  contact_bytes += s.contacts.pair_cache().size() * (14 * sizeof(Real) + 7);
+  ASSERT_GT(s.contacts.pair_cache().size(), 0u);
   const std::size_t per_body = 20 * sizeof(Real) + 1;
   // Header 16, body count 4, fingerprint 8, step count 8, checksum 8.
   EXPECT_EQ(saved.size(), 44 + moving * per_body + contact_bytes);

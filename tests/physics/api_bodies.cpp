@@ -114,11 +114,11 @@ TEST(WorldApi, DestroyingATouchingBodyDropsItsContactsWithEndEvents) {
   // keep their poses).
   const detail::WorldState& s = detail::state_of(w);
   ASSERT_EQ(s.contacts.size(), 1u);
-  ASSERT_EQ(s.contacts[0].point_count, 4u);
-  ASSERT_EQ(s.contact_tails.size(), 1u);
-  EXPECT_EQ(s.contact_tails[0].key, s.contacts[0].key());
-  ASSERT_EQ(s.pair_cache.size(), 1u);
-  EXPECT_EQ(s.pair_cache[0].key, s.contacts[0].key());
+  ASSERT_EQ(s.contacts.heads()[0].point_count, 4u);
+  ASSERT_EQ(s.contacts.tails().size(), 1u);
+  EXPECT_EQ(s.contacts.tails()[0].key, s.contacts.heads()[0].key());
+  ASSERT_EQ(s.contacts.pair_cache().size(), 1u);
+  EXPECT_EQ(s.contacts.pair_cache()[0].key, s.contacts.heads()[0].key());
   // `high` now falls 1 m onto the floor; `other` keeps resting on it; nothing refers to `low`.
   for (int k = 0; k < 60; ++k) w.step(kDt);
   EXPECT_NEAR(w.position(high).y(), 0.5, 0.02);

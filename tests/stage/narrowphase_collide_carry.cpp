@@ -59,17 +59,11 @@ Manifold old_manifold(const Scene& s, uint32_t a, uint32_t b, Real tag, int poin
 std::vector<Manifold> run(const Scene& s, std::vector<uint64_t> pairs,
                           const std::vector<Manifold>& previous, int threads = 1) {
   std::sort(pairs.begin(), pairs.end());
-  CollideScratch scratch;
-  std::vector<ManifoldHead> heads;
-  std::vector<ManifoldTail> tails;
-  split_list(previous, heads, tails);
-  ApartPairs apart;
-  std::vector<PairCache> poses;
-  tbb::task_arena(threads).execute([&] {
-    collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, scratch, heads, tails,
-                  apart, poses);
-  });
-  return whole_list(heads, tails);
+  ContactStore store;
+  store.restore(previous, {});
+  tbb::task_arena(threads).execute(
+      [&] { collide_pairs(pairs, s.bodies, s.shapes, CollideSettings{}, s.idle, store); });
+  return store.manifolds();
 }
 
 TEST(CollideCarry, MergesTheIdleOnesInKeyOrder) {

@@ -60,16 +60,29 @@ Pile make_pile(int n, uint32_t seed) {
   return p;
 }
 
-// collide_pairs on a list of whole manifolds: split into the heads and tails it keeps, and made
-// whole again after.
+// The separation cache's two lists, held by a test between calls.
+struct ApartPairs {
+  std::vector<SeparatedPair> separated;
+  std::vector<uint64_t> keys;
+
+  void clear() {
+    separated.clear();
+    keys.clear();
+  }
+};
+
+// collide_pairs on a list of whole manifolds, their poses and the separation cache: the store
+// rebuilt from them, and they read back after.
 void collide_list(std::span<const uint64_t> pairs, const Pile& p, const CollideSettings& settings,
-                  std::span<const uint8_t> idle, CollideScratch& slots, std::vector<Manifold>& list,
+                  std::span<const uint8_t> idle, ContactStore& store, std::vector<Manifold>& list,
                   ApartPairs& apart, std::vector<PairCache>& poses) {
-  std::vector<ManifoldHead> heads;
-  std::vector<ManifoldTail> tails;
-  split_list(list, heads, tails);
-  collide_pairs(pairs, p.bodies, p.shapes, settings, idle, slots, heads, tails, apart, poses);
-  list = whole_list(heads, tails);
+  store.restore(list, poses, apart.separated, apart.keys);
+  collide_pairs(pairs, p.bodies, p.shapes, settings, idle, store);
+  list = store.manifolds();
+  poses.assign(store.pair_cache().begin(), store.pair_cache().end());
+  const ApartCandidates apart_now = store.continuous_candidates();
+  apart.separated.assign(apart_now.separated.begin(), apart_now.separated.end());
+  apart.keys.assign(apart_now.keys.begin(), apart_now.keys.end());
 }
 
 void expect_identical(const std::vector<Manifold>& x, const std::vector<Manifold>& y) {
@@ -93,7 +106,7 @@ TEST(CollidePairs, BitIdenticalUnderOneAndTwoThreads) {
   const Pile p = make_pile(300, 7);
   ASSERT_GT(p.pairs.size(), 256u) << "enough pairs for several blocks";
   CollideSettings settings;
-  CollideScratch slots1, slots2;
+  ContactStore slots1, slots2;
   ApartPairs apart1, apart2;
   std::vector<PairCache> poses1, poses2;
   std::vector<Manifold> out1, out2;
@@ -139,7 +152,7 @@ Real deepest(const Manifold& m) {
 TEST(CollidePairs, CarriedManifoldsAgreeWithTheExactTest) {
   Pile p = make_pile(200, 5);
   CollideSettings settings;
-  CollideScratch slots;
+  ContactStore slots;
   ApartPairs apart;
   std::vector<PairCache> carried_poses, exact_poses;
   std::vector<Manifold> carried, exact;
@@ -168,7 +181,7 @@ TEST(CollidePairs, CarriedManifoldsAgreeWithTheExactTest) {
 TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
   Pile p = make_pile(200, 11);
   CollideSettings settings;
-  CollideScratch slots;
+  ContactStore slots;
   ApartPairs apart;
   std::vector<PairCache> poses;
   std::vector<Manifold> first, second;
@@ -242,7 +255,7 @@ TEST(CollidePairs, WarmStartCopiesImpulsesByFeatureId) {
 TEST(CollidePairs, InPlaceUpdateGivesEveryTouchingPairWhateverTheListHeld) {
   const Pile p = make_pile(400, 3);
   CollideSettings settings;
-  CollideScratch slots;
+  ContactStore slots;
   ApartPairs apart;
   std::vector<PairCache> poses;
   std::vector<Manifold> fresh;
@@ -297,7 +310,7 @@ TEST(CollidePairs, InPlaceUpdateGivesEveryTouchingPairWhateverTheListHeld) {
 TEST(CollidePairs, SeparationCacheGivesTheBitsOfTheExactTests) {
   Pile p = make_pile(300, 21);
   CollideSettings settings;
-  CollideScratch slots_cached, slots_exact;
+  ContactStore slots_cached, slots_exact;
   std::vector<Manifold> cached, exact;
   ApartPairs apart, none;
   std::vector<PairCache> cached_poses, exact_poses;
@@ -457,15 +470,15 @@ TEST(SeparatedPair, CodesErrOnTheSideClosingAccountsFor) {
 TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
   Pile p = make_pile(200, 17);
   CollideSettings settings;
-  CollideScratch slots;
+  ContactStore slots;
   ApartPairs apart;
   std::vector<PairCache> poses;
   std::vector<Manifold> list;
   collide_list(p.pairs, p, settings, {}, slots, list, apart, poses);
   ASSERT_GT(list.size(), 100u);
-  EXPECT_TRUE(slots.ended.empty());
-  ASSERT_EQ(slots.began.size(), list.size());
-  for (std::size_t i = 0; i < list.size(); ++i) EXPECT_EQ(slots.began[i], list[i].key());
+  EXPECT_TRUE(slots.ended().empty());
+  ASSERT_EQ(slots.began().size(), list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) EXPECT_EQ(slots.began()[i], list[i].key());
 
   // Every third pair dropped and every fourth body moved: some contacts end, others begin.
   const std::vector<Manifold> before = list;
@@ -492,12 +505,12 @@ TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
   for (; j < list.size(); ++j) began.push_back(list[j].key());
   ASSERT_GT(ended.size(), 10u);
   ASSERT_GT(began.size(), 0u);
-  ASSERT_EQ(slots.ended.size(), ended.size());
+  ASSERT_EQ(slots.ended().size(), ended.size());
   for (std::size_t i = 0; i < ended.size(); ++i) {
-    EXPECT_EQ(slots.ended[i].body_a, ended[i].body_a);
-    EXPECT_EQ(slots.ended[i].body_b, ended[i].body_b);
+    EXPECT_EQ(slots.ended()[i].body_a, ended[i].body_a);
+    EXPECT_EQ(slots.ended()[i].body_b, ended[i].body_b);
   }
-  EXPECT_EQ(slots.began, began);
+  EXPECT_EQ(std::vector<uint64_t>(slots.began().begin(), slots.began().end()), began);
 }
 
 // The lists beside the heads hold the tails of exactly the manifolds with more than one point
@@ -508,7 +521,7 @@ TEST(CollidePairs, ReportsTheManifoldsThatEndedAndTheKeysThatBegan) {
 TEST(CollidePairs, KeepsTheTailsAndPosesOfExactlyTheManifoldsThatHaveThem) {
   Pile p = make_pile(300, 23);
   CollideSettings settings;
-  CollideScratch slots;
+  ContactStore slots;
   ApartPairs apart;
   std::vector<PairCache> poses;
   std::vector<ManifoldHead> list;
@@ -530,9 +543,11 @@ TEST(CollidePairs, KeepsTheTailsAndPosesOfExactlyTheManifoldsThatHaveThem) {
       if (!(step > 0 && idle[pair_first(key)] && idle[pair_second(key)])) pairs.push_back(key);
     }
     const std::size_t tails_before = tails.size();
-    tbb::task_arena(2).execute([&] {
-      collide_pairs(pairs, p.bodies, p.shapes, settings, idle, slots, list, tails, apart, poses);
-    });
+    tbb::task_arena(2).execute(
+        [&] { collide_pairs(pairs, p.bodies, p.shapes, settings, idle, slots); });
+    list.assign(slots.heads().begin(), slots.heads().end());
+    tails.assign(slots.tails().begin(), slots.tails().end());
+    poses.assign(slots.pair_cache().begin(), slots.pair_cache().end());
     std::vector<uint64_t> expected, expected_tails;
     for (const ManifoldHead& m : list) {
       if (!round(m.body_a) && !round(m.body_b)) expected.push_back(m.key());

@@ -37,7 +37,7 @@ TEST(MemoryUse, PartsAddUpToTheHeapTheWorldHolds) {
       held, use.total(), use.bodies, use.shapes, use.broadphase, use.contacts, use.solver, use.api);
   EXPECT_GT(use.contacts,
             detail::state_of(world).contacts.size() * sizeof(detail::ManifoldHead) +
-                detail::state_of(world).contact_tails.size() * sizeof(detail::ManifoldTail));
+                detail::state_of(world).contacts.tails().size() * sizeof(detail::ManifoldTail));
   EXPECT_GT(use.solver, 0u);
   EXPECT_GT(use.broadphase, detail::state_of(world).pairs.size() * sizeof(uint64_t));
   if (test::kSanitized) {
@@ -94,10 +94,7 @@ TEST(MemoryUse, StepBuffersAreGivenBackWithinTheStep) {
     const detail::WorldState& w = detail::state_of(world);
     auto kept = [&] {
       std::size_t bytes = detail::heap_bytes(w.solver.bundles) + detail::heap_bytes(w.solver.rows);
-      for (const auto& b : w.contact_blocks.contacts.added) bytes += detail::heap_bytes(b);
-      for (const auto& b : w.contact_blocks.tails.added) bytes += detail::heap_bytes(b);
-      for (const auto& b : w.contact_blocks.separated.added) bytes += detail::heap_bytes(b);
-      for (const auto& b : w.contact_blocks.apart_keys.added) bytes += detail::heap_bytes(b);
+      bytes += w.contacts.step_buffer_bytes();
       return bytes;
     };
     for (int i = 0; i < 120; ++i) {
