@@ -20,6 +20,8 @@ ColorStats color_contacts(const BodyStore& bodies, std::span<ManifoldHead> conta
     if (in.dynamic_a && in.dynamic_b && half_of(pa) != half_of(pb)) return kCutGroup;
     return half_of(in.dynamic_a ? pa : pb);
   };
+  // One pass counts each group's candidates and the points, and gives each head with more than
+  // one point its tail's index (the tails are in key order, as the heads).
   uint32_t group_size[kGroups + 1] = {};
   std::size_t points = 0;
   uint32_t next_tail = 0;
@@ -99,6 +101,8 @@ ColorStats color_contacts(const BodyStore& bodies, std::span<ManifoldHead> conta
     }
   };
 
+  // determinism: group g writes only its own ranges of st.order, st.order_scratch and
+  // st.segment_start and its own colouring arrays, so which thread colours it does not matter.
   std::vector<StageSpec>& stages = st.stages;
   stages.assign({{kGroups, 0, 0}});
   st.executor.run(stages, std::min(participants, int(kHalves)),

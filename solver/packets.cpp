@@ -70,7 +70,8 @@ void load_packets(const BodyStore& bodies, SolverState& st, int participants) {
       mass.gyroscopic = dynamic && !(inv_i.x() == inv_i.y() && inv_i.y() == inv_i.z());
     }
   };
-  // Block h < kHalves: half h; block kHalves: the kinematic packets.
+  // Block h < kHalves: half h; block kHalves: the kinematic packets. determinism: a block writes
+  // only its own packets.
   std::vector<StageSpec>& stages = st.stages;
   stages.assign({{kHalves + 1, 0, 0}});
   st.executor.run(

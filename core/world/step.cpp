@@ -91,9 +91,9 @@ uint32_t run_step(WorldState& w, Real dt) {
   prepare_contacts(bodies, w.contacts, w.contact_tails, solve_settings, w.solver);
   const auto t4 = clock::now();
   solve(bodies, w.contacts, w.contact_tails, solve_settings, w.solver);
+  release_bundles(w.solver);
   compute_contact_events(w);
   const auto t5 = clock::now();
-  release_bundles(w.solver);
   solve_continuous(bodies, w.shapes, w.apart.separated, w.apart.keys, w.solver);
   const auto t6 = clock::now();
   const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
