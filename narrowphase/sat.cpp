@@ -45,13 +45,6 @@ void closest_points_segments(const Vec3& p1, const Vec3& d1, const Vec3& p2, con
   c2 = p2 + t * d2;
 }
 
-void set_point(Manifold& out, int k, const Vec3& p, Real separation, uint32_t id) {
-  ContactPoint& c = out.points[k];
-  c.anchor_a = p;
-  c.separation = separation;
-  c.feature_id = id;
-}
-
 bool emit_points(const Vec3* points, const Real* separations, const uint32_t* ids, int count,
                  const Vec3& normal, Manifold& out) {
   if (count <= kMaxManifoldPoints) {

@@ -42,7 +42,12 @@ void closest_points_segments(const Vec3& p1, const Vec3& d1, const Vec3& p2, con
                              Vec3& c1, Vec3& c2);
 
 // Point k of `out`: its anchor (offset from A's centre), separation and feature id.
-void set_point(Manifold& out, int k, const Vec3& p, Real separation, uint32_t id);
+inline void set_point(Manifold& out, int k, const Vec3& p, Real separation, uint32_t id) {
+  ContactPoint& c = out.points[k];
+  c.anchor_a = p;
+  c.separation = separation;
+  c.feature_id = id;
+}
 
 // Stores the candidates (midpoints between the surfaces), reduced to four.
 bool emit_points(const Vec3* points, const Real* separations, const uint32_t* ids, int count,
