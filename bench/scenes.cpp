@@ -277,8 +277,9 @@ ElanRun run_elan(const Case& c, int threads, elan::BroadphaseType bp,
       world.step(c.scene->timestep);
       const elan::StepProfile& p = world.last_step().profile;
       sum.bounds += p.bounds, sum.pairs += p.pairs, sum.collide += p.collide;
-      sum.islands += p.islands, sum.color += p.color, sum.solve += p.solve, sum.ccd += p.ccd;
-      sum.finalize += p.finalize, sum.total += p.total;
+      sum.islands += p.islands, sum.split += p.split, sum.packets += p.packets;
+      sum.color += p.color, sum.bundles += p.bundles, sum.prepare += p.prepare;
+      sum.solve += p.solve, sum.ccd += p.ccd, sum.finalize += p.finalize, sum.total += p.total;
     }
     r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     r.last = world.last_step();
@@ -307,7 +308,11 @@ void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType 
   state.counters["pairs_ms"] = r.sum.pairs / n;
   state.counters["collide_ms"] = r.sum.collide / n;
   state.counters["islands_ms"] = r.sum.islands / n;
+  state.counters["split_ms"] = r.sum.split / n;
+  state.counters["packets_ms"] = r.sum.packets / n;
   state.counters["color_ms"] = r.sum.color / n;
+  state.counters["bundles_ms"] = r.sum.bundles / n;
+  state.counters["prepare_ms"] = r.sum.prepare / n;
   state.counters["solve_ms"] = r.sum.solve / n;
   state.counters["ccd_ms"] = r.sum.ccd / n;
   state.counters["finalize_ms"] = r.sum.finalize / n;

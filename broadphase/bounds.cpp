@@ -107,8 +107,11 @@ void BoundsColumns::resize(std::size_t n) {
   for (ScratchVector<Real>* c : columns()) c->resize(n);
 }
 
-void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
-                    BoundsColumns& out) {
+namespace {
+
+// Both compute_bounds; `kinds` may be null.
+void fill_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
+                 BoundsColumns& out, const BodyKindColumns* kinds) {
   const std::size_t n = bodies.size();
   out.resize(n);
   // determinism: fixed blocks, every body writes only its own slots (rules 1 and 2).
@@ -177,11 +180,31 @@ void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real
 
     for (std::size_t k = 0; k < m; ++k) {
       const Shape& s = shapes[bodies.shape[begin + k]];
+      if (kinds) {
+        const std::size_t i = begin + k;
+        const BroadKind kind = broad_kind(bodies, i);
+        kinds->broad_kind[i] = uint8_t(kind);
+        kinds->is_plane[i] = s.type == ShapeType::Plane;
+        kinds->idle[i] = kind == BroadKind::Static ||
+                         (kind == BroadKind::Sleeping && !(bodies.flags[i] & kFrozen));
+      }
       if (s.type != ShapeType::Plane) continue;
       plane_bounds(s, bodies.orientation(begin + k), bodies.position(begin + k), margin, out,
                    begin + k);
     }
   });
+}
+
+}  // namespace
+
+void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
+                    BoundsColumns& out) {
+  fill_bounds(bodies, shapes, dt, margin, out, nullptr);
+}
+
+void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
+                    BoundsColumns& out, const BodyKindColumns& kinds) {
+  fill_bounds(bodies, shapes, dt, margin, out, &kinds);
 }
 
 }  // namespace elan::detail

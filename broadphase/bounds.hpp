@@ -1,12 +1,15 @@
-// Stage 1, bounds: a world-space box per body covering its motion over the step.
+// Stage 1, bounds: a world-space box per body covering its motion over the step, and what the
+// broadphase and the collide stage read of each body beside its box (BodyKindColumns).
 //
-// Reads: body pose, velocity, shape, motion type. Writes: out.min_*/max_* of every body.
+// Reads: body pose, velocity, shape, motion type, awake and frozen flags. Writes: out.min_*/max_*
+// of every body, and the body kinds.
 // Parallel over fixed blocks of bodies; indexed writes only (determinism rule 1).
 #pragma once
 
 #include <array>
 #include <span>
 
+#include "broadphase/broad_kind.hpp"
 #include "core/base/body_store.hpp"
 #include "core/base/shape.hpp"
 #include "core/base/step_scratch.hpp"
@@ -33,5 +36,18 @@ struct BoundsColumns {
 // axes); the broadphase treats planes separately.
 void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
                     BoundsColumns& out);
+
+// Per body, one byte each: its BroadKind (broad_kind.hpp); 1 if its shape is a plane (the
+// broadphase keeps planes apart); 1 if it is idle, static or asleep (a frozen body is out of the
+// simulation and keeps no contacts), whose contacts collide_pairs carries. They are derived in the
+// bounds pass, which reads the same columns in parallel blocks, rather than kept as body flags in
+// step with every change of motion type, sleep and quarantine.
+struct BodyKindColumns {
+  std::span<uint8_t> broad_kind, is_plane, idle;  // each sized to the body count
+};
+
+// As above, and fills `kinds` in the same pass.
+void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
+                    BoundsColumns& out, const BodyKindColumns& kinds);
 
 }  // namespace elan::detail

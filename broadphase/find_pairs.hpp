@@ -11,14 +11,13 @@
 #include <vector>
 
 #include "broadphase/bounds.hpp"
+#include "broadphase/broad_kind.hpp"
 #include "core/base/body_traits.hpp"
 #include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
 #include "core/base/step_scratch.hpp"
 
 namespace elan::detail {
-
-enum class BroadKind : uint8_t { Static, Kinematic, Sleeping, Awake };
 
 // Static-static, kinematic-static, kinematic-kinematic, sleeping-sleeping and sleeping-static
 // pairs are never reported. Awake bodies pair with anything; kinematic bodies also with sleeping

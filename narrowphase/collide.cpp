@@ -5,6 +5,7 @@
 #include <cstring>
 #include <utility>
 
+#include "narrowphase/capsule_polyhedron.hpp"
 #include "narrowphase/general.hpp"
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/minkowski.hpp"

@@ -1,6 +1,6 @@
-// Separating axis test with face clipping for polyhedron pairs (boxes, hulls) and for a capsule
-// against a polyhedron (Gregorius, "The Separating Axis Test between Convex Polyhedra", GDC 2013;
-// "Robust Contact Creation for Physics Simulations", GDC 2015).
+// Separating axis test with face clipping for polyhedron pairs (boxes, hulls) (Gregorius, "The
+// Separating Axis Test between Convex Polyhedra", GDC 2013; "Robust Contact Creation for Physics
+// Simulations", GDC 2015).
 #pragma once
 
 #include <limits>
@@ -30,30 +30,5 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
 // the edges), bit for bit; the lowest Real when they do not, are nearly parallel, or are not
 // edges of a and b. collide_polyhedra's rejection on an edge axis reports that pair.
 Real edge_pair_separation(const Polyhedron& a, const Polyhedron& b, int edge_a, int edge_b);
-
-// B's face of largest separation from the segment s0-s1 (the height of its nearer end above the
-// face's plane) and whether the foot of that end lies on the face. When it does and the
-// separation is positive, the separation is the segment's distance to B, `nearest` and its foot
-// the closest points: B lies behind the face's plane, so nothing of B is nearer.
-struct SegmentFaceQuery {
-  int face = -1;
-  Real separation = std::numeric_limits<Real>::lowest();
-  Vec3 nearest = Vec3::Zero();  // the segment's end nearer the face's plane
-  bool foot_on_face = false;
-};
-SegmentFaceQuery query_segment_faces(const Vec3& s0, const Vec3& s1, const Polyhedron& b);
-
-// Capsule A (segment s0-s1 in the working frame, origin at its centre, `radius`) against
-// polyhedron B; same output conventions.
-bool collide_segment_polyhedron(const Vec3& s0, const Vec3& s1, Real radius, const Polyhedron& b,
-                                Real speculative_distance, Manifold& out);
-
-// Capsule A whose segment is apart from B (SAT is exact only for overlapping cores): `normal`
-// (A to B, unit) and the closest points of the segment and B come from GJK. Clips the segment
-// to B's face along the normal if it is aligned with one, else one point.
-bool collide_segment_polyhedron_separated(const Vec3& s0, const Vec3& s1, Real radius,
-                                          const Polyhedron& b, const Vec3& normal,
-                                          const Vec3& point_a, const Vec3& point_b,
-                                          Real speculative_distance, Manifold& out);
 
 }  // namespace elan::detail

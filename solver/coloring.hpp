@@ -36,8 +36,11 @@ inline std::size_t color_words(std::size_t packet_count) {
 
 // `order` (one entry per constraint) gets the constraints' positions in `constraints`, grouped by
 // colour; `color_start` (kColorCount + 2 entries) the ranges: colour c is
-// order[color_start[c], color_start[c+1]), the overflow the last range. Within a colour,
-// constraints keep their input order. Packets of dynamic sides are below `packet_count`.
+// order[color_start[c], color_start[c+1]), the overflow the last range. Greedy in input order:
+// a constraint takes the first colour free at both its dynamic sides, trying colour 0 up for a
+// constraint between two dynamic bodies and colour kColorCount - 1 down for one with a single
+// dynamic side; the overflow gets, in input order, those no colour is free for. Within a colour,
+// too, constraints keep their input order. Packets of dynamic sides are below `packet_count`.
 void build_colors(std::span<const ColorInput> constraints, std::size_t packet_count,
                   ColorScratch& scratch, std::span<uint32_t> order,
                   std::span<uint32_t> color_start);

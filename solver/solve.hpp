@@ -1,9 +1,11 @@
-// Stages 4 to 8 and 10 of the step around the contact solver: islands and sleep, packets and
-// colouring, constraint preparation, the substeps, restitution, and writing results back.
+// The solver's settings and state, and the stages that run the prepared constraints: the
+// substeps, restitution and impulse storage (solve), and writing results back (finalize_bodies).
+// The stages before them, in run_step's order: update_islands (islands.hpp), split_halves and
+// load_packets (packets.hpp), color_contacts (color_contacts.hpp), build_bundles and
+// prepare_contacts (bundles.hpp).
 //
-// Reads: body columns, shapes, contacts. Writes: body columns (pose, velocity, flags, sleep
-// timers, forces cleared), contact impulses. Parallel work runs in fixed blocks through the
-// StageExecutor; all layouts depend on the scene alone.
+// Parallel work runs in fixed blocks through the StageExecutor; all layouts depend on the scene
+// alone.
 #pragma once
 
 #include <cstdint>
@@ -63,17 +65,19 @@ struct Impact {
 };
 
 struct SolverState {
-  std::vector<uint32_t> packet_of;     // per body: its packet, 0 when not simulated
-  std::vector<uint32_t> simulated;     // the awake dynamic bodies, ascending
-  std::vector<uint8_t> side;           // per awake dynamic body: its half
-  ScratchVector<uint64_t> split_keys;  // split_in_halves' keys, taken and given back around it
+  std::vector<uint32_t> packet_of;  // per body: its packet, 0 when not simulated
+  std::vector<uint32_t> simulated;  // the awake dynamic bodies, ascending
+  std::vector<uint8_t> side;        // per awake dynamic body: its half
+  ScratchVector<uint64_t>
+      split_keys;  // split_in_halves' keys, taken and given back by split_halves
   // Half h: packets [half_start[h], half_start[h + 1]); the kinematic bodies' follow.
   uint32_t half_start[kHalves + 1] = {1, 1, 1};
   std::vector<SolverBody> packets;  // 0 = static dummy; half 0, half 1, kinematic
   std::vector<SolverBodyMass> masses;
   // Contact indices that take part, group by group, and per candidate its packets as its group's
   // colouring sees them. These, order_scratch and the colourings' arrays are taken from the
-  // step's scratch and given back before the bundles are laid out, which reuse the bytes.
+  // step's scratch and given back within color_contacts; the bundles laid out next reuse the
+  // bytes.
   ScratchVector<uint32_t> candidates;
   ScratchVector<ColorInput> color_input;
   uint32_t group_start[kGroups + 1] = {};  // group g: candidates [group_start[g], [g + 1])
@@ -81,7 +85,7 @@ struct SolverState {
   std::vector<uint32_t> segment_start;     // segment s is order[segment_start[s], [s + 1])
   ScratchVector<uint32_t> order_scratch;
   // The bundles, their point rows and restitution inputs are taken from the step's scratch by
-  // prepare_solve and given back by solve(): between steps they are empty.
+  // build_bundles and given back by release_bundles after solve(): between steps they are empty.
   ScratchVector<ContactBundle> bundles;  // segment by segment
   std::vector<uint32_t> row_start;       // bundle j's point rows are [row_start[j], row_start[j+1])
   std::vector<uint32_t> lane_start;      // bundle j's lanes are order[lane_start[j], [j + 1])
@@ -98,22 +102,12 @@ struct SolverState {
   std::vector<Real> earliest_toi;
 };
 
-struct SolveStats {
-  std::size_t awake = 0, colors = 0, overflow = 0;
-  std::size_t points = 0;  // contact points of all manifolds, counted in passing
-  double islands_ms = 0, color_ms = 0, solve_ms = 0;
-};
+// The context the contact solver's functions read: the packets, bundles and rows of `state`.
+ContactSolverContext make_solver_context(const SolveSettings& settings, SolverState& state);
 
-// Islands and sleep, packets for the awake bodies, colouring and constraint preparation. The
-// colouring arrays, bundles and rows are taken from `scratch`, in its current phase. `tails`
-// holds the points past the first of each manifold with more, in key order (collide_pairs);
-// each such head gets its tail's index (ManifoldHead::tail).
-void prepare_solve(BodyStore& bodies, std::span<ManifoldHead> contacts,
-                   std::span<const ManifoldTail> tails, const SolveSettings& settings,
-                   SolverState& state, SolveStats& stats, StepScratch& scratch);
-
-// The substeps, restitution and impulse storage. Results stay in state.packets; the bundles and
-// rows go back to the scratch.
+// The substeps, restitution and impulse storage. Reads: the bundles and rows (prepare_contacts),
+// the bodies' poses. Writes: state.packets, the bundles, the contacts' impulses. Results stay in
+// state.packets; the bundles stay taken (release_bundles).
 void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<ManifoldTail> tails,
            const SolveSettings& settings, SolverState& state);
 

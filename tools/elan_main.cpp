@@ -186,7 +186,11 @@ int run(const RunOptions& o) {
     total.pairs += p.pairs;
     total.collide += p.collide;
     total.islands += p.islands;
+    total.split += p.split;
+    total.packets += p.packets;
     total.color += p.color;
+    total.bundles += p.bundles;
+    total.prepare += p.prepare;
     total.solve += p.solve;
     total.ccd += p.ccd;
     total.finalize += p.finalize;
@@ -251,9 +255,11 @@ int run(const RunOptions& o) {
   out["overflow"] = o.steps == 0 ? 0 : last.overflow;
   out["status"] = status;
   out["profile_ms"] = {
-      {"bounds", total.bounds},   {"pairs", total.pairs},       {"collide", total.collide},
-      {"islands", total.islands}, {"color", total.color},       {"solve", total.solve},
-      {"ccd", total.ccd},         {"finalize", total.finalize}, {"total", total.total}};
+      {"bounds", total.bounds},   {"pairs", total.pairs},     {"collide", total.collide},
+      {"islands", total.islands}, {"split", total.split},     {"packets", total.packets},
+      {"color", total.color},     {"bundles", total.bundles}, {"prepare", total.prepare},
+      {"solve", total.solve},     {"ccd", total.ccd},         {"finalize", total.finalize},
+      {"total", total.total}};
   std::cout << out.dump() << std::endl;
   return 0;
 }

@@ -68,7 +68,7 @@ struct alignas(64) ManifoldHead {
   Real tangent_impulse[2] = {0, 0};
   Real twist_impulse = 0;
   ContactPoint first;  // points[0]
-  // With more than one point: where its tail is in the list of tails. Set by prepare_solve for
+  // With more than one point: where its tail is in the list of tails. Set by color_contacts for
   // the solver's stages; stale once the lists change.
   uint32_t tail = 0;
 

@@ -1,6 +1,7 @@
-// One step: bounds, pairs, collide, islands and sleep, colour, prepare, substeps, restitution,
-// continuous collision, finalize. Each stage is a function over the world's arrays; this file only
-// orders them.
+// One step: bounds, pairs, collide, islands and sleep, the median cut, packets, colour, bundles,
+// prepare, substeps and restitution, continuous collision, finalize. Each stage is a function
+// over the world's arrays; this file orders and times them, and shows every scratch buffer that
+// one stage leaves to another.
 #include "core/world/step.hpp"
 
 #include <chrono>
@@ -8,6 +9,9 @@
 #include "core/world/continuous.hpp"
 #include "core/world/events.hpp"
 #include "narrowphase/collide.hpp"
+#include "solver/bundles.hpp"
+#include "solver/color_contacts.hpp"
+#include "solver/packets.hpp"
 
 namespace elan::detail {
 
@@ -16,18 +20,6 @@ namespace {
 double ms_between(std::chrono::steady_clock::time_point a,
                   std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-BroadKind broad_kind(const BodyStore& b, std::size_t i) {
-  switch (MotionType(b.motion[i])) {
-    case MotionType::Static:
-      return BroadKind::Static;
-    case MotionType::Kinematic:
-      return BroadKind::Kinematic;
-    case MotionType::Dynamic:
-      break;
-  }
-  return b.is_awake(i) && !(b.flags[i] & kFrozen) ? BroadKind::Awake : BroadKind::Sleeping;
 }
 
 }  // namespace
@@ -41,20 +33,12 @@ uint32_t run_step(WorldState& w, Real dt) {
 
   w.scratch.begin_phase();
   w.bounds.take_from(w.scratch);
-  compute_bounds(bodies, w.shapes, dt, kBoundsMargin, w.bounds);
-  const auto t1 = clock::now();
-
   w.broad_kind.resize(n);
   w.is_plane.resize(n);
   w.idle.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const BroadKind kind = broad_kind(bodies, i);
-    w.broad_kind[i] = uint8_t(kind);
-    w.is_plane[i] = w.shapes[bodies.shape[i]].type == ShapeType::Plane;
-    // Static, or asleep (a frozen body is out of the simulation and keeps no contacts).
-    w.idle[i] =
-        kind == BroadKind::Static || (kind == BroadKind::Sleeping && !(bodies.flags[i] & kFrozen));
-  }
+  compute_bounds(bodies, w.shapes, dt, kBoundsMargin, w.bounds, {w.broad_kind, w.is_plane, w.idle});
+  const auto t1 = clock::now();
+
   BroadphaseInput input{&w.bounds, w.broad_kind, bodies.traits, bodies.trait_table.entries(),
                         w.is_plane};
   take_from_back(w.pairs, w.scratch);
@@ -86,12 +70,28 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve_settings.gravity = w.def.gravity;
   solve_settings.allow_sleep = w.def.allow_sleep;
   solve_settings.participants = w.threads;
-  SolveStats solve_stats;
+  // The solver's phase of the scratch. Each stage takes and gives back its own buffers, but for
+  // the bundles and their rows: build_bundles takes them, release_bundles gives them back.
   w.scratch.begin_phase();
-  prepare_solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver,
-                solve_stats, w.scratch);
+  update_islands(bodies, w.contacts.heads(),
+                 {solve_settings.allow_sleep, solve_settings.time_to_sleep},
+                 w.solver.island_scratch, w.scratch);
+  const auto t_islands = clock::now();
+  split_halves(bodies, w.solver, w.scratch);
+  const auto t_split = clock::now();
+  load_packets(bodies, w.solver, solve_settings.participants);
+  const auto t_packets = clock::now();
+  const ColorStats colors = color_contacts(bodies, w.contacts.heads(), w.contacts.tails(), w.solver,
+                                           w.scratch, solve_settings.participants);
+  const auto t_color = clock::now();
+  // Restitution inputs are kept only in a world that has something to bounce: on a pile of
+  // inelastic bodies they would be read by a pass that finds nothing to do.
+  build_bundles(w.contacts.heads(), bodies.trait_table.any_restitution(), w.solver, w.scratch);
+  const auto t_bundles = clock::now();
+  prepare_contacts(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
   const auto t4 = clock::now();
   solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
+  release_bundles(w.solver);
   // The body columns still hold the step's start poses: finalize_bodies writes the new ones.
   compute_contact_events(w, bodies);
   const auto t5 = clock::now();
@@ -102,18 +102,22 @@ uint32_t run_step(WorldState& w, Real dt) {
   const auto t7 = clock::now();
 
   stats.manifolds = w.contacts.size();
-  // perf: counted by prepare_solve's pass over the list, not by one more (pile10k: 5 MB a step).
-  stats.contacts = solve_stats.points;
-  stats.awake = solve_stats.awake;
-  stats.colors = solve_stats.colors;
-  stats.overflow = solve_stats.overflow;
+  // perf: counted by color_contacts' pass over the list, not by one more.
+  stats.contacts = colors.points;
+  stats.awake = w.solver.simulated.size();
+  stats.colors = colors.colors;
+  stats.overflow = colors.overflow;
   stats.status = status;
   StepProfile& p = stats.profile;
   p.bounds = ms_between(t0, t1);
   p.pairs = ms_between(t1, t2);
   p.collide = ms_between(t2, t3);
-  p.islands = solve_stats.islands_ms;
-  p.color = solve_stats.color_ms;
+  p.islands = ms_between(t3, t_islands);
+  p.split = ms_between(t_islands, t_split);
+  p.packets = ms_between(t_split, t_packets);
+  p.color = ms_between(t_packets, t_color);
+  p.bundles = ms_between(t_color, t_bundles);
+  p.prepare = ms_between(t_bundles, t4);
   p.solve = ms_between(t4, t5);
   p.ccd = ms_between(t5, t6);
   p.finalize = ms_between(t6, t7);

@@ -46,7 +46,8 @@ struct WorldState {
   // Per-step buffers of the sweep, the collide stage and the solver, which are never in use at
   // once (StepScratch). Declared before the stages that take from it, so it is destroyed after.
   StepScratch scratch;
-  // Broadphase. The boxes are the scratch's only for the sweep.
+  // Broadphase. The boxes are the scratch's only for the sweep. The body kinds are written by the
+  // bounds stage (BodyKindColumns).
   BoundsColumns bounds;
   std::vector<uint8_t> broad_kind;
   std::vector<uint8_t> is_plane;

@@ -183,7 +183,8 @@ TEST(Cli, SummaryHasTheContractKeys) {
   EXPECT_EQ(j["angular_momentum"].size(), 3u);
   EXPECT_GE(j["wall_seconds"].get<double>(), 0.0);
   EXPECT_GT(j["kinetic_energy"].get<double>(), 0.0);  // sphere b slides, the box spins
-  for (const char* stage : {"bounds", "pairs", "collide", "solve", "total"}) {
+  for (const char* stage : {"bounds", "pairs", "collide", "islands", "split", "packets", "color",
+                            "bundles", "prepare", "solve", "ccd", "finalize", "total"}) {
     EXPECT_TRUE(j["profile_ms"].contains(stage)) << stage;
   }
 }

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "narrowphase/capsule_polyhedron.hpp"
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/sat.hpp"
 #include "narrowphase_test_shapes.hpp"

@@ -14,10 +14,21 @@ enum StepStatus : uint32_t {
   kStepBadTimestep = 1u << 2,     ///< dt was not finite and positive: nothing was simulated
 };
 
-/// Wall-clock milliseconds spent in each stage of the last step.
+/// Wall-clock milliseconds spent in each stage of the last step, in the step's order.
 struct StepProfile {
-  double bounds = 0, pairs = 0, collide = 0, islands = 0, color = 0, solve = 0, ccd = 0,
-         finalize = 0, total = 0;
+  double bounds = 0;    ///< bounding boxes and the bodies' broadphase kinds
+  double pairs = 0;     ///< the broadphase's pair list
+  double collide = 0;   ///< manifolds of the pairs
+  double islands = 0;   ///< islands, sleep and wake
+  double split = 0;     ///< the median cut of the awake bodies into the solver's two halves
+  double packets = 0;   ///< the solver's per-body packets for the step
+  double color = 0;     ///< the contacts' groups and colours
+  double bundles = 0;   ///< the layout of the constraint bundles
+  double prepare = 0;   ///< the constraints' preparation
+  double solve = 0;     ///< substeps, restitution, and the contact events
+  double ccd = 0;       ///< continuous collision
+  double finalize = 0;  ///< results written back, sleep timers
+  double total = 0;
 };
 
 /// Counts of the last step.
