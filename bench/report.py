@@ -22,7 +22,14 @@ import statistics
 import subprocess
 import sys
 
-STAGES = ["bounds", "pairs", "collide", "islands", "color", "solve", "ccd", "finalize"]
+# The stage timers of elan::StepProfile, in the step's order, as bench/scenes.cpp reports them
+# (<stage>_ms counters): `color` is the colouring alone; `split`, `packets`, `bundles` and `prepare`
+# are the solver's other stages before the solve.
+STAGES = ["bounds", "pairs", "collide", "islands", "split", "packets", "color", "bundles", "prepare",
+          "solve", "ccd", "finalize"]
+# A scene CSV written before those four had timers of their own lacks their columns; its `color`
+# column is then the whole of the solver's preparation (split, packets, colour, bundles, prepare).
+LEGACY_STAGES = ("split", "packets", "bundles", "prepare")
 STACKS = ("pyramid", "tower")  # scenes whose top body must stay put (moved < 5 cm)
 # A scene whose 1-thread step takes less than this, ms, measures nothing but the loop around it (a
 # tower of 21 bodies asleep: 4-7 us a step): the tables' two decimals show 0.00 or 0.01 and its
@@ -394,9 +401,18 @@ def summarize(out, mode_arg):
                      f"{fmt(num(v['ratio']))} | {fmt(num(v['ratio_min']))}-{fmt(num(v['ratio_max']))} |")
     L.append("\n## Stages at 1 thread (ms per step, median)\n")
     L.append("| scene | " + " | ".join(STAGES) + " |\n| --- |" + " --- |" * len(STAGES))
+    legacy = [s for s in shown if any(st + "_ms" not in scene_rows[s][0] for st in LEGACY_STAGES)]
     for s in shown:
         r1 = scene_rows[s][0]
-        L.append(f"| {s} | " + " | ".join(fmt(r1[st + '_ms'], 3) for st in STAGES) + " |")
+        cells = [fmt(r1.get(st + "_ms"), 3) for st in STAGES]
+        if s in legacy:
+            cells[STAGES.index("color")] += " \\*"
+        L.append(f"| {s} | " + " | ".join(cells) + " |")
+    if legacy:
+        L.append("\n\\* Measured before the solver's stages had timers of their own: there `color` is the "
+                 "whole of the solver's preparation (" + ", ".join(("split", "packets", "colour", "bundles",
+                                                                     "prepare")) +
+                 "), and those columns are empty.")
     L.append("\n## Pile sweep (ms per step, median; generated mixed-shape pile in a container)\n")
     ns = sorted({n_ for pts in sweep.values() for n_ in pts})
     L.append("| series | " + " | ".join(str(n_) for n_ in ns) + " |\n| --- |" + " --- |" * len(ns))
