@@ -1,4 +1,4 @@
-// Stage 1, bounds: world boxes of every body, swept over the step, as one SoA pass in fixed
+// The bounds stage: world boxes of every body, swept over the step, as one SoA pass in fixed
 // blocks. Shapes are reduced to a few per-body numbers so the rotation part is a SIMD loop.
 #include "broadphase/bounds.hpp"
 

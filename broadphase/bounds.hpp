@@ -1,4 +1,4 @@
-// Stage 1, bounds: a world-space box per body covering its motion over the step, and what the
+// The bounds stage: a world-space box per body covering its motion over the step, and what the
 // broadphase and the collide stage read of each body beside its box (BodyKindColumns).
 //
 // Reads: body pose, velocity, shape, motion type, awake and frozen flags. Writes: out.min_*/max_*

@@ -1,4 +1,4 @@
-// Stage 2, find pairs: which bodies' boxes overlap. Every method returns the same canonical list:
+// The find-pairs stage: which bodies' boxes overlap. Every method returns the same canonical list:
 // keys make_pair_key(a, b) (a < b), sorted ascending, unique.
 //
 // Reads: bounds, per-body kind, filter bits, plane flags. Writes: the pair list.

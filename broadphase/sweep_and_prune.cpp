@@ -611,8 +611,7 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, Step
   }
 
   // memory: the entries are dead once swept. Taken after the pair blocks, they go back first, so
-  // the sort and the pair list it writes reuse their bytes (pile10k's sweep peaked 40 B a body
-  // higher with both).
+  // the sort and the pair list it writes reuse their bytes instead of adding to the peak.
   release_entries();
   // The sweep yields each pair once and the plane pass covers only pairs with a plane, so the
   // sorted list is already unique.

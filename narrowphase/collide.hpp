@@ -1,4 +1,4 @@
-// Stage 3, collide: exact contact manifolds for the broadphase's pairs.
+// The collide stage: exact contact manifolds for the broadphase's pairs.
 #pragma once
 
 #include <cstdint>
@@ -34,8 +34,8 @@ bool exact_test_is_closed_form(const Shape& a, const Shape& b);
 // A's polyhedron from the last box or hull pair, for a caller that tests one body against
 // several in a row: the SAT works in a frame centred on A, so A's vertices and planes depend on
 // its shape and rotation alone, and the next pair with the same A (bit for bit) reuses them.
-// collide_pairs' pairs are sorted by their first body, and on pile4k three in four hull pairs
-// follow one with the same A.
+// collide_pairs' pairs are sorted by their first body, and in a pile most hull pairs follow one
+// with the same A.
 struct PolyhedronCache {
   const Shape* shape = nullptr;
   Quat rotation = Quat::Identity();

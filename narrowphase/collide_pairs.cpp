@@ -1,6 +1,6 @@
-// Stage 3, collide_pairs(): manifolds for every broadphase pair in parallel over fixed blocks,
-// warm-start impulses matched by key and feature id, touching manifolds compacted in key order;
-// pairs found apart skip their exact test while their motion cannot have closed the gap.
+// The collide stage, collide_pairs(): manifolds for every broadphase pair in parallel over fixed
+// blocks, warm-start impulses matched by key and feature id, touching manifolds compacted in key
+// order; pairs found apart skip their exact test while their motion cannot have closed the gap.
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -112,9 +112,8 @@ bool rolls(const Shape& s) {
   return true;
 }
 
-// perf: two in three broadphase pairs of a settling pile do not touch (pile4k: 19k of 29k a step),
-// and nearly all of them moved less in a step than their gap; skipping their tests took the
-// collide stage from 6.6 to 4.9 ms a step on pile4k.
+// perf: about two in three broadphase pairs of a settling pile do not touch, and nearly all of
+// them moved less in a step than their gap, so most exact tests of the collide stage are skipped.
 //
 // Tolerance of the separation cache, m, plus a part per metre of coordinate size: the exact
 // tests' rounding near the origin and GJK's relative tolerance (1e-5 of the distance) are far
@@ -170,7 +169,7 @@ Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& 
 // measured, where an entry can hold it and the test is not a closed form (which costs about what
 // checking the entry does). False: the pair is kept by its key alone.
 // perf: out of line, off the path of the touching pairs, so that the pair loop stays small enough
-// for the compiler to inline its rotations (jolt_pyramid's collide stage ran 15 % longer inline).
+// for the compiler to inline its rotations.
 [[gnu::noinline]] bool separated_entry(uint64_t key, const Shape& a, const Shape& b,
                                        const Separation& separation, const Vec3& relative,
                                        const Quat& rotation, SeparatedPair& out) {

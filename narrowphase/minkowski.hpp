@@ -55,8 +55,8 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
 
 // GJK between a point or a segment (`core`: one point, or the two ends) and the core of `b`, all
 // in B's principal frame, as are the result's points. perf: B's support then needs no rotation
-// and the segment's is a choice of end; the sphere and capsule pairs with hulls and boxes spent
-// half their GJK time rotating directions and points.
+// and the segment's is a choice of end; rotating directions and points would otherwise be much of
+// the GJK work of the sphere and capsule pairs with hulls and boxes.
 GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Simplex& s);
 
 // EPA on the placed shapes from GJK's terminating simplex (origin in or on it).

@@ -43,12 +43,12 @@ inline Real* floats_of(SolverBody& b) {
 }
 
 #if defined(ELAN_TRANSPOSED_LANES)
-// perf: inserting the 6 velocity components lane by lane was a quarter of solve_contacts on
-// jolt_pyramid. A body's v and w are its first six floats, so each lane loads them (and two
-// more) as one 8-float row; rows l and l + 8 share a register, and an 8x8 transpose within each
-// 256-bit half (unpack, shuffle, then a two-source permute for the 128-bit blocks) leaves
-// component j of all 16 lanes in register j. The transpose is its own inverse, which gives the
-// stores. Data movement only: the same bits as the lane loop.
+// perf: the 6 velocity components are not inserted lane by lane, a store each that the first
+// vector read waits for (see gather_packets). A body's v and w are its first six floats, so each
+// lane loads them (and two more) as one 8-float row; rows l and l + 8 share a register, and an 8x8
+// transpose within each 256-bit half (unpack, shuffle, then a two-source permute for the 128-bit
+// blocks) leaves component j of all 16 lanes in register j. The transpose is its own inverse, which
+// gives the stores. Data movement only: the same bits as the lane loop.
 static_assert(kLanes == 16 && sizeof(SolverBody) == 64);
 static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(Real) &&
               offsetof(SolverBody, dtheta) == offsetof(SolverBody, dp) + 3 * sizeof(Real) &&
@@ -167,7 +167,7 @@ inline void gather_rows(const Real* const row[kLanes], Wide cols[16]) {
 }
 
 // Stores lanes 0 to count - 1 of cols back into the packets from `first` on. perf: with the
-// transposes of gather_packets, integrate_positions went from 3.0 to 2.3 % of pile4k's profile.
+// transposes of gather_packets, not lane by lane.
 inline void scatter_packets(SolverBody* first, int count, const Wide cols[16]) {
   for (int half = 0; half < 2; ++half) {
     __m512 in[8], rows[8];

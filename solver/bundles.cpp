@@ -48,8 +48,7 @@ void prepare_contacts(const BodyStore& bodies, std::span<const ManifoldHead> con
         const uint32_t last = st.lane_start[j + 1];
         // perf: the next bundle's manifolds, while this one is prepared. They are scattered over
         // the contact list, and at 2 threads about half were last written by the other core's
-        // collide blocks: at jolt_pyramid's 2 threads the first load of a lane's manifold took
-        // a quarter of prepare_bundle.
+        // collide blocks, so the first load of a lane's manifold is a cross-core round trip.
         const uint32_t next_last = j + 1 < st.bundle_start[s + 1] ? st.lane_start[j + 2] : last;
         for (uint32_t k = last; k < next_last; ++k) prefetch(contacts[st.order[k]]);
         // This bundle's tails: its heads, fetched while the last bundle was prepared, say where.

@@ -71,7 +71,7 @@ ColorStats color_contacts(const BodyStore& bodies, std::span<ManifoldHead> conta
   // a colour the order is free (its constraints share no dynamic body, so any order gives the
   // same bits). Grouped by point count, manifolds of one or two points (spheres, capsules) share
   // bundles, which then skip the empty point rows that a single four-point lane would make the
-  // whole bundle read: on pile10k, 1.4 points per manifold on average.
+  // whole bundle read: a pile's manifolds have about 1.4 points on average.
   auto color_group = [&](uint32_t g) {
     const uint32_t first = st.group_start[g], size = st.group_start[g + 1] - first;
     const std::size_t packets = g < kHalves ? st.half_start[g + 1] - st.half_start[g] : count;

@@ -1,4 +1,4 @@
-// Stage 5, colour: greedy graph colouring of the contact constraints so that no two constraints
+// The colour stage: greedy graph colouring of the contact constraints so that no two constraints
 // of one colour touch the same dynamic body (Box2D v3's constraint graph, rebuilt each step).
 //
 // Reads: for each candidate constraint its two packets and whether each side is dynamic.

@@ -57,7 +57,7 @@ inline Wide row_velocity(const WideBody& a, const WideBody& b, const WideVec3& d
 
 // The Jacobian arms of a bundle's points as its passes derive them (WideContactPoint): the
 // centre's, once a bundle, then each point's from its offset. perf: bundle_arms is inlined into
-// every pass; called, GCC returned its nine vectors through memory (2 % of pile4k's step).
+// every pass; called, GCC returns its nine vectors through memory.
 struct BundleArms {
   WideVec3 center_n;        // c_a x n
   WideVec3 b_offset_n;      // (c_a - c_b) x n: a point's rb x n is its ra x n minus this
@@ -219,7 +219,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     set_lane(b_from_a, l, bodies.position(b) - bodies.position(a));
   }
   // The packets' velocities and masses as the passes gather them (unused lanes read the static
-  // dummy, packet 0: zero). perf: a lane at a time, they were 26 inserts a lane.
+  // dummy, packet 0: zero). perf: as whole rows where body_lanes.hpp can, not 26 lane inserts.
   WideBody va, vb;
   WideMass ma, mb;
   gather_velocity(ctx.bodies.data(), c.packet_a, va);

@@ -135,8 +135,8 @@ Quat rotation_from_angular_velocity(const Vec3& w, Real h) {
   return lane(exp_map(lanes, h), 0);
 }
 
-// perf: kLanes packets at once. The scalar loop was a tenth of pile4k's step (the gyroscopic
-// update is two exponentials, six rotations and an inertia per body and substep).
+// perf: kLanes packets at once: the gyroscopic update is two exponentials, six rotations and an
+// inertia per body and substep.
 void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyMass> masses,
                          const BodyStore& bodies, Real h, uint32_t begin, uint32_t end) {
   for (uint32_t first = begin; first < end; first += kLanes) {

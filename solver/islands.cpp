@@ -51,8 +51,8 @@ std::size_t update_islands(BodyStore& bodies, std::span<const ManifoldHead> cont
   }
   // A moving kinematic body keeps what it touches awake. perf: the bodies are checked for one
   // first, a pass over a byte and six floats a body, so a scene without one does not read the
-  // contact list a second time (pile10k: 27k manifolds, a cache line each, most of them last
-  // written by the other thread at 2 threads).
+  // contact list a second time (a cache line a manifold, at 2 threads most of them last written
+  // by the other thread).
   auto moving = [&](uint32_t k) {
     return bodies.motion[k] == uint8_t(MotionType::Kinematic) &&
            (bodies.vx[k] != 0 || bodies.vy[k] != 0 || bodies.vz[k] != 0 || bodies.wx[k] != 0 ||

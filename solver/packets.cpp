@@ -10,8 +10,8 @@ namespace elan::detail {
 void split_halves(const BodyStore& bodies, SolverState& st, StepScratch& scratch) {
   const std::size_t n = bodies.size();
   st.simulated.clear();
-  // Room for every body, reserved once the store has grown: push_back's doubling left up to half
-  // of it unused for good (pile10k: 6.6 bytes a body for 4).
+  // Room for every body, reserved once the store has grown: push_back's doubling would leave up to
+  // half of it unused for good.
   if (st.simulated.capacity() < n) st.simulated.reserve(n);
   uint32_t kinematic = 0;
   for (std::size_t i = 0; i < n; ++i) {

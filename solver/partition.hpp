@@ -3,8 +3,8 @@
 // sync, and only the contacts across the cut wait for both.
 //
 // perf: a colour-by-colour solve syncs every thread once per colour per pass (16 colours x 24
-// passes, about 400 syncs a step on a pile), and on a 2-core VM a sync costs a cross-core round
-// trip or more; the packets of each colour also move between the cores' caches. Solved as two
+// passes, about 400 syncs a step on a pile), and a sync costs a cross-core round trip or more;
+// the packets of each colour also move between the cores' caches. Solved as two
 // halves plus the contacts that join them, a pass needs two syncs, and each core keeps its half's
 // packets. This is domain decomposition in its simplest form, a cut through space; Box2D v3's
 // constraint graph and Jolt's large-island splitter divide the constraints by colour instead,

@@ -31,7 +31,7 @@ struct SolveSettings {
   // pyramid of cubes (20 layers, four supports per cube) settles 1.5 cm at the top (0.4 cm at 4)
   // and sleeps within 2 s; a 2028-body mixed pile is asleep at 15 s (at 3 or 4 a few bodies keep
   // the whole pile awake). At 1 the pyramid's top sinks 4.3 cm and a 1000-body pile keeps
-  // rattling (5 J at 15 s). perf: each pass is about a tenth of pile4k's step.
+  // rattling (5 J at 15 s). perf: each pass is about a tenth of a pile's step.
   int iterations = 2;
   Vec3 gravity = Vec3(0, Real(-9.81), 0);
   bool allow_sleep = true;

@@ -42,14 +42,12 @@ inline bool written_packet(uint32_t packet, uint32_t written_end) {
 // What every constraint pass reads of a body besides its velocity: its inverse mass and world
 // inverse inertia, 32 bytes a packet (zero for kinematic bodies and the static dummy, so a side
 // that is not written gets none). perf: kept per packet and gathered by each pass, not copied
-// into every constraint bundle, where they were 14 of a bundle's 38 values a lane: the passes
-// stream the bundles from beyond L2, while the packets' masses (128 KiB on pile4k) stay in it.
-// Solve 2.98 -> 2.89 ms a step on pile4k, 2.80 -> 2.63 on jolt_pyramid.
+// into every constraint bundle, where they would take 14 values a lane: the passes stream the
+// bundles from beyond L2, while the packets' masses, a body's once, stay in it.
 //
 // The row's eighth word, which the passes' 8-float gathers load and ignore, tells the substep
 // integration which body the packet is and whether it turns gyroscopically. Gravity, forces and
-// damping are read from the body store there (memory: a 40-byte record of per-packet constants,
-// 40 B a body on pile10k, had held copies of them).
+// damping are read from the body store there (memory: not copied into a record per packet).
 struct alignas(8 * sizeof(Real)) SolverBodyMass {
   Real inv_mass = 0;    // 1/kg
   SymMat3 inv_inertia;  // 1/(kg m^2), world; integrate_positions turns it for gyroscopic bodies
@@ -94,11 +92,11 @@ inline void set_lane(WideSym3& w, int l, const SymMat3& m) {
 // count are zero, so they apply no impulse.
 // perf: the angular responses I^-1 (r x n) are not stored but recomputed from the bundle's
 // inverse inertias in every pass (15 operations a side, off the chain of dependent updates):
-// stored, they were 6 of 17 values a row, and the passes are bound by memory traffic.
+// stored, they would be 6 values a row, and the passes are bound by memory traffic.
 struct WideNormalRow {
   Wide separation{};  // m at the step's start; s = this + J . (dp, dtheta)
   // m: s at the current pose. Positions change once per substep, so refresh_contacts computes
-  // it then for every pass until the next (it was 12 body values gathered per lane per pass).
+  // it then for every pass until the next (not 12 body values gathered per lane per pass).
   Wide current_separation{};
   Wide normal_mass{};     // kg: 1 / (J M^-1 J^T)
   Wide normal_impulse{};  // N s, accumulated over the substep (warm started)
@@ -108,10 +106,8 @@ struct WideNormalRow {
 // (ContactBundle::center_ra, center_rb) and this offset: ra x n = c_a x n + offset_n, and
 // rb x n = ra x n - (c_a - c_b) x n, since a point's two arms differ by the two centres' offset.
 // The first point's offset is minus the others' sum (c is the points' mean), so it is not stored
-// at all, and its row lives in the bundle: a bundle of one-point manifolds (77 % of pile10k's)
-// has no rows of its own. The offset's length is the point's lever about c (twist friction).
-// memory: a row was 11 values a lane with both arms, the lever and a row for every point; pile10k
-// 168 -> 31 B a body of rows, 239 -> 282 of bundles.
+// at all, and its row lives in the bundle: a bundle of one-point manifolds (most of a pile's) has
+// no rows of its own. The offset's length is the point's lever about c (twist friction).
 struct WideContactPoint {
   WideVec3 offset_n;  // m: (r - c) x n, r the point's arm from A's centre of mass
   WideNormalRow row;
@@ -121,18 +117,16 @@ struct WideContactPoint {
 // over the lanes, solved together (Box2D v3's b2ContactConstraintSIMD). Unused lanes have
 // packet 0 (the static dummy), zero coefficients and are never written back.
 //
-// perf: every solver pass streams all bundles through the cache (megabytes a pass on
-// jolt_pyramid and pile10k), so a bundle keeps only what a pass cannot derive cheaply in registers,
-// as bepuphysics2 does: the friction Jacobians come from the manifold centre and the normal, the
+// perf: every solver pass streams all bundles through the cache (megabytes a pass on a large
+// scene), so a bundle keeps only what a pass cannot derive cheaply in registers, as bepuphysics2
+// does: the friction Jacobians come from the manifold centre and the normal, the
 // angular responses from the inverse inertias, the softness from whether B is written, the
 // masses from the packets (SolverBodyMass), and the restitution inputs, read once per step, live
 // apart (ContactSolverContext::restitution). Nor does it keep what its packets or the layout
 // tell: which sides are written (written_packet), where its other point rows are
 // (SolverState::row_start), which manifolds its lanes are and how many (SolverState::order and
 // lane_start, read by the refresh and the impulses' storage only). So its header is its two packet
-// arrays, 128 bytes, and the wide values start on the next cache line (a bundle was 1536 bytes,
-// then 1472, then 1408; 1664 with its first points' rows, which had been 704 bytes apart; 1472
-// without the tangent).
+// arrays, 128 bytes, and the wide values start on the next cache line.
 struct ContactBundle {
   uint32_t packet_a[kLanes] = {}, packet_b[kLanes] = {};  // 0 = static dummy, and unused lanes
   WideVec3 normal;  // the friction rows' axes are tangent_basis(normal)

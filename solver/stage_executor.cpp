@@ -54,9 +54,8 @@ void StageExecutor::run_parallel(const std::vector<StageSpec>& stages, int parti
       // Outward from this participant's start until a block another one has taken: the blocks
       // each participant takes form one run of blocks around its start, so none is left over.
       // perf: a stage of one block is the caller's (participant 0, always present), so the data
-      // it writes stays in one core's cache from pass to pass. The solver's cut, taken by
-      // whichever thread came first, ran at half its 1-thread speed (2-thread solve, A/B
-      // medians: jolt_pyramid 1.083 -> 1.029 ms, pile10k 3.86 -> 3.62).
+      // it writes stays in one core's cache from pass to pass. Taken by whichever thread came
+      // first, the solver's cut would move between the cores' caches.
       if (count > 1 || t == 0) {
         const uint32_t start = uint32_t(uint64_t(count) * t / uint32_t(participants));
         uint32_t finished = 0;

@@ -1,15 +1,15 @@
 // StageExecutor: runs a fixed list of stages, each split into independent blocks, on the
 // caller's thread plus the arena's workers, with one lightweight sync between stages.
 //
-// perf: a TBB fork/join per colour per substep is 100+ joins a step, and waking a worker costs
-// 10-20 us on these VMs. Here the workers are started once per solve and stay in a spin-then-
+// perf: a TBB fork/join per colour per substep is 100+ joins a step, and waking a sleeping worker
+// costs far more than a sync. Here the workers are started once per solve and stay in a spin-then-
 // yield wait between stages (the scheme of Box2D v3's solver stages), so a sync costs about one
 // cross-core round trip. Within a stage, participant t starts at block t * count / participants
 // and claims blocks outward (forward, then backward from its start) by marking each block's own
 // flag, as b2ExecuteMainStage does: the participants claim in different cache lines until they
-// meet, instead of all contending for one cursor (two contended atomics per block cost a third
-// of the 2-thread solve on pile10k), and each keeps working on the same part of every pass, the
-// part its cache already holds. A stage of one block is always the caller's (participant 0),
+// meet, instead of all contending for one cursor (two contended atomics per block, whose line
+// moves between the cores), and each keeps working on the same part of every pass, the part its
+// cache already holds. A stage of one block is always the caller's (participant 0),
 // for the same reason. Completed blocks are counted once per participant and stage.
 // determinism: a block's work and its writes are fixed by (stage, block); which thread runs a
 // block is not, but blocks of one stage touch disjoint data, so the result is the same.

@@ -1,8 +1,8 @@
 // Lane-parallel arithmetic for the contact solver: kLanes constraints at once in a GCC/Clang
 // vector type. The compiler maps it to one AVX-512 or AVX register (or several narrower ones),
 // and the values stay in registers across a whole constraint, which per-loop `omp simd` would
-// not give. Each lane does the same operations whatever the width: built with the same flags,
-// 8 and 16 lanes gave the same state hashes (pile10k, jolt_pyramid).
+// not give. Each lane does the same operations whatever the width, so built with the same flags,
+// 8 and 16 lanes give the same state hashes.
 #pragma once
 
 #include <cmath>
@@ -19,10 +19,9 @@ namespace elan::detail {
 
 // perf: a pass over a bundle is bound by the chain of dependent updates (each point row reads the
 // velocities the row before it wrote), not by arithmetic width, so a wider bundle does more
-// work per step of that chain. With AVX-512, 16 lanes against 8: jolt_pyramid's solve 4.27 ->
-// 3.72 ms, pile10k's 14.3 -> 13.6 ms at 1 thread, though the later, smaller colours carry more
-// padding. Without it (Box2D v3 bundles 8 on AVX2), 16 lanes would take two registers each and
-// spill.
+// work per step of that chain. With AVX-512, 16 lanes in one register do better than 8, though
+// the later, smaller colours carry more padding. Without it (Box2D v3 bundles 8 on AVX2), 16 lanes
+// would take two registers each and spill.
 #if defined(__AVX512F__)
 inline constexpr int kLanes = 16;
 #else

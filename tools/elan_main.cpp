@@ -127,7 +127,7 @@ int run(const RunOptions& o) {
   WorldDef def;
   Real dt = 0;
   // The parsed scene is freed once the world holds it, and the file's text too unless it goes
-  // into a recording: while stepping, the run holds only the world (pile10k: 2.3 MB of text).
+  // into a recording: while stepping, the run holds only the world.
   World world = [&] {
     const Scene scene = parse_scene(text, o.scene);
     def = scene.world;
@@ -493,8 +493,7 @@ int main(int argc, char** argv) {
 #if defined(__GLIBC__)
   // Buffers of 128 KiB and more (the contact list, the solver's bundles) come from mmap and go
   // back to the system when they grow. Left to itself, glibc raises this threshold to the size of
-  // each such buffer it frees, and later growths then fragment its heap: pile10k's peak RSS is
-  // 38.0 MB that way, 34.9 MB with the threshold fixed.
+  // each such buffer it frees, and later growths then fragment its heap and raise the peak RSS.
   mallopt(M_MMAP_THRESHOLD, 128 * 1024);
 #endif
   try {

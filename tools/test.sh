@@ -26,11 +26,10 @@ ctest --test-dir build/test-release -j"$jobs" --output-on-failure --timeout 300
 
 echo "== Debug build with AddressSanitizer + UndefinedBehaviorSanitizer, and tests"
 # -O1 keeps the sanitized physics tests fast enough; benchmarks are not built here. -g1 (line
-# tables, no variables) is all a sanitizer's stack trace reads, and builds in about two thirds of
-# the time of -g, which was most of this script's run. The engine's files are compiled four at a
-# time as one unit here (the test files always are), which shares the parsing of Eigen and TBB:
-# a clean build takes about 300 s, 30-50 s less. The Release build above compiles the engine
-# file by file, as users build it.
+# tables, no variables) is all a sanitizer's stack trace reads, and builds faster than -g. The
+# engine's files are compiled four at a time as one unit here (the test files always are), which
+# shares the parsing of Eigen and TBB. The Release build above compiles the engine file by file,
+# as users build it.
 cmake -S . -B build/test-asan -DCMAKE_BUILD_TYPE=Debug -DELAN_SANITIZE=ON -DELAN_BUILD_BENCH=OFF \
       -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=4
 cmake --build build/test-asan -j"$jobs"

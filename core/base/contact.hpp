@@ -56,10 +56,10 @@ static_assert((kMaxManifoldPoints >> (32 - kManifoldBodyBits)) == 0, "point_coun
 // The contact list's entry: a manifold but for its points past the first. 64 bytes in float, one
 // cache line. A pile keeps about 2.7 manifolds a body and the collide stage rewrites each every
 // step, so what can be derived is: the pair key from the bodies, B's arms from A's. Most have one
-// point (a sphere or capsule on something: 77 % on pile10k, 1.39 points a manifold), so four
-// point slots each (128 bytes) left most of the list unused. The solver reads heads in colour
-// order, one here and one there: aligned, each is one line. The body pair cache's poses are apart
-// too (PairCache), kept only for the pairs that reuse their points.
+// point (a sphere or capsule on something: 77 % of a large pile's, 1.39 points a manifold), so
+// four point slots each (128 bytes) would leave most of the list unused. The solver reads heads in
+// colour order, one here and one there: aligned, each is one line. The body pair cache's poses are
+// apart too (PairCache), kept only for the pairs that reuse their points.
 struct alignas(64) ManifoldHead {
   uint32_t body_a = 0;
   uint32_t body_b : kManifoldBodyBits = 0;

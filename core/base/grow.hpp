@@ -26,11 +26,11 @@ void grow_fill(V& v, std::size_t n, const T& value) {
 
 // Hands back what a passing spike left in a buffer that otherwise keeps its capacity: the first
 // steps of a pile, when every pair is new and boxes span more strips, leave the collide stage's
-// new-key buffers 50-300 times larger than a settled pile uses (pile10k: 1.1 MB held, 0.01 MB
-// used) and the sweep's entries twice as large. Counted over windows of kWindow steps, so a
-// buffer whose use swings from step to step is never cut and regrown in turn: one whose capacity
-// exceeds twice the last window's high (plus kFloorBytes) is cut to a quarter past that high, at
-// most once a window. Memory only: no result depends on a capacity.
+// new-key buffers many times larger than a settled pile uses and the sweep's entries about twice
+// as large. Counted over windows of kWindow steps, so a buffer whose use swings from step to step
+// is never cut and regrown in turn: one whose capacity exceeds twice the last window's high (plus
+// kFloorBytes) is cut to a quarter past that high, at most once a window. Memory only: no result
+// depends on a capacity.
 class SpikeTrim {
  public:
   static constexpr uint32_t kWindow = 64;

@@ -35,7 +35,7 @@ struct PackedRotation {
   // perf: built in registers, one case per left-out component. Written into the coefficients
   // one by one, it was stored to the stack and read back as a vector, a failed store-to-load
   // forward that waits for every older store to commit; at 2 threads those include stores to
-  // manifolds the other core last wrote, and this one load took 40 % of the collide stage.
+  // manifolds the other core last wrote, so this one load stalled the collide stage.
   Quat unpack() const { return unpack(bytes, bytes[6]); }
   // The same from the six bytes of the kept components and the left-out index kept apart (the
   // separation cache keeps the index in spare bits).

@@ -111,9 +111,8 @@ struct ScratchAllocator {
     }
   }
   // resize() leaves new elements as the memory holds them: every scratch buffer is written whole
-  // before it is read (the sweep's entries, prepare_bundle's bundles and rows), and setting
-  // pile10k's bundles and rows to zero first would write 4 MB a step that the heap vectors,
-  // which kept their size from step to step, never wrote.
+  // before it is read (the sweep's entries, prepare_bundle's bundles and rows), and setting the
+  // bundles and rows to zero first would write all of them once more every step, for nothing.
   template <class U>
   void construct(U* p) noexcept {
     static_assert(std::is_trivially_destructible_v<U>, "scratch buffers hold plain data");

@@ -57,8 +57,8 @@ void compute_contact_events(WorldState& w, const BodyStore& start) {
   begins.clear();
   ends.clear();
   // determinism: both lists are in pair-key order, so the events are too (rule 4). perf: each
-  // began key is looked up, not merged along the whole list: a settled pile of 27k manifolds
-  // begins and ends a few dozen a step.
+  // began key is looked up, not merged along the whole list: a settled pile of thousands of
+  // manifolds begins and ends a few dozen a step.
   const std::span<const ManifoldHead> contacts = w.contacts.heads();
   const std::span<const ManifoldTail> tails = w.contacts.tails();
   auto next = contacts.begin();

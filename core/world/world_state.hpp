@@ -25,9 +25,8 @@ inline constexpr Real kSpeculativeDistance = Real(0.02);
 // Margin added to every bounding box, m: two boxes this far out overlap whenever their shapes are
 // within 2.5 cm, a quarter more than the speculative distance. The boxes are rebuilt every step
 // and swept over the step's motion and turn (compute_bounds), so pairs that close faster are
-// found by the sweep, and nothing else needs slack. perf: at 4 cm a box, pile4k had 30.1k pairs
-// a step for 10.8k manifolds; at 1.25 cm, 25.9k for the same manifolds, and its collide stage
-// went from 5.03 to 4.61 ms a step (a pair found apart still costs a cache check).
+// found by the sweep, and nothing else needs slack. perf: a wider margin finds more pairs for the
+// same manifolds, and a pair found apart still costs a cache check.
 inline constexpr Real kBoundsMargin = Real(0.625) * kSpeculativeDistance;
 
 struct WorldState {
@@ -55,8 +54,8 @@ struct WorldState {
   AllPairs all_pairs;
   SweepAndPrune sap;
   // This step's pairs, sorted: the scratch's from the broadphase to the end of the collide stage,
-  // which leaves the continuous stage its candidates in the separation list. memory: a list kept
-  // between steps was 56 B a body on pile10k.
+  // which leaves the continuous stage its candidates in the separation list. memory: no pair list
+  // is kept between steps.
   ScratchVector<uint64_t> pairs;
 
   // Contacts kept from step to step (manifolds, the body pair cache, the separation cache),
