@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The embedding API's costs: all poses of 1M bodies through bulk views vs per-body calls, ray
 // casts into a settled pile10k, and 256 small worlds stepped with step_all vs one by one.
 #include <benchmark/benchmark.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shape creation from pile4k's hull clouds (quickhull + mass properties) and support-function
 // throughput per shape type, at 1 and 2 threads; items = shapes built / support queries.
 #include <benchmark/benchmark.h>

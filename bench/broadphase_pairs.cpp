@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pair finding on a settled pile of boxes, N = 1k..256k, sweep-and-prune vs all-pairs at 1 and 2
 // threads. Each update sees a small motion of every box, so SAP runs its incremental re-sort.
 #include <benchmark/benchmark.h>

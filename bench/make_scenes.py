@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes the generated benchmark scenes into scenes/: many_pyramids, rain and tumbler.
 
 Box2D/Box3D-style joint-free scenes. Seeded, so rerunning gives the same files.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Narrowphase micro-benchmarks: collide() calls per second per shape pair type, and a whole
 // collide_pairs() pass over a settled-pile-like layout at 1 and 2 threads.
 #include <benchmark/benchmark.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK and EPA throughput per shape pair (sphere-sphere, box-box, hulls of 8/32/128 vertices,
 // capsule-box), cold vs warm-started GJK side by side, at 1 and 2 threads; items = queries.
 #include <benchmark/benchmark.h>

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The benchmark report of bench/results/<cpu>/, in two steps.
 
 1. With --raw: turns a bench_scenes JSON run (and the peak-RSS runs) into small CSVs in --out: a

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The benchmark suite in one command: builds Release (-march=native) into build/bench, runs the
 # calibration kernels, the scenes, the pile sweep and the Bullet peer in one interleaved run,
 # measures peak RSS of elan and Bullet on pile10k in separate processes, and writes CSVs, a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whole steps: the standard scenes and a generated pile sweep at 1 and 2 threads, the same scenes
 // in Bullet, heap bytes per body, and the 2-thread ceiling of this machine (an FMA kernel and a
 // streaming kernel) measured in the same run; the target scenes' speedups and the FMA ceiling

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Snapshots on pile10k after 60 steps (many contacts): save and restore time and bytes per body
 // for full snapshots and compact rollback states, and the cost of recording (a state hash every
 // step) as a ratio to a plain step on pile1k, at 1 and 2 threads. Items = bodies.

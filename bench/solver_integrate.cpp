@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Free-flight integration throughput: the substep kernels (velocities, then positions with the
 // momentum-preserving rotation) over N bodies, at 1 and 2 threads, plus the store's bytes per
 // body. Baseline in the same run: the same bodies with isotropic inertia (no gyroscopic work).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // All-pairs broadphase: every box tested against every other, in parallel over square tiles of
 // the pair space so one task streams two short runs of boxes from cache.
 #include <algorithm>

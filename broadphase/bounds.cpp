@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The bounds stage: world boxes of every body, swept over the step, as one SoA pass in fixed
 // blocks. Shapes are reduced to a few per-body numbers so the rotation part is a SIMD loop.
 #include "broadphase/bounds.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The bounds stage: a world-space box per body covering its motion over the step, and what the
 // broadphase and the collide stage read of each body beside its box (BodyKindColumns).
 //

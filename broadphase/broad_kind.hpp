@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A body's kind as the broadphase pairs it: static, kinematic, sleeping or awake.
 #pragma once
 

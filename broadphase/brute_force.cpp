@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Serial O(n^2) broadphase: the oracle that all-pairs and sweep-and-prune are tested against.
 #include <cstdint>
 #include <vector>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The find-pairs stage: which bodies' boxes overlap. Every method returns the same canonical list:
 // keys make_pair_key(a, b) (a < b), sorted ascending, unique.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one overlap-and-accept rule every broadphase method applies, so their lists agree bit for
 // bit: closed boxes (touching counts), then kinds, then filter bits.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sweep-and-prune: boxes sorted by min on the axis of largest spread, order kept between updates
 // so the re-sort is an insertion sort of nearly sorted input, then dealt into strips along the
 // axis of second spread; the strips' sweep runs in parallel chunks.

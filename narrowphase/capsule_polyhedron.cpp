@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // collide_segment_polyhedron() and its parts: a capsule against a polyhedron (see
 // capsule_polyhedron.hpp).
 #include "narrowphase/capsule_polyhedron.hpp"

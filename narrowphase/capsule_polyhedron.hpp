@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A capsule against a polyhedron (box, hull): the separating axis test of the capsule's core
 // segment against the polyhedron's faces and edges, then the segment clipped to a face, or one
 // point (Gregorius, GDC 2013 and 2015; Box2D's capsule manifold).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sutherland-Hodgman polygon clipping with line labels for feature ids (see clip.hpp).
 #include "narrowphase/clip.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sutherland-Hodgman clipping of an incident polygon against a reference face's side planes,
 // tracking for every output vertex the two lines (incident edges or side planes) that meet there,
 // which is what makes contact feature ids stable.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // collide(): one pair, dispatched on the shape types to the cheapest exact routine (closed forms,
 // SAT with clipping, or the general GJK/EPA path).
 #include "narrowphase/collide.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The collide stage: exact contact manifolds for the broadphase's pairs.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The collide stage, collide_pairs(): manifolds for every broadphase pair in parallel over fixed
 // blocks, warm-start impulses matched by key and feature id, touching manifolds compacted in key
 // order; pairs found apart skip their exact test while their motion cannot have closed the gap.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ContactStore: the step's merge of the five contact lists, the separation cache's entry codes,
 // restore and memory accounting.
 #include "narrowphase/contact_store.hpp"

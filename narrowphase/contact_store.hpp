@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ContactStore: the contact state kept from step to step (manifolds, the body pair cache, the
 // separation cache) and the few operations the step needs on it: look up a pair's entries, file
 // this step's result, finish the step (the merge that yields the begin/end changes).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // EPA, the Expanding Polytope Algorithm (van den Bergen 2001, "Proximity queries and penetration
 // depth computation on 3D game objects"): penetration depth, normal and witness points of
 // overlapping convex shapes, run on their cores (radii added after) in fixed-size buffers.

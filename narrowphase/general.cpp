@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK/EPA normal plus supporting-feature clipping (see general.hpp).
 #include "narrowphase/general.hpp"
 

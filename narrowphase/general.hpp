@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The general convex pair path: GJK/EPA for the normal, then the contact points by clipping the
 // two supporting features (faces, segments) against each other, as Jolt's
 // ManifoldBetweenTwoFaces does. Used for cylinders and any pair without a specialised routine.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK distance (Gilbert, Johnson, Keerthi 1988) on the support of the Minkowski difference, with
 // the signed-volumes sub-algorithm of Montanari, Petrella, Mezzetti (2017) for the simplex.
 #include "narrowphase/gjk.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK distance between two convex shapes (core shapes: sphere and capsule radii are applied
 // afterwards), using the support of the Minkowski difference without building it.
 #pragma once

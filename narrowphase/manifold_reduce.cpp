@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Manifold reduction to four points: deepest, farthest, largest triangle, largest quadrilateral.
 // The deepest point keeps the penetration; the area terms keep the support polygon wide so a
 // resting body does not rock (the usual heuristic of Bullet's and Box2D's reducers).

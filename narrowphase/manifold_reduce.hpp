@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Manifold reduction: choose at most four contact candidates that keep the deepest point and
 // span the largest area, so a stable support polygon survives with a fixed point budget.
 #pragma once

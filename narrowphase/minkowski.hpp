@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Internal to GJK/EPA: support of the Minkowski difference A - B of two placed shapes (core or
 // full), the simplex GJK hands to EPA, and the core-based penetration query.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Builds the working-frame polyhedron of a box (from a static unit box) or a convex hull,
 // including the edge-to-face adjacency the Gauss-map edge pruning needs.
 #include "narrowphase/polyhedron.hpp"

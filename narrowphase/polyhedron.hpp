@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Polyhedra for SAT and clipping: a box or convex hull placed in a shared working frame (world
 // rotation, origin at A's centre of mass), with the face/edge adjacency the Gauss-map test needs.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Closed-form manifolds for spheres and capsules, sphere against box or any convex shape, and any
 // shape against a plane. Contact points sit midway between the two surfaces.
 #include "narrowphase/round_pairs.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Closed-form contact manifolds for round shapes (sphere, capsule) and for any shape against a
 // plane. Each routine has the signature and conventions of collide() in collide.hpp, with A and B
 // in the order of the name (the dispatcher swaps and flips when the pair comes the other way).

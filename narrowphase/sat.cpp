@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SAT over face normals and Gauss-map-pruned edge pairs, then reference/incident face clipping
 // (Gregorius GDC 2013/2015) or one point at the closest points of two edges. The capsule against a
 // polyhedron is in capsule_polyhedron.cpp.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Separating axis test with face clipping for polyhedron pairs (boxes, hulls) (Gregorius, "The
 // Separating Axis Test between Convex Polyhedra", GDC 2013; "Robust Contact Creation for Physics
 // Simulations", GDC 2015).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the polyhedron SAT (sat.cpp) and the capsule-polyhedron contact (capsule_polyhedron.cpp)
 // share: the axis queries' results, the hysteresis between axes, the closest points of two
 // segments, and storing a manifold's points.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Separation: what an exact test that found no contact measured, so that the next steps can
 // tell from the motion alone that it would find none again.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One sorted list updated in place by a parallel pass over fixed blocks of keys, then joined:
 // the merge every list of the contact store goes through (ContactStore), written once.
 #pragma once

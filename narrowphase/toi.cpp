@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Time of impact by conservative advancement (Mirtich 1996, "Impulse-based dynamic simulation of
 // rigid body systems", 4.3): step time forward by distance / (bound on the approach speed).
 #include <cmath>

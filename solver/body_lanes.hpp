@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Loads and stores of the bodies on one side of a contact bundle: lane l of the wide values is
 // the solver body packets[l]. gather_velocity reads v and w, gather_pose dp and dtheta,
 // gather_mass the inverse mass and inertia, and scatter_velocity writes v and w back to the

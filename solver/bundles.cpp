@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // build_bundles() and prepare_contacts(): the solver's contact bundles (see bundles.hpp).
 #include "solver/bundles.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The solver's contact bundles: each colour's constraints kLanes at a time (ContactBundle,
 // contact_solver.hpp), their point rows, and their preparation for the step.
 #pragma once

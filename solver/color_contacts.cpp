@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // color_contacts(): the solver's groups and their colourings (see color_contacts.hpp).
 #include "solver/color_contacts.hpp"
 

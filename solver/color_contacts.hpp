@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The solver's constraint groups and their colourings: which contacts take part, in which group
 // (a half's own or the cut's, solve.hpp), and each group's colours (coloring.hpp), laid out as
 // the segments the bundles are built from.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Greedy constraint colouring with per-colour body bitsets.
 #include "solver/coloring.hpp"
 

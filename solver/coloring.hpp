@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The colour stage: greedy graph colouring of the contact constraints so that no two constraints
 // of one colour touch the same dynamic body (Box2D v3's constraint graph, rebuilt each step).
 //

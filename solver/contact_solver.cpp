@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Soft-step contact solver: non-penetration with soft position correction, Coulomb friction with
 // a circular cone, restitution from the pre-solve approach speed.
 #include "solver/contact_solver.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Contact constraints of the soft step (Box2D v3 "solver2d" soft step, Catto 2024): prepare once
 // per step, then per substep warm start, solve with bias, relax without bias; restitution and
 // impulse storage once per step.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Substep integration of the solver packets.
 #include "solver/integrate.hpp"
 

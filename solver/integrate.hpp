@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Integration of the body packets over one substep: velocities from gravity, forces and damping;
 // positions and orientations from velocities, keeping the angular momentum of a torque-free body.
 //

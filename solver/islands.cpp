@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Union-find islands over touching contacts, and island sleep/wake.
 #include "solver/islands.hpp"
 

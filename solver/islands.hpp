@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The islands and sleep stage: bodies linked by touching contacts form islands (union-find that
 // links toward the lower index, as Jolt does); an island sleeps when all its bodies have been
 // slow for a while, and wakes as a whole when any of its bodies is awake or touched by a moving

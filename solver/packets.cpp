@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // split_halves() and load_packets(): the solver's packets (see packets.hpp).
 #include "solver/packets.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The solver's body packets: which bodies the solve moves, in which half (partition.hpp), and each
 // one's state for the step. Two stages, run one after the other by run_step.
 #pragma once

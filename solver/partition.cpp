@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // split_in_halves(): a median cut of the simulated bodies (see partition.hpp).
 #include "solver/partition.hpp"
 

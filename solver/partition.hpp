@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The solver's two halves: the simulated bodies cut in two at the median of their centres along
 // the axis of largest spread, so that each half's contacts can be solved by one thread with no
 // sync, and only the contacts across the cut wait for both.

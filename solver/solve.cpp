@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The solver stages that run the prepared bundles: substeps, restitution, and the write-back.
 #include "solver/solve.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The solver's settings and state, and the stages that run the prepared constraints: the
 // substeps, restitution and impulse storage (solve), and writing results back (finalize_bodies).
 // The stages before them, in run_step's order: update_islands (islands.hpp), split_halves and

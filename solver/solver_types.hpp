@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Solver data: the compact per-body packet the substeps work on, per-body constants, and
 // contact constraints in solver form, bundled across SIMD lanes.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Stage executor: block claiming with an atomic cursor per stage, completion counting, and a
 // spin-then-yield wait before the next stage.
 #include "solver/stage_executor.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // StageExecutor: runs a fixed list of stages, each split into independent blocks, on the
 // caller's thread plus the arena's workers, with one lightweight sync between stages.
 //

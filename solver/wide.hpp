@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Lane-parallel arithmetic for the contact solver: kLanes constraints at once in a GCC/Clang
 // vector type. The compiler maps it to one AVX-512 or AVX register (or several narrower ones),
 // and the values stay in registers across a whole constraint, which per-loop `omp simd` would

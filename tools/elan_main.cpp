@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The elan command: `elan run` simulates a scene file and prints a JSON summary, `elan replay`
 // re-simulates a recording and compares every step's state hash, `elan diverge` steps a scene
 // under two settings side by side. Every error exits with status 2.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Command-line parsing for the elan tool. Hand-written: two commands with a dozen options do not
 // justify a dependency (CLI11 is not in Debian's default set of installed packages).
 #include "tools/options.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Command-line options of `elan run`, `elan replay` and `elan diverge`: hand-written parsing,
 // strict numbers.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Recording file format, version 2 (all integers little-endian):
 //   magic "\x89ELANREC" | u32 version | u32 real_bytes | u64 steps | f64 timestep | i32 substeps |
 //   i32 iterations | u32 threads | u32 broadphase | u64 keyframe_every | u64 n, scene name |

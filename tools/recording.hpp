@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Recordings of `elan run --record`: the scene text, the settings, the state hash after every
 // step and a full snapshot every K steps (keyframes), in a versioned little-endian binary file
 // closed by a checksum.

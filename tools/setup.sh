@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs what is missing (Debian packages), builds Release, and simulates a real scene.
 #   tools/setup.sh [SCENE.json] [elan run options...]
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds and runs the whole test suite twice: Release, then Debug under AddressSanitizer and
 # UndefinedBehaviorSanitizer. Installs missing packages first (through tools/setup.sh's list).
 set -euo pipefail

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Trajectory CSV writer. %.9g round-trips a float and %.17g a double (the digits needed to
 // identify any value of the type, C++ std::numeric_limits<T>::max_digits10).
 #include "tools/trajectory.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Trajectory CSV of `elan run --trajectory`: one row per non-static body per sampled step, with
 // every value printed so that it reads back to the same bits.
 #pragma once

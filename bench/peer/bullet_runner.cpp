@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // bullet_runner SCENE.json [--steps N]: steps a scene file in Bullet 3 alone in its process and
 // prints one JSON object like `elan run` does, so peak RSS and time can be compared process to
 // process.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Builds a Bullet 3 world from an elan::Scene: Bullet's own shapes, mass from density x volume as
 // elan computes it, elan's material mixing and damping law, sleeping as the scene asks.
 #include "bench/peer/bullet_world.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bullet 3 world built from an elan::Scene (same shapes, masses, materials and poses), stepped the
 // way Bullet users step it, so both engines can be timed on the same scene in one process.
 #pragma once

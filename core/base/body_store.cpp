@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Column bookkeeping of the body store: append, swap-remove, reserve.
 #include "core/base/body_store.hpp"
 

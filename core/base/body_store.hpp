@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // BodyStore: every body's state as a structure of arrays indexed by a dense body index.
 #pragma once
 

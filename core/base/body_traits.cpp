@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "core/base/body_traits.hpp"
 
 #include <algorithm>

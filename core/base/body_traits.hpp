@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // BodyTraits: a body's contact material, damping and collision filter, kept once for all the
 // bodies that share them.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Column<T>: one aligned, growable array of a structure-of-arrays store.
 #pragma once
 

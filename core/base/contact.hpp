@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Contact manifolds: the narrowphase's output and the solver's input, one per touching or near
 // pair, kept sorted by pair key: the contact list of heads, and beside it, by key too, the tails
 // of those with more than one point and the body pair cache's poses of those that reuse them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex hull of a point cloud: quickhull over triangles in double, then coplanar triangles merged
 // into polygon faces with counter-clockwise loops, redundant vertices dropped, unique edges listed.
 #include "core/base/convex_hull.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex hull of a point cloud: vertices, merged planar faces with ordered loops, unique edges.
 #pragma once
 

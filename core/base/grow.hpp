@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sizing of the buffers a step rebuilds: they keep their capacity from step to step, so once a
 // scene has run a while a step allocates nothing.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // heap_bytes(): the bytes a container holds on the heap (its capacity, not its size: what the
 // allocator keeps after a step, which is what the memory report counts). Allocator overhead is
 // not included.

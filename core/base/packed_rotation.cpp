@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The smallest-three rotation codec (see packed_rotation.hpp).
 #include "core/base/packed_rotation.hpp"
 

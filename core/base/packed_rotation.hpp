@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A unit quaternion in seven bytes, for caches that keep a rotation as the reference of a
 // tolerance (the separation cache, the body pair cache) and never rotate anything by it exactly.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pair keys: (a, b) with a < b packed in one 64-bit integer, so sorting keys sorts pairs.
 #pragma once
 

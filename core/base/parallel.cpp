@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Radix sort for the pair keys: a parallel MSD sort that scatters into buckets block by block and
 // sorts the buckets as separate tasks.
 #include "core/base/parallel.hpp"

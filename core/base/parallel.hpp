@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Deterministic parallel helpers over fixed blocks: the layout of work depends on the item count
 // and a compile-time grain only, never on the thread count.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shape creation: validation, exact mass properties per unit density (closed forms, and polyhedral
 // integrals for hulls), principal frames and bounds; plus the support functions.
 #include "core/base/shape.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shape: immutable geometry in its principal frame (centre of mass at the origin, inertia
 // diagonal), plus the frame's placement in the user's shape frame and exact mass properties.
 #pragma once

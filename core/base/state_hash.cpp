@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // State hash: a word-at-a-time multiply-xorshift mix (the finaliser of SplitMix64 / Stafford's
 // Mix13), fast enough to run every step for recordings.
 #include "core/base/state_hash.hpp"

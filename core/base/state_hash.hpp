@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The state hash: 64 bits over every stored bit of every body's pose and velocities.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // StepScratch: one block of memory that the stages of a step take their per-step buffers from,
 // in turn, one phase each: the sweep and the collide stage (the bounding boxes, the sweep's strip
 // entries, pair blocks and sorts, the pair list they leave, which the collide stage reads; then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene file's bodies and shapes, validated field by field.
 #include "core/scene/body_schema.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene file's bodies: a body object (motion, shape, pose, velocities, mass, material,
 // filter) and its shape object, validated into a SceneBody.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene file's generators: validation and expansion into bodies.
 #include "core/scene/generators.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene file's generators: a grid of copies of one body, and a pyramid of cubes. Validated
 // first, expanded once the scene's total body count is known to be sane.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene file's JSON reader: a SAX handler that builds the DOM, rejecting duplicate keys and
 // deep nesting, and turns nlohmann's parse errors into one-line messages.
 #include "core/scene/json_reader.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene file's JSON reader: nlohmann-json's parser made strict (duplicate keys and deep
 // nesting are errors) and its messages made to name the file, line, column and key path.
 #pragma once

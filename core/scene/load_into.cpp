@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Loading a scene into a World: identical shapes shared, bodies created in scene order, and the
 // World's errors turned into scene messages naming the body and field.
 #include <map>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scene files: the top level of the schema (world settings, bodies, generators), read from text
 // or from a file.
 #include <cerrno>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene file's schema checks: typed reads of JSON values with one-line messages.
 #include "core/scene/schema_checks.hpp"
 

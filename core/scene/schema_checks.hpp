@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene file's schema checks: typed reads of JSON values (numbers, integers in a range,
 // vectors, unit quaternions, strings, booleans, objects with known keys), each failure a
 // SceneError naming the file, the body and the field.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ApiState: what the embedding API keeps beside the step's own data: events, the pair filter,
 // destroyed shapes, and the cached bounds used by scene queries.
 #pragma once

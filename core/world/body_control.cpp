@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-body control of the public API between steps: pose, velocities, forces and impulses,
 // kinematic targets, sleep, material, mass and filter bits. All validated, all by id.
 #include <Eigen/Geometry>

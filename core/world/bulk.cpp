@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bulk access of the public API: zero-copy column views, whole-column setters, event arrays,
 // the pair filter, and stepping many worlds at once.
 #include <tbb/blocked_range.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Little-endian byte writing and bounds-checked reading for snapshot formats, value by value
 // (never a struct copy, so the layout is the format's and not the compiler's), and the checksum.
 #pragma once

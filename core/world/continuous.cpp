@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Continuous collision of fast bodies by time of impact.
 #include "core/world/continuous.hpp"
 

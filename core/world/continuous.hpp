@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The continuous collision stage: a body that moved more than half its thinnest extent during the
 // step is put back at its first time of impact, along the step's motion, with a static or
 // kinematic body or a dynamic body that moved slowly (Box2D v3's b2SolveContinuous). Speculative

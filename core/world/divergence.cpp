@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The divergence finder: compares two worlds body by body, bit for bit, and steps two worlds side
 // by side until they first differ (elan/snapshot.hpp).
 #include <bit>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Contact begin/end events from the collide stage's changes to the contact list, and the pair
 // filter.
 #include "core/world/events.hpp"

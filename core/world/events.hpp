@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Step hooks of the embedding API: the pair filter after the broadphase and contact begin/end
 // events after the solve. Both run inside the step, over the world's arrays.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The memory report: every buffer the world keeps, grouped by the stage that owns it.
 #include "core/world/memory_use.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // memory_use(): the heap a world keeps between steps, by part, for the benchmark's memory report
 // (the "store + broadphase + contacts + solver", with shapes apart).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scene queries: ray against each shape type in its principal frame (closed forms; hulls by
 // their face planes), and the world-level ray cast and box overlap over cached bounds.
 #include "core/world/queries.hpp"

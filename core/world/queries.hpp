@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Ray casts against one shape, in closed form per shape type: the kernel of World::cast_ray.
 #pragma once
 

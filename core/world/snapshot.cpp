@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Snapshots and compact rollback states of a World (formats in elan/snapshot.hpp). The divergence
 // finder is in divergence.cpp.
 #include "elan/snapshot.hpp"

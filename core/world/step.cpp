@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One step: bounds, pairs, collide, islands and sleep, the median cut, packets, colour, bundles,
 // prepare, substeps and restitution, continuous collision, finalize. Each stage is a function
 // over the world's arrays; this file orders and times them, and shows every scratch buffer that

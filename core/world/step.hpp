@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The step pipeline: the stages of ARCHITECTURE.md called in order over the world's arrays.
 #pragma once
 

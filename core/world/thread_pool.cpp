@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ThreadPool: a oneTBB arena, either its own or the caller's (elan/tbb_interop.hpp).
 #include "elan/thread_pool.hpp"
 

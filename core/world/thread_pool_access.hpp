@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The engine's own access to a ThreadPool's oneTBB arena, which the public header keeps opaque.
 #pragma once
 

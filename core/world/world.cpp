@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The public World API: ids, validation of definitions, getters and setters, and step.
 #include "elan/world.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The engine's own access to a World's state (for its source files, tools, tests and benchmarks;
 // the public header keeps it private), and the checks shared by the World API's source files:
 // id lookup and argument validation.

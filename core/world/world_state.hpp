@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // WorldState: everything a World owns, laid out as the step's stages read and write it.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Runs the built `elan` binary from a test (ELAN_CLI is its path) and captures exit status,
 // standard output and standard error; plus the file helpers the command-line tests share.
 #pragma once

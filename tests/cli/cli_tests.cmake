@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Tests of the elan command: a GoogleTest program that runs the built binary and checks exit
 # status, stderr messages, the summary JSON, trajectories and recordings.
 add_executable(test_cli_elan ${CMAKE_CURRENT_LIST_DIR}/elan_cli_test.cpp)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Runs the built `elan` binary: bad scenes and bad arguments exit 2 with a one-line message naming
 // the field, the summary has the contract's keys, trajectories and recordings round-trip.
 #include <gtest/gtest.h>

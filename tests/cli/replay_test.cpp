@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `elan run --record` with keyframes, `elan replay` naming the first differing body and field,
 // `elan diverge`, and refusal (exit 2, one clear line) of old, future, corrupt and truncated files.
 #include <gtest/gtest.h>

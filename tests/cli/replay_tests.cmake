@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Record, replay and diverge through the elan binary: keyframes, the body and field named at the
 # first divergent step, perturbed replays, old and future recording versions, corrupt files.
 add_executable(test_cli_replay ${CMAKE_CURRENT_LIST_DIR}/replay_test.cpp)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The embedding API keeps determinism: creating and destroying bodies mid-run (in contact and
 // asleep), shared thread pools and caller arenas, and many worlds stepped at once give the same
 // bits as the plain runs.

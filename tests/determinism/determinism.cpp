@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bit-for-bit determinism: the same scene under 1 to 4 threads and both broadphases gives the
 // same state hash at every step, again when rerun in the same process, and (Jolt's side-by-side
 // style) every body's full state is identical between a 1-thread and a 2-thread world; the

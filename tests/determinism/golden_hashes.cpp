@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Golden state hashes: every standard scene in scenes/, stepped 120 times from its file, must give
 // the state hash written below, for 1 and 2 threads and both broadphases (Box3D's
 // test_determinism.c keeps such constants). A change of behaviour, however small, changes a hash,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The divergence finder: two worlds stepped side by side are reported equal when only the
 // thread count and broadphase differ, and a one-ulp nudge is found at its step, body and field.
 #include <gtest/gtest.h>

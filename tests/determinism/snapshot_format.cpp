@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Snapshot format: refused cleanly (elan::Error naming the problem, world unchanged) when not a
 // snapshot, of another version or Real size, truncated at any length or corrupt at any byte; and
 // tripwires that fail when a body column or contact field is added that snapshots do not save.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A snapshot taken mid-run (step 100) and restored into a fresh world continues with the same bits
 // as the run that never stopped, at 1 and 2 threads and with either broadphase.
 #include <gtest/gtest.h>

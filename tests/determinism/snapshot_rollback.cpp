@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Compact rollback states: save at step k, run on, roll back, run again: the same hashes every
 // step; the state's size per body is what the format says; another world's state is refused.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene the snapshot tests share: pile1k (boxes, spheres, capsules, hulls in a walled box)
 // plus, outside the walls, resting boxes that fall asleep, a stack created asleep, and a ball
 // dropped from high up that wakes the stack at about step 110, so a window of steps 100..130

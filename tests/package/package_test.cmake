@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Installs the built project into a scratch prefix, then configures, builds and runs the consumer
 # against it. Run by CTest with -DBUILD_DIR, -DSOURCE_DIR, -DWORK_DIR.
 file(REMOVE_RECURSE ${WORK_DIR})

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The README's hello-world program, as a newcomer would use it: the first ```cpp block after the
 # `<!-- hello-world` marker and the first ```cmake block after that are written into a fresh
 # project, built against the installed package and run; the program's output must be the text

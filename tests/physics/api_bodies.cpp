@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Body lifetime and control through the embedding API: stale ids, destroy with contacts and
 // events, per-body setters against closed forms, bulk views and setters against per-body calls.
 #include <gtest/gtest.h>

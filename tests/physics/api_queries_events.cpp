@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scene queries and contact events: ray casts against every shape type against closed forms,
 // world ray and box queries in their documented order, and begin/end events of a bouncing ball.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Single contacts against closed forms: resting without drift, bounce height e^2 h, stick and
 // slide on a slope (Coulomb), rolling without slipping, and conservation of momentum in
 // zero-gravity collisions, with the textbook velocities of an elastic head-on hit.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bodies without contacts against closed forms: ballistic flight under a tilted gravity,
 // torque-free spin of an asymmetric box (angular momentum, energy, the intermediate-axis flip),
 // damping, kinematic and static motion.

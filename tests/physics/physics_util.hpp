@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared helpers of the physics, determinism and stage tests: building small worlds in code,
 // loading the standard scenes, and the sanitizer switch that shrinks the longest runs.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A pile of mixed bodies (boxes, spheres, capsules, hulls) dropped into a walled container
 // settles: no non-finite state, nothing leaves the container, kinetic energy near zero by 15 s.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scene parser: defaults as the spec gives them, generators placing bodies exactly, names and
 // quaternions resolved, and load_into creating bodies in scene order with shared shapes.
 #include <gtest/gtest.h>

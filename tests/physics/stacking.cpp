@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Stacks standing still for 10 s: the tower of 20 cubes and the pyramids of base 10 and 20 from
 // scenes/. The measure is the top cube's displacement, from its start pose (the issue's "moves
 // under 5 cm") and, reported alongside, from its pose after 0.5 s of settling.

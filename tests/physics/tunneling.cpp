@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // No tunneling: a small fast sphere must never end up beyond a thin wall (static) or a thin
 // plate (dynamic), though it travels several times their thickness in one step.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bounds stage: every shape type's box contains the shape over the whole step (start, middle and
 // end pose), is tight for a body at rest, and planes get infinite or axis-aligned boxes, no NaN.
 #include <gtest/gtest.h>

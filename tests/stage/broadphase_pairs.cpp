@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Broadphase pair finding: sweep-and-prune and all-pairs give the brute-force oracle's list bit for
 // bit on random box sets and moving scenes, under 1 and 2 worker threads.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The parallel key sort the broadphase ends with: equal to std::sort on pair lists and on
 // adversarial key sets, whether the keys come in one vector or in blocks, under 1 and 2 threads.
 #include <gtest/gtest.h>

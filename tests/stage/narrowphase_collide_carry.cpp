@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // collide_pairs' carrying: last step's manifolds between two idle (static or sleeping) bodies
 // whose key found no touching manifold this step are kept, merged by key into the new list; the
 // ones found again, the ones with a body not idle and the empty ones are not. The join is split

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The collide stage: bit-identical results under 1 and 2 threads on a pile of mixed shapes,
 // A/B choice (static as B), and warm-start impulses carried by key and feature id.
 #include <gtest/gtest.h>

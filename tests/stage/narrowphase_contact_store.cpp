@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The contact store alone on hand-made lists: a step's merge (entries rewritten, added, ended, the
 // changes reported in key order), remove_body's renaming and re-sort, and save/restore.
 #include <gtest/gtest.h>

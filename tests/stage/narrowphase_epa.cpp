@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // EPA penetration depth, normal and witness points against closed forms and an exact SAT oracle.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GJK distance and closest points against closed forms and an exact polytope oracle.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Manifolds beyond box pairs: capsule and cylinder against polyhedra, and feature ids that stay
 // while the same features touch and change when they change.
 #include <gtest/gtest.h>

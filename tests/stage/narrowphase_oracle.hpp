@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Exact reference geometry (in double) for the GJK/EPA tests: point-triangle and segment-segment
 // distances, and the distance / penetration depth of two convex polytopes from their features.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Closed-form round-shape and plane manifolds: depth, normal, points, feature ids, degeneracies.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SAT with clipping for boxes and hulls: depths, point counts and normals against closed forms
 // for face, edge and vertex contacts; hulls must agree with the boxes they equal.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shapes and poses shared by the narrowphase stage tests.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Time of impact (conservative advancement) against the analytic contact time.
 #include <gtest/gtest.h>
 

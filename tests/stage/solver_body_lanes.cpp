@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Loads and stores of a bundle's bodies: each lane gets exactly its body's values, and a store
 // touches only v and w of the lanes whose packet is written. The substep integration's loads and
 // stores of consecutive packets: all sixteen floats of each, and only the first `count`. With

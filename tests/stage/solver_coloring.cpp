@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Colouring (build_colors): no dynamic body twice in one colour, every constraint exactly once,
 // input order kept within each colour and in the overflow, and the documented colour choice for
 // constraints with one dynamic side.

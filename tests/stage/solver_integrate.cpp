@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The substep integrator: the exponential map's polynomial against the closed form, and the
 // lane-parallel position update against a double-precision evaluation of the same midpoint rule,
 // lane by lane, whatever lane or block a body falls in.

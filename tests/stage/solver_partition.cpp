@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The solver's median cut: half the bodies on each side, every body of side 0 at or before every
 // body of side 1 along the axis of largest spread, and the same sides whatever the order of the
 // bodies in memory; non-finite coordinates go to side 1.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The solver's stages before the solve, each alone on a hand-made world: split_halves puts every
 // simulated body in exactly one half and lays out the packets; load_packets copies the bodies'
 // state; color_contacts groups and colours exactly the contacts that take part; build_bundles

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The contact passes' friction axes: tangents_of() across the lanes must give, bit for bit, the
 // basis tangent_basis() gives each lane's normal, since a manifold's friction impulses are stored
 // and carried (carry_tangent_impulse) in that scalar basis.

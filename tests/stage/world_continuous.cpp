@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The continuous stage: a fast body whose step's motion passes through a thin wall is put back
 // where it first comes within kContinuousTarget of it; slow bodies, bodies already touching, planes
 // and pairs the collide stage did not find apart (the contact solver had them) are left alone.

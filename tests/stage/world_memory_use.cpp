@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The memory report accounts for the heap a world holds: its parts add up to what glibc says the
 // world allocated, so a buffer added to the world and left out of the report shows here.
 #include <gtest/gtest.h>

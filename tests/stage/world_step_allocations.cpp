@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // No allocation in the step once a scene has run a while: every buffer a step rebuilds keeps its
 // capacity, and those whose counts creep up grow with slack. Counted by replacing the global
 // operator new in this test's executable (the engine's vectors allocate through it).

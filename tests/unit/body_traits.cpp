@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The table of body traits: bodies made in runs share one entry, an entry no body uses is reused,
 // values are compared bit for bit, and a snapshot's table is refused when it disagrees with the
 // bodies' entries.

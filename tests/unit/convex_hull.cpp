@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex hull builder: topology and geometry of known solids, invariants on random clouds against a
 // brute-force supporting-plane oracle, degenerate inputs, and the hull clouds of the pile scenes.
 #include <gtest/gtest.h>

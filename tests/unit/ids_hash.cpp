@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Ids key unordered containers: std::hash of BodyId and ShapeId, consistent with ==.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The smallest-three rotation codec of the separation and body pair caches: its error bound, and
 // which bytes a snapshot reader must refuse.
 #include <gtest/gtest.h>

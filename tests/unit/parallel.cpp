@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The deterministic parallel helpers (core/base/parallel.hpp): for_blocks cuts work by count and
 // grain alone, whatever the thread count; bin_major_offsets keeps block order within a bin; the
 // key sorts give std::sort's order for any thread count and any split into blocks.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Compiles each public header alone (so each is self-contained) and lists every header it pulls
 # in: none may come from oneTBB or nlohmann-json, except elan/tbb_interop.hpp, which must include
 # TBB (so this check is seen to detect it). Run by CTest with -DCXX, -DHEADER_DIR (the elan/

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shape creation: mass properties against hand values and an independent slice-integration oracle,
 // hull principal frames against exactly known solids, bounds, and validation of bad definitions.
 #include <gtest/gtest.h>

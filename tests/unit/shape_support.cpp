@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Support functions of every shape against a brute-force maximum over sampled surface points.
 #include <gtest/gtest.h>
 

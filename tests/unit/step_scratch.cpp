@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The step's scratch: phases share its bytes, a phase larger than the block still gets what it
 // asks and the next one fits in a grown block, buffers grown in parallel never overlap, and a
 // buffer still held across a phase keeps its bytes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The friction rows' tangent basis (Duff et al. 2017): orthonormal and right-handed for every unit
 // normal, the axes and the branch's edge (n.z = 0, either sign of zero) included, and the carrying
 // of a friction impulse from one normal's basis to another's.

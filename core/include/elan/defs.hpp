@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Creation structs of the public API: shapes, bodies, worlds. All units SI, frames noted.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The exception type the library throws for invalid arguments (never out of World::step).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Contact events and the pair filter of the public API: what the world reports after a step and
 // how the caller vetoes pairs.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Stable, generation-checked handles of the public API.
 #pragma once
 

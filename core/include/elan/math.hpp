@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scalar and fixed-size math types of the public API: Eigen types over `Real`.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a step did: counts, per-stage times and status flags, read after World::step.
 #pragma once
 

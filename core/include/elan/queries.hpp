@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scene queries of the public API: ray casts and box overlaps against the world's bodies.
 #pragma once
 

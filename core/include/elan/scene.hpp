@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scene files (JSON, see README "Scene file"): parsing with validation, and loading into a World.
 // These functions are in the library elan::elan_scene, so that the core elan links no JSON parser.
 #pragma once

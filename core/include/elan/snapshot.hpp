@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Snapshots (the whole world, restorable into any World), compact rollback states (only what a
 // step changes, restorable onto the same world) and a divergence finder for two worlds.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Interoperation with oneTBB: the one public header that includes TBB, for applications that
 // run their own task arenas and want elan's steps inside them. Everything else in elan/ is free
 // of TBB (a unit test checks it).

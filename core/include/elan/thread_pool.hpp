@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ThreadPool: the workers a world runs its step on, which several worlds may share. An opaque
 // handle, so that the public API names no threading library (elan/tbb_interop.hpp wraps a
 // caller's oneTBB arena).

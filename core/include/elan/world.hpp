@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // World: owns bodies, shapes and contacts and advances them in time with World::step.
 #pragma once
 

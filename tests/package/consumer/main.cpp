@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Drops a ball for one second and checks it fell as v = g t says (the embedding example).
 #include <elan/elan.hpp>
 

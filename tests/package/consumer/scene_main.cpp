@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Loads a scene from JSON text through elan::elan_scene and checks its ball falls as v = g t says.
 #include <elan/elan.hpp>
 
