@@ -136,8 +136,14 @@ void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
   check_vec(impulse, "impulse");
   check_vec(point, "point");
   const std::size_t i = index_of(*state_, id);
+  const detail::BodyStore& b = state_->bodies;
+  const Vec3 angular = (point - b.position(i)).cross(impulse);
+  // Both halves checked before either is applied, so a refused impulse changes nothing.
+  if (b.is_dynamic(i)) {
+    check_angular_velocity(b.angular_velocity(i) + apply_inv_inertia(b, i, angular), "impulse");
+  }
   apply_linear_impulse(id, impulse);
-  apply_angular_impulse(id, (point - state_->bodies.position(i)).cross(impulse));
+  apply_angular_impulse(id, angular);
 }
 
 void World::apply_linear_impulse(BodyId id, const Vec3& impulse) {

@@ -154,6 +154,12 @@ TEST(ApiLimits, SettersOutsideTheRangeAreRefusedNamingTheField) {
   EXPECT_EQ(refused_field([&] { w.apply_angular_impulse(id, Vec3(Real(1e30), 0, 0)); }),
             "angular_impulse");
   EXPECT_EQ(w.angular_velocity(id), Vec3::Zero());
+  // At a point far off the centre: the linear half is in range, the angular half is not.
+  EXPECT_EQ(
+      refused_field([&] { w.apply_impulse(id, Vec3(0, Real(1e4), 0), Vec3(Real(1e5), 0, 0)); }),
+      "impulse");
+  EXPECT_EQ(w.linear_velocity(id), Vec3::Zero());
+  EXPECT_EQ(w.angular_velocity(id), Vec3::Zero());
   const std::vector<Real> big{Real(1e6)}, zero{0};
   EXPECT_EQ(refused_field([&] { w.set_center_of_mass_positions(big, zero, zero); }), "positions");
   EXPECT_EQ(refused_field([&] { w.set_linear_velocities(zero, big, zero); }), "linear_velocities");
