@@ -91,6 +91,19 @@ TEST(CliLimits, SceneTimestepOutOfRangeIsRefused) {
   expect_refused("timestep_out_of_range.json", "timestep: must be in [1e-06, 1] s, got 1e+30");
 }
 
+// --timestep takes the same range as the scene's: outside it every step would do nothing.
+TEST(CliLimits, TimestepOptionOutOfRangeIsRefusedNamingTheFlag) {
+  const std::string scene = temp_path("ok.json");
+  write(scene, kSmallScene);
+  for (const char* dt : {"5", "1e-7"}) {
+    const Result r = run_elan({"run", scene, "--steps", "1", "--timestep", dt});
+    EXPECT_EQ(r.status, 2) << dt << ": " << r.err;
+    EXPECT_NE(r.err.find("--timestep: must be in [1e-06, 1] s"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  EXPECT_EQ(run_elan({"run", scene, "--steps", "1", "--timestep", "1"}).status, 0);
+}
+
 // The abuse bodies (1e4 m/s, 1e4 rad/s, gravity 1e4 m/s^2) and bodies at every bound:
 // exit 0, status 0, and every total a finite number (JSON null would be NaN or inf).
 TEST(CliLimits, SceneAtTheBoundsRunsToAFiniteSummary) {
