@@ -19,12 +19,13 @@ inline std::string show_value(double v) {
   return buf;
 }
 
-// "must be in [lo, hi] unit, got v" unless lo <= v <= hi. The bounds are compared as rounded to
-// Real, so that a bound written in a file or in code (1e-4 is 9.99999975e-5 as a float) is in.
+// "must be in [lo, hi] unit, got v" (unit "" for a pure number) unless lo <= v <= hi. The bounds
+// are compared as rounded to Real, so that a bound written in a file or in code (1e-4
+// is 9.99999975e-5 as a float) is in.
 inline void check_range(double v, double lo, double hi, const char* field, const char* unit) {
   if (!(v >= double(Real(lo)) && v <= double(Real(hi)))) {
-    throw Error(field, "must be in [" + show_value(lo) + ", " + show_value(hi) + "] " + unit +
-                           ", got " + show_value(v));
+    throw Error(field, "must be in [" + show_value(lo) + ", " + show_value(hi) + "]" +
+                           (*unit ? " " : "") + unit + ", got " + show_value(v));
   }
 }
 

@@ -204,6 +204,7 @@ void World::sleep(BodyId id) {
 
 void World::set_friction(BodyId id, Real friction) {
   check_arg(std::isfinite(friction) && friction >= 0, "friction", "must be finite and >= 0");
+  detail::check_range(friction, 0, limits::kMaxFriction, "friction", "");
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   detail::BodyTraits t = b.traits_of(i);
@@ -214,6 +215,7 @@ void World::set_friction(BodyId id, Real friction) {
 void World::set_restitution(BodyId id, Real restitution) {
   check_arg(std::isfinite(restitution) && restitution >= 0, "restitution",
             "must be finite and >= 0");
+  detail::check_range(restitution, 0, limits::kMaxRestitution, "restitution", "");
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   detail::BodyTraits t = b.traits_of(i);

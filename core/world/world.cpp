@@ -126,6 +126,8 @@ BodyId World::create_body(const BodyDef& def) {
             "must be finite and >= 0");
   check_arg(std::isfinite(def.restitution) && def.restitution >= 0, "restitution",
             "must be finite and >= 0");
+  check_range(def.friction, 0, limits::kMaxFriction, "friction", "");
+  check_range(def.restitution, 0, limits::kMaxRestitution, "restitution", "");
   check_arg(std::isfinite(def.linear_damping) && def.linear_damping >= 0, "linear_damping",
             "must be finite and >= 0");
   check_arg(std::isfinite(def.angular_damping) && def.angular_damping >= 0, "angular_damping",

@@ -87,6 +87,18 @@ TEST(CliLimits, ComputedMassOutOfRangeIsNamedAsSuch) {
                  "volume 8e+12 m^3 = 8e+21 kg");
 }
 
+// Found while choosing the ranges: friction 1e38 froze both bodies at step 1, restitution 1e30
+// the falling one at its first bounce (exit 0, a warning).
+TEST(CliLimits, FrictionThatFrozeBodiesIsRefused) {
+  expect_refused("friction_1e38_froze_bodies.json",
+                 "body 0: friction: must be in [0, 100], got 1e+38");
+}
+
+TEST(CliLimits, RestitutionAboveOneIsRefused) {
+  expect_refused("restitution_1e30_froze_bodies.json",
+                 "body 0: restitution: must be in [0, 1], got 1e+30");
+}
+
 TEST(CliLimits, SceneTimestepOutOfRangeIsRefused) {
   expect_refused("timestep_out_of_range.json", "timestep: must be in [1e-06, 1] s, got 1e+30");
 }

@@ -94,6 +94,8 @@ TEST(ApiLimits, BodyValuesOutsideTheRangeAreRefusedAndNothingIsCreated) {
   EXPECT_EQ(refused([](BodyDef& d) { d.mass = Real(1e10); }), "mass");
   EXPECT_EQ(refused([](BodyDef& d) { d.density = Real(1e12); }), "density");
   EXPECT_EQ(refused([](BodyDef& d) { d.density = Real(1e-9); }), "density");
+  EXPECT_EQ(refused([](BodyDef& d) { d.friction = Real(1e38); }), "friction");
+  EXPECT_EQ(refused([](BodyDef& d) { d.restitution = Real(1e30); }), "restitution");
   EXPECT_EQ(w.body_count(), 0u);
 }
 
@@ -148,6 +150,10 @@ TEST(ApiLimits, SettersOutsideTheRangeAreRefusedNamingTheField) {
             "angular_velocity");
   EXPECT_EQ(refused_field([&] { w.set_mass(id, Real(1e-40)); }), "mass");
   EXPECT_EQ(refused_field([&] { w.set_mass(id, Real(1e20)); }), "mass");
+  EXPECT_EQ(refused_field([&] { w.set_friction(id, Real(101)); }), "friction");
+  EXPECT_EQ(refused_field([&] { w.set_restitution(id, Real(1.5)); }), "restitution");
+  EXPECT_NO_THROW(w.set_friction(id, Real(limits::kMaxFriction)));
+  EXPECT_NO_THROW(w.set_restitution(id, Real(limits::kMaxRestitution)));
   // An impulse that would take the body past the speed bound is refused, the body untouched.
   EXPECT_EQ(refused_field([&] { w.apply_linear_impulse(id, Vec3(Real(1e30), 0, 0)); }), "impulse");
   EXPECT_EQ(w.linear_velocity(id), Vec3::Zero());

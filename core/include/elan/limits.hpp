@@ -43,6 +43,14 @@ inline constexpr double kMaxAngularSpeed = 1e5;
 /// reaches the speed bound.
 inline constexpr double kMaxGravity = 1e5;
 
+/// A body's friction coefficient, at most: 1 is already rubber on concrete, 100 never slips;
+/// beyond, the friction bound mu * lambda of a heavy fast contact overflows (1e38 froze bodies).
+inline constexpr double kMaxFriction = 100;
+
+/// A body's restitution, at most 1: above, each bounce multiplies the energy, and two bodies
+/// bouncing between each other grow without bound (1e30 froze a body at its first bounce).
+inline constexpr double kMaxRestitution = 1;
+
 /// s: a step's dt. Over a second a body at the speed bound moves the whole position range and
 /// contacts cannot keep up; below a microsecond the soft contacts' 1/dt terms approach float's
 /// range at the size bounds. Games step at 1/60 s, robotics at 1e-3.
