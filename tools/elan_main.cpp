@@ -82,6 +82,38 @@ void warn_status(uint32_t fresh, uint64_t step) {
   }
 }
 
+// Exit status of `elan run` from its summary: 0, or 1 when its numbers cannot be trusted: a
+// total that is not finite (which JSON can only print as null), or a body that became non-finite
+// and was frozen. Within elan/limits.hpp's ranges neither should happen (the totals are summed
+// in double, and their bounds fit a float); should one still, a script checking the exit status
+// must not take the run for sound, so the summary is printed for diagnosis and the status says
+// it, on one stderr line.
+int unsound_run_status(const Json& out, uint32_t status) {
+  std::string bad;
+  for (const char* key : {"kinetic_energy", "linear_momentum", "angular_momentum"}) {
+    const Json& v = out[key];
+    bool finite = true;
+    if (v.is_array()) {
+      for (const Json& x : v) finite = finite && x.is_number() && std::isfinite(x.get<double>());
+    } else {
+      finite = v.is_number() && std::isfinite(v.get<double>());
+    }
+    if (!finite) bad += std::string(bad.empty() ? "" : ", ") + key;
+  }
+  if (!bad.empty()) {
+    std::fprintf(stderr, "elan: error: the summary's %s not finite (printed as null)\n",
+                 (bad + (bad.find(',') == std::string::npos ? " is" : " are")).c_str());
+    return 1;
+  }
+  if (status & kStepFrozeNonFinite) {
+    std::fprintf(stderr,
+                 "elan: error: a body became non-finite and was frozen: the results are not "
+                 "sound\n");
+    return 1;
+  }
+  return 0;
+}
+
 // The testing aid of --perturb: one ulp up on the stored x of the body's centre of mass.
 void nudge(World& world, uint64_t body) {
   Real& px = detail::state_of(world).bodies.px[body];
@@ -262,7 +294,7 @@ int run(const RunOptions& o) {
       {"solve", total.solve},     {"ccd", total.ccd},         {"finalize", total.finalize},
       {"total", total.total}};
   std::cout << out.dump() << std::endl;
-  return 0;
+  return unsound_run_status(out, status);
 }
 
 // A world holding a keyframe, settings as recorded. A keyframe that does not load is a corrupt

@@ -12,6 +12,8 @@
 #include <functional>
 #include <vector>
 
+#include "elan/limits.hpp"
+
 namespace elan::cli {
 
 const char* const kMainUsage =
@@ -104,6 +106,10 @@ double parse_seconds(const std::string& option, const std::string& text) {
   }
   if (!(v > 0) || !(Real(v) > 0) || !std::isfinite(Real(v))) {
     throw UsageError(option + ": must be positive, got " + text);
+  }
+  // The step's range (elan/limits.hpp): outside it World::step would simulate nothing.
+  if (!(Real(v) >= Real(limits::kMinTimestep) && Real(v) <= Real(limits::kMaxTimestep))) {
+    throw UsageError(option + ": must be in [1e-06, 1] s, got " + text);
   }
   return v;
 }

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <string>
 
+#include "core/base/range_checks.hpp"
 #include "elan/error.hpp"
 
 namespace elan::detail {
@@ -22,10 +23,12 @@ using Mat3d = Eigen::Matrix3d;
 
 constexpr double kPi = std::numbers::pi;
 
+// A size (radius, half extent, half height): positive, and within the supported range.
 void require_size(Real value, const char* field) {
   if (!std::isfinite(value) || !(value > 0)) {
     throw Error(field, "must be finite and > 0, got " + std::to_string(value));
   }
+  check_range(value, limits::kMinSize, limits::kMaxSize, field, "m");
 }
 
 void set_box_bounds(Shape& s, const Vec3& half) {
@@ -109,6 +112,10 @@ Mat3d principal_axes(const Mat3d& inertia, Vec3d& moments) {
 }
 
 void make_hull(Shape& s, const ShapeDef& def) {
+  // The points are in the body's frame: their offset is a position, their spread a size.
+  for (const Vec3& p : def.points) {
+    check_coordinates(p, limits::kMaxPosition, "shape.points", "m");
+  }
   ConvexHull hull;
   try {
     hull = build_convex_hull(def.points);
@@ -131,6 +138,11 @@ void make_hull(Shape& s, const ShapeDef& def) {
     s.local_min = s.local_min.cwiseMin(v);
     s.local_max = s.local_max.cwiseMax(v);
     s.bounding_radius = std::max(s.bounding_radius, v.norm());
+  }
+  // Its half extents along the principal axes, as a box's.
+  for (int i = 0; i < 3; ++i) {
+    check_range(0.5 * (double(s.local_max[i]) - double(s.local_min[i])), limits::kMinSize,
+                limits::kMaxSize, "shape.points", "m (the hull's half extent)");
   }
   s.hull = std::move(principal);
 }
@@ -218,6 +230,7 @@ Shape make_shape(const ShapeDef& def) {
         throw Error("shape.normal", "must be finite and non-zero");
       }
       if (!std::isfinite(def.offset)) throw Error("shape.offset", "must be finite");
+      check_range(def.offset, -limits::kMaxPosition, limits::kMaxPosition, "shape.offset", "m");
       s.plane_normal = def.normal / n;
       s.plane_offset = def.offset;
       break;

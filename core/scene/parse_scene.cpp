@@ -15,6 +15,7 @@
 #include "core/scene/generators.hpp"
 #include "core/scene/json_reader.hpp"
 #include "core/scene/schema_checks.hpp"
+#include "elan/limits.hpp"
 #include "elan/scene.hpp"
 
 namespace elan {
@@ -40,6 +41,12 @@ Scene parse_scene(const std::string& text, const std::string& file_name) {
   }
   if (const auto it = root.find("timestep"); it != root.end()) {
     scene.timestep = positive(ctx, *it, "timestep");
+    if (!(scene.timestep >= Real(limits::kMinTimestep) &&
+          scene.timestep <= Real(limits::kMaxTimestep))) {
+      fail(ctx, "timestep",
+           "must be in [" + show(limits::kMinTimestep) + ", " + show(limits::kMaxTimestep) +
+               "] s, got " + show(*it));
+    }
   }
   if (const auto it = root.find("substeps"); it != root.end()) {
     scene.world.substeps = int(to_int(ctx, *it, "substeps", 1, kMaxSolverCount));

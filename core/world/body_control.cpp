@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/base/range_checks.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/world.hpp"
 
@@ -18,6 +19,21 @@ namespace {
 
 void check_vec(const Vec3& v, const char* field) {
   check_arg(v.allFinite(), field, "must be finite");
+}
+
+void check_position(const Vec3& p, const char* field) {
+  check_vec(p, field);
+  detail::check_coordinates(p, limits::kMaxPosition, field, "m");
+}
+
+void check_linear_velocity(const Vec3& v, const char* field) {
+  check_vec(v, field);
+  detail::check_length(v, limits::kMaxLinearSpeed, field, "m/s");
+}
+
+void check_angular_velocity(const Vec3& w, const char* field) {
+  check_vec(w, field);
+  detail::check_length(w, limits::kMaxAngularSpeed, field, "rad/s");
 }
 
 Quat checked_rotation(const Quat& q, const char* field) {
@@ -58,7 +74,7 @@ uint32_t World::mask_bits(BodyId id) const {
 }
 
 void World::set_linear_velocity(BodyId id, const Vec3& v) {
-  check_vec(v, "linear_velocity");
+  check_linear_velocity(v, "linear_velocity");
   const std::size_t i = index_of(*state_, id);
   if (state_->bodies.is_static(i)) return;
   state_->bodies.set_linear_velocity(i, v);
@@ -66,7 +82,7 @@ void World::set_linear_velocity(BodyId id, const Vec3& v) {
 }
 
 void World::set_angular_velocity(BodyId id, const Vec3& w) {
-  check_vec(w, "angular_velocity");
+  check_angular_velocity(w, "angular_velocity");
   const std::size_t i = index_of(*state_, id);
   if (state_->bodies.is_static(i)) return;
   state_->bodies.set_angular_velocity(i, w);
@@ -74,7 +90,7 @@ void World::set_angular_velocity(BodyId id, const Vec3& w) {
 }
 
 void World::set_position(BodyId id, const Vec3& position) {
-  check_vec(position, "position");
+  check_position(position, "position");
   const std::size_t i = index_of(*state_, id);
   store_pose(*state_, i, position, orientation(id));
 }
@@ -86,7 +102,7 @@ void World::set_orientation(BodyId id, const Quat& orientation) {
 }
 
 void World::set_transform(BodyId id, const Transform& pose) {
-  check_vec(pose.position, "position");
+  check_position(pose.position, "position");
   const Quat q = checked_rotation(pose.rotation, "orientation");
   store_pose(*state_, index_of(*state_, id), pose.position, q);
 }
@@ -121,8 +137,14 @@ void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
   check_vec(impulse, "impulse");
   check_vec(point, "point");
   const std::size_t i = index_of(*state_, id);
+  const detail::BodyStore& b = state_->bodies;
+  const Vec3 angular = (point - b.position(i)).cross(impulse);
+  // Both halves checked before either is applied, so a refused impulse changes nothing.
+  if (b.is_dynamic(i)) {
+    check_angular_velocity(b.angular_velocity(i) + apply_inv_inertia(b, i, angular), "impulse");
+  }
   apply_linear_impulse(id, impulse);
-  apply_angular_impulse(id, (point - state_->bodies.position(i)).cross(impulse));
+  apply_angular_impulse(id, angular);
 }
 
 void World::apply_linear_impulse(BodyId id, const Vec3& impulse) {
@@ -130,7 +152,9 @@ void World::apply_linear_impulse(BodyId id, const Vec3& impulse) {
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   if (!b.is_dynamic(i)) return;
-  b.set_linear_velocity(i, b.linear_velocity(i) + b.inv_mass[i] * impulse);
+  const Vec3 v = b.linear_velocity(i) + b.inv_mass[i] * impulse;
+  check_linear_velocity(v, "impulse");
+  b.set_linear_velocity(i, v);
   detail::wake_index(*state_, i);
 }
 
@@ -139,12 +163,14 @@ void World::apply_angular_impulse(BodyId id, const Vec3& impulse) {
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   if (!b.is_dynamic(i)) return;
-  b.set_angular_velocity(i, b.angular_velocity(i) + apply_inv_inertia(b, i, impulse));
+  const Vec3 w = b.angular_velocity(i) + apply_inv_inertia(b, i, impulse);
+  check_angular_velocity(w, "angular_impulse");
+  b.set_angular_velocity(i, w);
   detail::wake_index(*state_, i);
 }
 
 void World::move_kinematic(BodyId id, const Transform& target, Real dt) {
-  check_vec(target.position, "target.position");
+  check_position(target.position, "target.position");
   const Quat q_target = checked_rotation(target.rotation, "target.rotation");
   check_arg(std::isfinite(dt) && dt > 0, "dt", "must be finite and positive");
   WorldState& s = *state_;
@@ -179,6 +205,7 @@ void World::sleep(BodyId id) {
 
 void World::set_friction(BodyId id, Real friction) {
   check_arg(std::isfinite(friction) && friction >= 0, "friction", "must be finite and >= 0");
+  detail::check_range(friction, 0, limits::kMaxFriction, "friction", "");
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   detail::BodyTraits t = b.traits_of(i);
@@ -189,6 +216,7 @@ void World::set_friction(BodyId id, Real friction) {
 void World::set_restitution(BodyId id, Real restitution) {
   check_arg(std::isfinite(restitution) && restitution >= 0, "restitution",
             "must be finite and >= 0");
+  detail::check_range(restitution, 0, limits::kMaxRestitution, "restitution", "");
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   detail::BodyTraits t = b.traits_of(i);
@@ -198,14 +226,15 @@ void World::set_restitution(BodyId id, Real restitution) {
 
 void World::set_mass(BodyId id, Real mass) {
   check_arg(std::isfinite(mass) && mass > 0, "mass", "must be finite and positive");
+  detail::check_range(mass, limits::kMinMass, limits::kMaxMass, "mass", "kg");
   WorldState& s = *state_;
   const std::size_t i = index_of(s, id);
   check_arg(s.bodies.is_dynamic(i), "body", "mass applies to dynamic bodies only");
-  const Vec3 inertia = mass * s.shapes[s.bodies.shape[i]].unit_inertia;
+  const Vec3 inv_inertia = detail::inverse_inertia(mass, s.shapes[s.bodies.shape[i]].unit_inertia);
   s.bodies.inv_mass[i] = 1 / mass;
-  s.bodies.inv_ix[i] = 1 / inertia.x();
-  s.bodies.inv_iy[i] = 1 / inertia.y();
-  s.bodies.inv_iz[i] = 1 / inertia.z();
+  s.bodies.inv_ix[i] = inv_inertia.x();
+  s.bodies.inv_iy[i] = inv_inertia.y();
+  s.bodies.inv_iz[i] = inv_inertia.z();
 }
 
 void World::set_collision_filter(BodyId id, uint32_t category_bits, uint32_t mask_bits) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "core/base/range_checks.hpp"
 #include "core/world/events.hpp"
 #include "core/world/step.hpp"
 #include "core/world/thread_pool_access.hpp"
@@ -24,14 +25,23 @@ std::span<const Real> view(const C& column) {
   return {column.data(), column.size()};
 }
 
+// Each element finite; a position within the supported coordinates (`length` false), a velocity
+// within the supported speed (`length` true), both up to `max` in `unit`.
 void check_columns(const WorldState& s, const char* field, std::span<const Real> x,
-                   std::span<const Real> y, std::span<const Real> z) {
+                   std::span<const Real> y, std::span<const Real> z, double max, bool length,
+                   const char* unit) {
   const std::size_t n = s.bodies.size();
   check_arg(x.size() == n && y.size() == n && z.size() == n, field,
             "each span must have body_count() elements");
   for (std::size_t i = 0; i < n; ++i) {
     check_arg(std::isfinite(x[i]) && std::isfinite(y[i]) && std::isfinite(z[i]), field,
               "must be finite");
+    const Vec3 v(x[i], y[i], z[i]);
+    if (length) {
+      detail::check_length(v, max, field, unit);
+    } else {
+      detail::check_coordinates(v, max, field, unit);
+    }
   }
 }
 
@@ -54,7 +64,7 @@ std::span<const BodyId> World::body_ids() const {
 void World::set_center_of_mass_positions(std::span<const Real> x, std::span<const Real> y,
                                          std::span<const Real> z) {
   WorldState& s = *state_;
-  check_columns(s, "positions", x, y, z);
+  check_columns(s, "positions", x, y, z, limits::kMaxPosition, false, "m");
   detail::BodyStore& b = s.bodies;
   for (std::size_t i = 0; i < b.size(); ++i) {
     b.px[i] = x[i];
@@ -68,7 +78,7 @@ void World::set_center_of_mass_positions(std::span<const Real> x, std::span<cons
 void World::set_linear_velocities(std::span<const Real> x, std::span<const Real> y,
                                   std::span<const Real> z) {
   WorldState& s = *state_;
-  check_columns(s, "linear_velocities", x, y, z);
+  check_columns(s, "linear_velocities", x, y, z, limits::kMaxLinearSpeed, true, "m/s");
   detail::BodyStore& b = s.bodies;
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b.is_static(i)) continue;
@@ -82,7 +92,7 @@ void World::set_linear_velocities(std::span<const Real> x, std::span<const Real>
 void World::set_angular_velocities(std::span<const Real> x, std::span<const Real> y,
                                    std::span<const Real> z) {
   WorldState& s = *state_;
-  check_columns(s, "angular_velocities", x, y, z);
+  check_columns(s, "angular_velocities", x, y, z, limits::kMaxAngularSpeed, true, "rad/s");
   detail::BodyStore& b = s.bodies;
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b.is_static(i)) continue;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/base/pair_key.hpp"
+#include "core/base/range_checks.hpp"
 #include "core/base/state_hash.hpp"
 #include "core/world/events.hpp"
 #include "core/world/step.hpp"
@@ -21,6 +22,9 @@ namespace elan {
 using detail::WorldState;
 
 using detail::check_arg;
+using detail::check_coordinates;
+using detail::check_length;
+using detail::check_range;
 using detail::index_of;
 
 namespace {
@@ -31,9 +35,23 @@ bool finite(const Vec3& v) {
 
 void validate(const WorldDef& def) {
   check_arg(finite(def.gravity), "gravity", "must be finite");
+  check_length(def.gravity, limits::kMaxGravity, "gravity", "m/s^2");
   check_arg(def.substeps >= 1 && def.substeps <= 64, "substeps", "must be in 1..64");
   check_arg(def.iterations >= 1 && def.iterations <= 64, "iterations", "must be in 1..64");
   check_arg(def.threads >= 0 && def.threads <= 1024, "threads", "must be in 0..1024");
+}
+
+// density x volume, refused unless within the mass range. In double, so that an overflow of the
+// float product is reported as the mass it is; the product of two floats is exact in double, so
+// its rounding to Real is the float product.
+Real computed_mass(Real density, Real volume) {
+  const double m = double(density) * double(volume);
+  check_arg(m >= double(Real(limits::kMinMass)) && m <= double(Real(limits::kMaxMass)), "mass",
+            "computed mass is out of range: density " + detail::show_value(density) +
+                " kg/m^3 x volume " + detail::show_value(volume) + " m^3 = " +
+                detail::show_value(m) + " kg, outside [" + detail::show_value(limits::kMinMass) +
+                ", " + detail::show_value(limits::kMaxMass) + "] kg");
+  return Real(m);
 }
 
 int resolve_threads(int threads) {
@@ -98,25 +116,41 @@ BodyId World::create_body(const BodyDef& def) {
   check_arg(detail::shape_live(s, def.shape), "shape", "invalid or destroyed shape id");
   const detail::Shape& shape = s.shapes[def.shape.index];
   check_arg(finite(def.position), "position", "must be finite");
+  check_coordinates(def.position, limits::kMaxPosition, "position", "m");
   check_arg(def.orientation.coeffs().allFinite(), "orientation", "must be finite");
   check_arg(def.orientation.norm() > Real(1e-12), "orientation", "zero quaternion");
   check_arg(finite(def.linear_velocity), "linear_velocity", "must be finite");
+  check_length(def.linear_velocity, limits::kMaxLinearSpeed, "linear_velocity", "m/s");
   check_arg(finite(def.angular_velocity), "angular_velocity", "must be finite");
+  check_length(def.angular_velocity, limits::kMaxAngularSpeed, "angular_velocity", "rad/s");
   check_arg(std::isfinite(def.friction) && def.friction >= 0, "friction",
             "must be finite and >= 0");
   check_arg(std::isfinite(def.restitution) && def.restitution >= 0, "restitution",
             "must be finite and >= 0");
+  check_range(def.friction, 0, limits::kMaxFriction, "friction", "");
+  check_range(def.restitution, 0, limits::kMaxRestitution, "restitution", "");
   check_arg(std::isfinite(def.linear_damping) && def.linear_damping >= 0, "linear_damping",
             "must be finite and >= 0");
   check_arg(std::isfinite(def.angular_damping) && def.angular_damping >= 0, "angular_damping",
             "must be finite and >= 0");
   if (def.mass) {
     check_arg(std::isfinite(*def.mass) && *def.mass > 0, "mass", "must be finite and positive");
+    check_range(*def.mass, limits::kMinMass, limits::kMaxMass, "mass", "kg");
   }
   check_arg(std::isfinite(def.density) && def.density > 0, "density",
             "must be finite and positive");
+  check_range(def.density, limits::kMinDensity, limits::kMaxDensity, "density", "kg/m^3");
   if (shape.type == ShapeType::Plane) {
     check_arg(def.motion == MotionType::Static, "motion", "a plane must be static");
+  }
+
+  // Mass properties, checked before anything is stored.
+  Real inv_mass = 0;
+  Vec3 inv_inertia = Vec3::Zero();
+  if (def.motion == MotionType::Dynamic) {
+    const Real mass = def.mass ? *def.mass : computed_mass(def.density, shape.volume);
+    inv_mass = 1 / mass;
+    inv_inertia = detail::inverse_inertia(mass, shape.unit_inertia);
   }
 
   const Quat q_user = def.orientation.normalized();
@@ -129,13 +163,10 @@ BodyId World::create_body(const BodyDef& def) {
   b.set_linear_velocity(i, moving ? def.linear_velocity : Vec3::Zero());
   b.set_angular_velocity(i, moving ? def.angular_velocity : Vec3::Zero());
   if (def.motion == MotionType::Dynamic) {
-    const Real mass = def.mass ? *def.mass : def.density * shape.volume;
-    check_arg(std::isfinite(mass) && mass > 0, "mass", "computed mass is not positive");
-    b.inv_mass[i] = 1 / mass;
-    const Vec3 inertia = mass * shape.unit_inertia;
-    b.inv_ix[i] = 1 / inertia.x();
-    b.inv_iy[i] = 1 / inertia.y();
-    b.inv_iz[i] = 1 / inertia.z();
+    b.inv_mass[i] = inv_mass;
+    b.inv_ix[i] = inv_inertia.x();
+    b.inv_iy[i] = inv_inertia.y();
+    b.inv_iz[i] = inv_inertia.z();
   }
   b.set_traits(i, {def.friction, def.restitution, def.linear_damping, def.angular_damping,
                    def.category_bits, def.mask_bits});
@@ -187,7 +218,7 @@ void World::destroy_body(BodyId id) {
 
 uint32_t World::step(Real dt) {
   WorldState& s = *state_;
-  if (!(std::isfinite(dt) && dt > 0)) {
+  if (!(dt >= Real(limits::kMinTimestep) && dt <= Real(limits::kMaxTimestep))) {
     s.stats.status = kStepBadTimestep;
     return kStepBadTimestep;
   }

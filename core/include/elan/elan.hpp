@@ -6,6 +6,7 @@
 #include "elan/error.hpp"
 #include "elan/events.hpp"
 #include "elan/ids.hpp"
+#include "elan/limits.hpp"
 #include "elan/math.hpp"
 #include "elan/profile.hpp"
 #include "elan/queries.hpp"

@@ -12,7 +12,7 @@ enum StepStatus : uint32_t {
   kStepOk = 0,
   kStepFrozeNonFinite = 1u << 0,  ///< a body's state became non-finite and it was frozen
   kStepColorOverflow = 1u << 1,   ///< some constraints did not fit the colours: solved serially
-  kStepBadTimestep = 1u << 2,     ///< dt was not finite and positive: nothing was simulated
+  kStepBadTimestep = 1u << 2,     ///< dt was outside elan/limits.hpp's: nothing was simulated
 };
 
 /// Wall-clock milliseconds spent in each stage of the last step, in the step's order.
