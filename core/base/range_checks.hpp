@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks of values against the supported ranges of elan/limits.hpp, each failure an elan::Error
 // naming the field, the range with its unit, and the value.
 #pragma once

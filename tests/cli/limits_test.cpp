@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The supported ranges (elan/limits.hpp) through the elan binary. Each file of reproducers/ is a
 // scene that fuzzing found to run with exit 0 while printing null (NaN or inf) totals or
 // freezing bodies; now each is refused at load, exit 2, with one line naming the file, the body

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The supported ranges through the elan binary: each fuzzing reproducer of a valid-looking scene
 # that used to print non-finite totals (or freeze bodies) is refused with exit 2 and one line, and
 # a scene at the bounds runs to a summary whose every number is finite.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The range of values elan supports, in SI units. A scene file or an API call outside it is
 // refused (elan::SceneError / elan::Error naming the field) instead of being simulated into
 // non-finite numbers. The bounds follow what Box2D and Jolt document for float engines (Box2D:
