@@ -11,7 +11,7 @@
 namespace elan::detail {
 namespace {
 
-constexpr Real kEps = std::numeric_limits<Real>::epsilon();
+constexpr Real kEpaEps = std::numeric_limits<Real>::epsilon();
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
 // perf: fixed buffers, no allocation per call. A closed triangulated polytope with V vertices
 // has 2V - 4 faces (Euler), so kMaxFaces never overflows; the horizon walk may list each edge of
@@ -19,10 +19,10 @@ constexpr Real kInf = std::numeric_limits<Real>::infinity();
 constexpr int kMaxVertices = 64;
 constexpr int kMaxFaces = 2 * kMaxVertices;
 constexpr int kMaxEdges = 3 * kMaxFaces;
-constexpr int kMaxIterations = kMaxVertices;
+constexpr int kEpaMaxIterations = kMaxVertices;
 // Converged when the support along the closest face's normal lies within this fraction of the
 // face's distance (plus a rounding floor relative to the polytope's size).
-constexpr Real kRelTol = sizeof(Real) == 4 ? Real(1e-5) : Real(1e-10);
+constexpr Real kEpaRelTol = sizeof(Real) == 4 ? Real(1e-5) : Real(1e-10);
 
 struct Face {
   int v[3];
@@ -119,7 +119,7 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
   static const Vec3 kAxes[6] = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
                                 -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
   for (const Vec3& d : kAxes) scale = std::max(scale, support_minkowski(a, b, d).w.norm());
-  const Real tol_dim = Real(1e3) * kEps * std::max(scale, std::numeric_limits<Real>::min());
+  const Real tol_dim = Real(1e3) * kEpaEps * std::max(scale, std::numeric_limits<Real>::min());
   while (p.vertex_count < 4) {
     const Vec3 o = p.vert[0].w;
     Vec3 dirs[6];
@@ -171,7 +171,7 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
 
   int best = 0;
   int edges[kMaxEdges][2];
-  for (int iter = 0; iter < kMaxIterations; ++iter) {
+  for (int iter = 0; iter < kEpaMaxIterations; ++iter) {
     // determinism: lowest slot wins ties.
     best = -1;
     Real best_d = kInf;
@@ -182,7 +182,7 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
     const Face& f = p.face[best];
     const SimplexVertex w = support_minkowski(a, b, f.n);
     const Real gap = w.w.dot(f.n) - f.d;
-    if (gap <= kRelTol * std::abs(f.d) + 16 * kEps * scale) break;
+    if (gap <= kEpaRelTol * std::abs(f.d) + 16 * kEpaEps * scale) break;
     if (p.vertex_count == kMaxVertices) break;
     const int wi = p.vertex_count++;
     p.vert[wi] = w;
@@ -246,7 +246,7 @@ EpaResult epa_penetration(const Shape& a, const Transform& xa, const Shape& b,
   const GjkResult g = gjk_placed(pa, pb, xb.position - xa.position, s);
   const Real scale = std::max((g.point_a - xa.position).norm(), (g.point_b - xb.position).norm());
   EpaResult r;
-  if (!g.overlap && g.distance > 16 * kEps * scale) {
+  if (!g.overlap && g.distance > 16 * kEpaEps * scale) {
     // Cores apart: the rounded shapes overlap by radii - distance along the core normal.
     r.normal = (g.point_b - g.point_a) / g.distance;
     r.ok = g.distance < radii;
