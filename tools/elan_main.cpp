@@ -22,6 +22,7 @@
 
 #include "core/world/world_access.hpp"
 #include "elan/elan.hpp"
+#include "elan/one_line.hpp"
 #include "elan/snapshot.hpp"
 #include "tools/options.hpp"
 #include "tools/recording.hpp"
@@ -500,15 +501,16 @@ int main(int argc, char** argv) {
   try {
     return dispatch(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "elan: %s (see 'elan --help')\n", e.what());
+    std::fprintf(stderr, "elan: %s (see 'elan --help')\n", elan::one_line(e.what()).c_str());
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "elan: out of memory\n");
   } catch (const elan::SceneError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s\n", elan::one_line(e.what()).c_str());
   } catch (const RecordingError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s\n", elan::one_line(e.what()).c_str());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "elan: %s\n", e.what());
+    // Any other exception's text may hold a path or a word from the command line: one line.
+    std::fprintf(stderr, "elan: %s\n", elan::one_line(e.what()).c_str());
   } catch (...) {
     std::fprintf(stderr, "elan: unexpected error\n");
   }

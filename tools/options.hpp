@@ -9,13 +9,15 @@
 #include <string>
 
 #include "elan/defs.hpp"
+#include "elan/one_line.hpp"
 
 namespace elan::cli {
 
 /// A bad command line: reported with a hint to --help, exit status 2.
 class UsageError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  /// Control characters in `message` (from a command-line word) are escaped (one_line).
+  explicit UsageError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
 struct RunOptions {

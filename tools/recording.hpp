@@ -8,12 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "elan/one_line.hpp"
+
 namespace elan::cli {
 
 /// The file is not a recording, or is truncated or corrupt.
 class RecordingError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  /// Control characters in `message` (from a file or scene name) are escaped (one_line).
+  explicit RecordingError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
 /// A full world snapshot (elan/snapshot.hpp) after `step` steps.

@@ -5,6 +5,9 @@
 #include "cli/cli_runner.hpp"
 #include "tools/recording.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
@@ -362,6 +365,55 @@ TEST_F(Recording, SceneFileIsNotARecording) {
   const Result r = run_elan({"replay", small_scene()});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("not an elan recording"), std::string::npos) << r.err;
+}
+
+// --- Regression tests for the reproducers of issue 42 (tests/cli/reproducers/) ---
+
+std::string reproducer(const std::string& name) {
+  return std::string(ELAN_REPRODUCERS) + "/" + name;
+}
+
+// Exit 2 with exactly one line on stderr that names `file` and says `what`.
+void expect_one_line_refusal(const Result& r, const std::string& file, const std::string& what) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(what), std::string::npos) << "expected '" << what << "' in " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+// name_with_newline_breaks_one_line.json, name_with_terminal_escape.json: names were printed
+// raw. Any user string (a name, a key, a generator type, a command-line word) is escaped.
+TEST(Cli, ControlCharactersInMessagesAreEscaped) {
+  const std::string newline = reproducer("name_with_newline_breaks_one_line.json");
+  Result r = run_elan({"run", newline});
+  expect_one_line_refusal(r, newline, R"(body 0 ("a\nb"): shape.radius: must be positive)");
+
+  const std::string escape = reproducer("name_with_terminal_escape.json");
+  r = run_elan({"run", escape});
+  expect_one_line_refusal(r, escape, R"(body 0 ("\u001b[2J\u001b[31mOK"))");
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
+
+  // A NUL, a C1 control (U+009B, CSI) and a DEL in a name; a newline in an unknown key and in a
+  // generator type.
+  const std::string scene = temp_path("names.json");
+  write(scene,
+        R"({"bodies":[{"name":"x\u0000y\u009bz\u007f","shape":{"type":"sphere","radius":-1}}]})");
+  r = run_elan({"run", scene});
+  expect_one_line_refusal(r, scene, R"(body 0 ("x\u0000y\u009bz\u007f"))");
+  write(scene, R"({"bodies":[{"shape":{"type":"sphere","radius":1},"na\nme":1}]})");
+  expect_one_line_refusal(run_elan({"run", scene}), scene, R"(na\nme: unknown key)");
+  write(scene, R"({"generators":[{"type":"gr\r\nid"}]})");
+  expect_one_line_refusal(run_elan({"run", scene}), scene, R"(generator 0 (gr\r\nid))");
+  std::remove(scene.c_str());
+
+  // A command-line word and a file name.
+  r = run_elan({"run", small_scene(), "--broadphase", "a\nb\x1b[2J"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find(R"(got 'a\nb\u001b[2J')"), std::string::npos) << r.err;
+  r = run_elan({"run", "/nonexistent/a\nb.json"});
+  expect_one_line_refusal(r, R"(/nonexistent/a\nb.json)", "cannot open");
 }
 
 }  // namespace
