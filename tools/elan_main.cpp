@@ -13,13 +13,13 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 #if defined(__GLIBC__)
 #include <malloc.h>  // mallopt
 #endif
 
+#include "core/scene/regular_file.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/elan.hpp"
 #include "elan/one_line.hpp"
@@ -46,13 +46,18 @@ Json vec(const Vec3& v) {
   return Json::array({double(v.x()), double(v.y()), double(v.z())});
 }
 
-std::string read_file(const std::string& path, const char* what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open " + what + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(path + ": cannot read " + what);
-  return text.str();
+// The bytes of the recording `path`, a regular file whose magic is checked before the rest is
+// read (so /dev/zero, or a large file of anything else, is refused at once).
+std::string read_recording(const std::string& path) {
+  try {
+    detail::RegularFile file(path, "recording");
+    std::string bytes = file.read(kRecordingMagicBytes);
+    check_recording_magic(bytes, path);
+    bytes += file.read(std::numeric_limits<uint64_t>::max());
+    return bytes;
+  } catch (const detail::FileError& e) {
+    throw RecordingError(e.what());
+  }
 }
 
 // Builds the world; errors the library reports for settings name the scene file.
@@ -124,7 +129,7 @@ class Progress {
 };
 
 int run(const RunOptions& o) {
-  std::string text = read_file(o.scene, "scene");
+  std::string text = detail::read_scene_file(o.scene);
   WorldDef def;
   Real dt = 0;
   // The parsed scene is freed once the world holds it, and the file's text too unless it goes
@@ -325,7 +330,7 @@ Json locate(const Recording& r, const std::string& file, const World& replayed, 
 }
 
 int replay(const ReplayOptions& o) {
-  const std::string bytes = read_file(o.file, "recording");
+  const std::string bytes = read_recording(o.file);
   const Recording r = decode_recording(bytes, o.file);
   if (r.real_bytes != sizeof(Real)) {
     throw RecordingError(o.file + ": recorded by a build with " + std::to_string(r.real_bytes * 8) +
@@ -408,7 +413,7 @@ Divergence step_side_by_side(World& a, World& b, const DivergeOptions& o, Real d
 }
 
 int diverge(const DivergeOptions& o) {
-  const std::string text = read_file(o.scene, "scene");
+  const std::string text = detail::read_scene_file(o.scene);
   const Scene scene = parse_scene(text, o.scene);
   const Real dt = o.timestep ? Real(*o.timestep) : scene.timestep;
   const auto make = [&](const SideOptions& side) {

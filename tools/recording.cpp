@@ -15,7 +15,7 @@
 namespace elan::cli {
 namespace {
 
-constexpr char kMagic[8] = {'\x89', 'E', 'L', 'A', 'N', 'R', 'E', 'C'};
+constexpr char kMagic[kRecordingMagicBytes] = {'\x89', 'E', 'L', 'A', 'N', 'R', 'E', 'C'};
 constexpr uint32_t kVersion = 2;
 constexpr uint32_t kOldestVersion = 1;
 
@@ -116,11 +116,15 @@ std::string encode_recording(const Recording& r) {
   return out;
 }
 
-Recording decode_recording(const std::string& bytes, const std::string& file) {
-  const std::size_t magic_seen = std::min(bytes.size(), sizeof kMagic);
-  if (std::memcmp(bytes.data(), kMagic, magic_seen) != 0 || bytes.empty()) {
+void check_recording_magic(const std::string& head, const std::string& file) {
+  const std::size_t magic_seen = std::min(head.size(), sizeof kMagic);
+  if (head.empty() || std::memcmp(head.data(), kMagic, magic_seen) != 0) {
     throw RecordingError(file + ": not an elan recording (it does not start with the magic bytes)");
   }
+}
+
+Recording decode_recording(const std::string& bytes, const std::string& file) {
+  check_recording_magic(bytes, file);
   if (bytes.size() < sizeof kMagic + 4 + 8) {
     throw RecordingError(file + ": truncated recording (" + std::to_string(bytes.size()) +
                          " bytes)");

@@ -1,11 +1,7 @@
 // Scene files: the top level of the schema (world settings, bodies, generators), read from text
 // or from a file.
-#include <cerrno>
 #include <cstdint>
-#include <cstring>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +9,7 @@
 #include "core/scene/body_schema.hpp"
 #include "core/scene/generators.hpp"
 #include "core/scene/json_reader.hpp"
+#include "core/scene/regular_file.hpp"
 #include "core/scene/schema_checks.hpp"
 #include "elan/scene.hpp"
 
@@ -110,12 +107,7 @@ Scene parse_scene(const std::string& text, const std::string& file_name) {
 }
 
 Scene load_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open file: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw SceneError(path + ": cannot read file");
-  return parse_scene(text.str(), path);
+  return parse_scene(detail::read_scene_file(path), path);
 }
 
 }  // namespace elan

@@ -382,6 +382,51 @@ void expect_one_line_refusal(const Result& r, const std::string& file, const std
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
+// hang_infinite_input_dev_zero.txt: these read without end (1.1 GB after 15 s) before the fix.
+TEST(Cli, EndlessInputIsRefusedAtOnce) {
+  for (const char* device : {"/dev/zero", "/dev/urandom"}) {
+    expect_one_line_refusal(run_elan({"run", device}, 10), device,
+                            "is a character device, not a scene file");
+    expect_one_line_refusal(run_elan({"diverge", device}, 10), device, "not a scene file");
+    expect_one_line_refusal(run_elan({"replay", device}, 10), device,
+                            "is a character device, not a recording file");
+  }
+}
+
+// A FIFO without a writer would block open(2) and read(2): refused without waiting.
+TEST(Cli, FifoIsRefusedWithoutBlocking) {
+  const std::string fifo = temp_path("fifo");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  expect_one_line_refusal(run_elan({"run", fifo}, 10), fifo, "is a FIFO, not a scene file");
+  expect_one_line_refusal(run_elan({"replay", fifo}, 10), fifo, "is a FIFO, not a recording file");
+  std::remove(fifo.c_str());
+}
+
+// A scene file over the cap (a sparse file: no disk used) is refused before it is read.
+TEST(Cli, SceneFileOverTheSizeCapIsRefused) {
+  const std::string big = temp_path("big.json");
+  write(big, "{}");
+  ASSERT_EQ(truncate(big.c_str(), off_t(257) << 20), 0);
+  expect_one_line_refusal(run_elan({"run", big}, 10), big, "file too large for a scene");
+  std::remove(big.c_str());
+}
+
+// A recording's magic is checked on its first 8 bytes, before the rest is read.
+TEST(Cli, RecordingMagicIsCheckedFirst) {
+  const std::string scene = small_scene();
+  expect_one_line_refusal(run_elan({"replay", scene}, 10), scene, "not an elan recording");
+}
+
+// dir_as_scene_message.txt: `elan run /tmp` said "empty file".
+TEST(Cli, DirectoryAsSceneIsNamedADirectory) {
+  const std::string dir = ::testing::TempDir();
+  const Result r = run_elan({"run", dir}, 10);
+  expect_one_line_refusal(r, dir, "is a directory, not a scene file");
+  EXPECT_EQ(r.err.find("empty file"), std::string::npos) << r.err;
+  expect_one_line_refusal(run_elan({"replay", dir}, 10), dir,
+                          "is a directory, not a recording file");
+}
+
 // name_with_newline_breaks_one_line.json, name_with_terminal_escape.json: names were printed
 // raw. Any user string (a name, a key, a generator type, a command-line word) is escaped.
 TEST(Cli, ControlCharactersInMessagesAreEscaped) {
