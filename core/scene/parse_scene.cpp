@@ -17,12 +17,6 @@ namespace elan {
 
 using namespace detail::scene_file;
 
-namespace {
-
-constexpr int kMaxSolverCount = 10'000;  // substeps, iterations
-
-}  // namespace
-
 Scene parse_scene(const std::string& text, const std::string& file_name) {
   const Json root = parse_json(text, file_name);
   const Ctx ctx{file_name, "", ""};
@@ -38,11 +32,11 @@ Scene parse_scene(const std::string& text, const std::string& file_name) {
     scene.timestep = positive(ctx, *it, "timestep");
   }
   if (const auto it = root.find("substeps"); it != root.end()) {
-    scene.world.substeps = int(to_int(ctx, *it, "substeps", 1, kMaxSolverCount));
+    scene.world.substeps = int(to_int(ctx, *it, "substeps", 1, kMaxSubsteps));
     scene.has_substeps = true;
   }
   if (const auto it = root.find("iterations"); it != root.end()) {
-    scene.world.iterations = int(to_int(ctx, *it, "iterations", 1, kMaxSolverCount));
+    scene.world.iterations = int(to_int(ctx, *it, "iterations", 1, kMaxIterations));
     scene.has_iterations = true;
   }
   if (const auto it = root.find("allow_sleep"); it != root.end()) {

@@ -461,4 +461,38 @@ TEST(Cli, ControlCharactersInMessagesAreEscaped) {
   expect_one_line_refusal(r, R"(/nonexistent/a\nb.json)", "cannot open");
 }
 
+// cli_substeps_range_mismatch.txt: --substeps 65 passed the command line and then blamed the
+// scene file; 10001 said "between 1 and 10000". One range, the library's, naming the flag.
+TEST(Cli, SolverCountsTakeTheLibraryRangeNamingTheFlag) {
+  const std::string scene = reproducer("ok_sphere.json");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--substeps", "65"}, "elan: --substeps: must be in 1..64, got 65"},
+      {{"--substeps", "10001"}, "elan: --substeps: must be in 1..64, got 10001"},
+      {{"--substeps", "0"}, "elan: --substeps: must be in 1..64, got 0"},
+      {{"--iterations", "65"}, "elan: --iterations: must be in 1..64, got 65"},
+      {{"--threads", "1025"}, "elan: --threads: must be in 1..1024, got 1025"},
+  };
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> args = {"run", scene, "--steps", "1"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Result r = run_elan(args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.err.rfind(message, 0), 0u) << "expected '" << message << "' in " << r.err;
+    EXPECT_EQ(r.err.find("ok_sphere.json"), std::string::npos) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  }
+  for (const char* side : {"--substeps 65", "--iterations 65"}) {
+    const Result r = run_elan({"diverge", scene, "--steps", "1", "--b", side});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("must be in 1..64, got 65"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(
+      run_elan({"run", scene, "--steps", "1", "--substeps", "64", "--iterations", "64"}).status, 0);
+  // A scene file's own substeps take the same range, at load.
+  const std::string file = temp_path("substeps.json");
+  write(file, R"({"substeps":65,"bodies":[]})");
+  expect_one_line_refusal(run_elan({"run", file}), file, "substeps: must be at most 64, got 65");
+  std::remove(file.c_str());
+}
+
 }  // namespace
