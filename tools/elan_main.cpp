@@ -398,14 +398,20 @@ Divergence step_side_by_side(World& a, World& b, const DivergeOptions& o, Real d
   if (o.b.perturb && o.b.perturb->step <= o.steps) stops.emplace_back(o.b.perturb->step, 1);
   std::sort(stops.begin(), stops.end());
   uint64_t done = 0;
-  for (const auto& [step, side] : stops) {
+  for (std::size_t i = 0; i < stops.size();) {
+    const uint64_t step = stops[i].first;
     Divergence d = find_divergence(a, b, step - done, dt);
     if (d.found) {
       d.step += done;
       return d;
     }
     done = step;
-    nudge(side == 0 ? a : b, (side == 0 ? o.a : o.b).perturb->body);
+    // Both sides' perturbations of this step are applied before the worlds are compared again:
+    // sides given the same perturbation stay identical.
+    for (; i < stops.size() && stops[i].first == step; ++i) {
+      const int side = stops[i].second;
+      nudge(side == 0 ? a : b, (side == 0 ? o.a : o.b).perturb->body);
+    }
   }
   Divergence d = find_divergence(a, b, o.steps - done, dt);
   d.step += done;

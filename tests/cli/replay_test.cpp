@@ -248,4 +248,44 @@ TEST_F(Replay, DivergeRefusesBadSides) {
   EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
 }
 
+// --- Regression tests for the reproducers of issue 42 (tests/cli/reproducers/) ---
+
+// diverge_same_perturb_false_divergence.txt: with the same perturbation on both sides, side a was
+// compared after its nudge and before b's, and a divergence was reported at that step.
+TEST_F(Replay, DivergeWithIdenticalOptionsNeverDiverges) {
+  for (const char* perturb : {"--perturb 1:0", "--perturb 1:2", "--perturb 2:5", "--perturb 3:8"}) {
+    const Result r =
+        run_elan({"diverge", scene_, "--steps", "8", "--a", perturb, "--b", perturb}, 60);
+    EXPECT_EQ(r.status, 0) << perturb << ": " << r.out << r.err;
+    EXPECT_EQ(Json::parse(r.out)["diverged"], false) << perturb;
+  }
+  const Result tower = run_elan({"diverge", std::string(ELAN_SCENE_DIR) + "/tower20.json",
+                                 "--steps", "5", "--a", "--perturb 1:2", "--b", "--perturb 1:2"},
+                                60);
+  EXPECT_EQ(tower.status, 0) << tower.out << tower.err;
+  const Result sides =
+      run_elan({"diverge", scene_, "--steps", "8", "--a", "--threads 1 --perturb 2:3", "--b",
+                "--threads 2 --broadphase all-pairs --perturb 2:3"},
+               60);
+  EXPECT_EQ(sides.status, 0) << sides.out << sides.err;
+}
+
+TEST_F(Replay, DivergeWithDifferentPerturbationsStillDiverges) {
+  // Another body at the same step: found at that step.
+  Result r = run_elan(
+      {"diverge", scene_, "--steps", "8", "--a", "--perturb 1:2", "--b", "--perturb 2:2"}, 60);
+  EXPECT_EQ(r.status, 1) << r.err;
+  Json j = Json::parse(r.out);
+  EXPECT_EQ(j["step"], 2);
+  EXPECT_EQ(j["body"], 1);
+  EXPECT_EQ(j["field"], "px");
+  // The same body at another step: found at the first of them.
+  r = run_elan({"diverge", scene_, "--steps", "8", "--a", "--perturb 1:4", "--b", "--perturb 1:2"},
+               60);
+  EXPECT_EQ(r.status, 1) << r.err;
+  j = Json::parse(r.out);
+  EXPECT_EQ(j["step"], 2);
+  EXPECT_EQ(j["body"], 1);
+}
+
 }  // namespace
