@@ -337,15 +337,38 @@ int replay(const ReplayOptions& o) {
                          "-bit Real, this build uses " + std::to_string(sizeof(Real) * 8) +
                          "-bit: hashes are comparable only on one build");
   }
-  const Scene scene = parse_scene(r.scene_text, r.scene_name);
-  WorldDef def = scene.world;
+  // The recording's checksum held, so a scene or settings that do not load mean a corrupt (or
+  // forged) recording: the message names the recording, and the recorded scene path only as
+  // part of what is wrong in it.
+  const std::string embedded =
+      "recorded scene" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
+  const auto corrupt = [&](const std::string& what) {
+    return RecordingError(o.file + ": corrupt recording: " + what);
+  };
+  Scene scene;
+  WorldDef def;
+  try {
+    scene = parse_scene(r.scene_text, embedded);
+    def = scene.world;
+  } catch (const SceneError& e) {
+    throw corrupt(e.what());
+  }
   def.substeps = r.substeps;
   def.iterations = r.iterations;
   def.threads = resolve_threads(o.threads);
   def.broadphase = o.broadphase.value_or(BroadphaseType(r.broadphase));
   const Real dt = Real(r.timestep);
-  World world = make_world(def, r.scene_name);
-  load_into(scene, world, r.scene_name);
+  World world = [&] {
+    try {
+      World w(def);
+      load_into(scene, w, embedded);
+      return w;
+    } catch (const SceneError& e) {
+      throw corrupt(e.what());
+    } catch (const Error& e) {
+      throw corrupt(embedded + ": " + e.what());
+    }
+  }();
   check_perturb_body(o.perturb, world);
 
   Json out;

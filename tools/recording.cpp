@@ -12,6 +12,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "elan/defs.hpp"
+
 namespace elan::cli {
 namespace {
 
@@ -154,10 +156,21 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
   r.iterations = int32_t(in.u32("iterations"));
   r.threads = in.u32("threads");
   r.broadphase = in.u32("broadphase");
-  if (!(r.timestep > 0) || !std::isfinite(r.timestep) || r.substeps < 1 || r.iterations < 1 ||
-      r.broadphase > 1) {
+  if (!(r.timestep > 0) || !std::isfinite(r.timestep) || r.broadphase > 1) {
     throw RecordingError(file + ": corrupt recording: invalid settings");
   }
+  // The library's own ranges (elan/defs.hpp): a value no world accepts is a corrupt recording,
+  // named here rather than failing later as if the recorded scene were wrong.
+  const auto check_range = [&](const char* field, int64_t v, int64_t lo, int64_t hi) {
+    if (v < lo || v > hi) {
+      throw RecordingError(file + ": corrupt recording: recorded " + field + " must be in " +
+                           std::to_string(lo) + ".." + std::to_string(hi) + ", got " +
+                           std::to_string(v));
+    }
+  };
+  check_range("substeps", r.substeps, 1, kMaxSubsteps);
+  check_range("iterations", r.iterations, 1, kMaxIterations);
+  check_range("threads", r.threads, 0, kMaxThreads);
   if (version >= 2) r.keyframe_every = in.u64("keyframe interval");
   r.scene_name = in.string("scene name");
   r.scene_text = in.string("scene text");
