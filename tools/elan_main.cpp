@@ -87,6 +87,22 @@ void warn_status(uint32_t fresh, uint64_t step) {
   }
 }
 
+// The worker count to give a world for --threads `requested` (0 = all cores): the count that
+// runs, with a warning when that is fewer than requested. A World makes a oneTBB arena of
+// WorldDef::threads slots, but oneTBB runs at most max_allowed_parallelism threads at once (the
+// machine's cores unless limited), so on 2 cores an arena of 4 runs 2. Results never depend on
+// the count, so oversubscribing would buy nothing; the request is taken as an upper bound (as
+// Box2D's workerCount is) and the summary reports the workers that actually run.
+int workers(int requested) {
+  const int n = resolve_threads(requested);
+  if (requested > n) {
+    std::fprintf(stderr,
+                 "elan: warning: --threads %d: at most %d threads run at once here; using %d\n",
+                 requested, n, n);
+  }
+  return n;
+}
+
 // The testing aid of --perturb: one ulp up on the stored x of the body's centre of mass.
 void nudge(World& world, uint64_t body) {
   Real& px = detail::state_of(world).bodies.px[body];
@@ -139,7 +155,7 @@ int run(const RunOptions& o) {
     def = scene.world;
     if (o.substeps) def.substeps = *o.substeps;
     if (o.iterations) def.iterations = *o.iterations;
-    def.threads = resolve_threads(o.threads);
+    def.threads = workers(o.threads);
     def.broadphase = o.broadphase;
     dt = o.timestep ? Real(*o.timestep) : scene.timestep;
     World w = make_world(def, o.scene);
@@ -355,7 +371,7 @@ int replay(const ReplayOptions& o) {
   }
   def.substeps = r.substeps;
   def.iterations = r.iterations;
-  def.threads = resolve_threads(o.threads);
+  def.threads = workers(o.threads);
   def.broadphase = o.broadphase.value_or(BroadphaseType(r.broadphase));
   const Real dt = Real(r.timestep);
   World world = [&] {
@@ -403,7 +419,7 @@ int replay(const ReplayOptions& o) {
 
 Json side_json(const SideOptions& side, const World& world) {
   Json j;
-  j["threads"] = side.threads;
+  j["threads"] = world.settings().threads;
   j["broadphase"] = broadphase_name(side.broadphase);
   j["substeps"] = world.settings().substeps;
   j["iterations"] = world.settings().iterations;
@@ -449,7 +465,7 @@ int diverge(const DivergeOptions& o) {
     WorldDef def = scene.world;
     if (side.substeps) def.substeps = *side.substeps;
     if (side.iterations) def.iterations = *side.iterations;
-    def.threads = side.threads;
+    def.threads = workers(side.threads);
     def.broadphase = side.broadphase;
     World world = make_world(def, o.scene);
     load_into(scene, world, o.scene);

@@ -2,7 +2,7 @@
 // justify a dependency (CLI11 is not in Debian's default set of installed packages).
 #include "tools/options.hpp"
 
-#include <tbb/info.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -294,7 +294,10 @@ const char* broadphase_name(BroadphaseType type) {
 }
 
 int resolve_threads(int threads) {
-  return threads > 0 ? threads : std::max(1, tbb::info::default_concurrency());
+  // The most threads oneTBB runs at once: the machine's cores, unless a global_control lowers it.
+  const int available = std::max(
+      1, int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+  return threads > 0 ? std::min(threads, available) : available;
 }
 
 }  // namespace elan::cli

@@ -75,7 +75,8 @@ ReplayOptions parse_replay_options(std::span<const std::string> args);
 DivergeOptions parse_diverge_options(std::span<const std::string> args);
 
 const char* broadphase_name(BroadphaseType type);
-/// Worker count that `threads` (0 = all cores) stands for.
+/// Worker count that `threads` (0 = all cores) stands for: at most the threads oneTBB runs at
+/// once (the machine's cores).
 int resolve_threads(int threads);
 
 extern const char* const kMainUsage;

@@ -495,4 +495,25 @@ TEST(Cli, SolverCountsTakeTheLibraryRangeNamingTheFlag) {
   std::remove(file.c_str());
 }
 
+// `--threads 4` on a 2-core machine ran 2 workers and reported 4: the summary reports the
+// workers that run (never more than the default, all cores), with a warning when fewer than asked.
+TEST(Cli, ThreadsReportedAreTheWorkersThatRun) {
+  const std::string scene = small_scene();
+  const Result all = run_elan({"run", scene, "--steps", "1"});
+  ASSERT_EQ(all.status, 0) << all.err;
+  const int cores = Json::parse(all.out)["threads"].get<int>();
+  ASSERT_GE(cores, 1);
+  const Result many = run_elan({"run", scene, "--steps", "1", "--threads", "1024"});
+  ASSERT_EQ(many.status, 0) << many.err;
+  EXPECT_EQ(Json::parse(many.out)["threads"], cores);
+  if (cores < 1024) {
+    EXPECT_NE(many.err.find("--threads 1024: at most " + std::to_string(cores)), std::string::npos)
+        << many.err;
+  }
+  const Result one = run_elan({"run", scene, "--steps", "1", "--threads", "1"});
+  EXPECT_EQ(Json::parse(one.out)["threads"], 1);
+  EXPECT_TRUE(one.err.empty()) << one.err;
+  EXPECT_EQ(Json::parse(one.out)["state_hash"], Json::parse(many.out)["state_hash"]);
+}
+
 }  // namespace
