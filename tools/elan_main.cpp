@@ -42,6 +42,13 @@ std::string hex(uint64_t h) {
   return buf;
 }
 
+// Prints one JSON line on stdout. A path or body name that is not valid UTF-8 (a file name may be
+// any bytes) is printed with U+FFFD in place of the bad bytes: nlohmann's default would throw
+// after the whole run and print no summary.
+void print(const Json& out) {
+  std::cout << out.dump(-1, ' ', false, Json::error_handler_t::replace) << std::endl;
+}
+
 Json vec(const Vec3& v) {
   return Json::array({double(v.x()), double(v.y()), double(v.z())});
 }
@@ -282,7 +289,7 @@ int run(const RunOptions& o) {
       {"color", total.color},     {"bundles", total.bundles}, {"prepare", total.prepare},
       {"solve", total.solve},     {"ccd", total.ccd},         {"finalize", total.finalize},
       {"total", total.total}};
-  std::cout << out.dump() << std::endl;
+  print(out);
   return 0;
 }
 
@@ -407,13 +414,13 @@ int replay(const ReplayOptions& o) {
       out["expected"] = hex(r.hashes[step]);
       out["actual"] = hex(h);
       out["divergence"] = locate(r, o.file, world, step, scene);
-      std::cout << out.dump() << std::endl;
+      print(out);
       return 1;
     }
   }
   out["match"] = true;
   out["state_hash"] = hex(r.hashes.back());
-  std::cout << out.dump() << std::endl;
+  print(out);
   return 0;
 }
 
@@ -490,7 +497,7 @@ int diverge(const DivergeOptions& o) {
     out["value_a"] = d.value_a;
     out["value_b"] = d.value_b;
   }
-  std::cout << out.dump() << std::endl;
+  print(out);
   return d.found ? 1 : 0;
 }
 

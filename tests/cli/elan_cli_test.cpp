@@ -516,4 +516,20 @@ TEST(Cli, ThreadsReportedAreTheWorkersThatRun) {
   EXPECT_EQ(Json::parse(one.out)["state_hash"], Json::parse(many.out)["state_hash"]);
 }
 
+// A scene path that is not valid UTF-8 (a file name may be any bytes) made nlohmann's dump throw
+// after the whole run: the summary is printed, the bad byte replaced by U+FFFD. (The scene
+// reader refuses such bytes inside the file.)
+TEST(Cli, InvalidUtf8InThePathStillPrintsTheSummary) {
+  const std::string scene = temp_path("bad\xff.json");
+  write(scene, R"({"bodies":[{"shape":{"type":"sphere","radius":1}}]})");
+  const Result r = run_elan({"run", scene, "--steps", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(Json::parse(r.out)["scene"].get<std::string>().find("bad\xef\xbf\xbd.json"),
+            std::string::npos);
+  const Result d = run_elan({"diverge", scene, "--steps", "1", "--b", "--perturb 0:0"});
+  EXPECT_EQ(d.status, 1) << d.err;
+  EXPECT_EQ(Json::parse(d.out)["diverged"], true);
+  std::remove(scene.c_str());
+}
+
 }  // namespace
