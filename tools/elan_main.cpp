@@ -14,15 +14,16 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 #if defined(__GLIBC__)
 #include <malloc.h>  // mallopt
 #endif
 
+#include "core/scene/regular_file.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/elan.hpp"
+#include "elan/one_line.hpp"
 #include "elan/snapshot.hpp"
 #include "tools/options.hpp"
 #include "tools/recording.hpp"
@@ -42,17 +43,29 @@ std::string hex(uint64_t h) {
   return buf;
 }
 
+// Prints one JSON line on stdout. A path or body name that is not valid UTF-8 (a file name may be
+// any bytes) is printed with U+FFFD in place of the bad bytes: nlohmann's default would throw
+// after the whole run and print no summary.
+void print(const Json& out) {
+  std::cout << out.dump(-1, ' ', false, Json::error_handler_t::replace) << std::endl;
+}
+
 Json vec(const Vec3& v) {
   return Json::array({double(v.x()), double(v.y()), double(v.z())});
 }
 
-std::string read_file(const std::string& path, const char* what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open " + what + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(path + ": cannot read " + what);
-  return text.str();
+// The bytes of the recording `path`, a regular file whose magic is checked before the rest is
+// read (so /dev/zero, or a large file of anything else, is refused at once).
+std::string read_recording(const std::string& path) {
+  try {
+    detail::RegularFile file(path, "recording");
+    std::string bytes = file.read(kRecordingMagicBytes);
+    check_recording_magic(bytes, path);
+    bytes += file.read(std::numeric_limits<uint64_t>::max());
+    return bytes;
+  } catch (const detail::FileError& e) {
+    throw RecordingError(e.what());
+  }
 }
 
 // Builds the world; errors the library reports for settings name the scene file.
@@ -114,6 +127,22 @@ int unsound_run_status(const Json& out, uint32_t status) {
   return 0;
 }
 
+// The worker count to give a world for --threads `requested` (0 = all cores): the count that
+// runs, with a warning when that is fewer than requested. A World makes a oneTBB arena of
+// WorldDef::threads slots, but oneTBB runs at most max_allowed_parallelism threads at once (the
+// machine's cores unless limited), so on 2 cores an arena of 4 runs 2. Results never depend on
+// the count, so oversubscribing would buy nothing; the request is taken as an upper bound (as
+// Box2D's workerCount is) and the summary reports the workers that actually run.
+int workers(int requested) {
+  const int n = resolve_threads(requested);
+  if (requested > n) {
+    std::fprintf(stderr,
+                 "elan: warning: --threads %d: at most %d threads run at once here; using %d\n",
+                 requested, n, n);
+  }
+  return n;
+}
+
 // The testing aid of --perturb: one ulp up on the stored x of the body's centre of mass.
 void nudge(World& world, uint64_t body) {
   Real& px = detail::state_of(world).bodies.px[body];
@@ -156,7 +185,7 @@ class Progress {
 };
 
 int run(const RunOptions& o) {
-  std::string text = read_file(o.scene, "scene");
+  std::string text = detail::read_scene_file(o.scene);
   WorldDef def;
   Real dt = 0;
   // The parsed scene is freed once the world holds it, and the file's text too unless it goes
@@ -166,7 +195,7 @@ int run(const RunOptions& o) {
     def = scene.world;
     if (o.substeps) def.substeps = *o.substeps;
     if (o.iterations) def.iterations = *o.iterations;
-    def.threads = resolve_threads(o.threads);
+    def.threads = workers(o.threads);
     def.broadphase = o.broadphase;
     dt = o.timestep ? Real(*o.timestep) : scene.timestep;
     World w = make_world(def, o.scene);
@@ -293,7 +322,7 @@ int run(const RunOptions& o) {
       {"color", total.color},     {"bundles", total.bundles}, {"prepare", total.prepare},
       {"solve", total.solve},     {"ccd", total.ccd},         {"finalize", total.finalize},
       {"total", total.total}};
-  std::cout << out.dump() << std::endl;
+  print(out);
   return unsound_run_status(out, status);
 }
 
@@ -357,22 +386,45 @@ Json locate(const Recording& r, const std::string& file, const World& replayed, 
 }
 
 int replay(const ReplayOptions& o) {
-  const std::string bytes = read_file(o.file, "recording");
+  const std::string bytes = read_recording(o.file);
   const Recording r = decode_recording(bytes, o.file);
   if (r.real_bytes != sizeof(Real)) {
     throw RecordingError(o.file + ": recorded by a build with " + std::to_string(r.real_bytes * 8) +
                          "-bit Real, this build uses " + std::to_string(sizeof(Real) * 8) +
                          "-bit: hashes are comparable only on one build");
   }
-  const Scene scene = parse_scene(r.scene_text, r.scene_name);
-  WorldDef def = scene.world;
+  // The recording's checksum held, so a scene or settings that do not load mean a corrupt (or
+  // forged) recording: the message names the recording, and the recorded scene path only as
+  // part of what is wrong in it.
+  const std::string embedded =
+      "recorded scene" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
+  const auto corrupt = [&](const std::string& what) {
+    return RecordingError(o.file + ": corrupt recording: " + what);
+  };
+  Scene scene;
+  WorldDef def;
+  try {
+    scene = parse_scene(r.scene_text, embedded);
+    def = scene.world;
+  } catch (const SceneError& e) {
+    throw corrupt(e.what());
+  }
   def.substeps = r.substeps;
   def.iterations = r.iterations;
-  def.threads = resolve_threads(o.threads);
+  def.threads = workers(o.threads);
   def.broadphase = o.broadphase.value_or(BroadphaseType(r.broadphase));
   const Real dt = Real(r.timestep);
-  World world = make_world(def, r.scene_name);
-  load_into(scene, world, r.scene_name);
+  World world = [&] {
+    try {
+      World w(def);
+      load_into(scene, w, embedded);
+      return w;
+    } catch (const SceneError& e) {
+      throw corrupt(e.what());
+    } catch (const Error& e) {
+      throw corrupt(embedded + ": " + e.what());
+    }
+  }();
   check_perturb_body(o.perturb, world);
 
   Json out;
@@ -395,19 +447,19 @@ int replay(const ReplayOptions& o) {
       out["expected"] = hex(r.hashes[step]);
       out["actual"] = hex(h);
       out["divergence"] = locate(r, o.file, world, step, scene);
-      std::cout << out.dump() << std::endl;
+      print(out);
       return 1;
     }
   }
   out["match"] = true;
   out["state_hash"] = hex(r.hashes.back());
-  std::cout << out.dump() << std::endl;
+  print(out);
   return 0;
 }
 
 Json side_json(const SideOptions& side, const World& world) {
   Json j;
-  j["threads"] = side.threads;
+  j["threads"] = world.settings().threads;
   j["broadphase"] = broadphase_name(side.broadphase);
   j["substeps"] = world.settings().substeps;
   j["iterations"] = world.settings().iterations;
@@ -425,14 +477,20 @@ Divergence step_side_by_side(World& a, World& b, const DivergeOptions& o, Real d
   if (o.b.perturb && o.b.perturb->step <= o.steps) stops.emplace_back(o.b.perturb->step, 1);
   std::sort(stops.begin(), stops.end());
   uint64_t done = 0;
-  for (const auto& [step, side] : stops) {
+  for (std::size_t i = 0; i < stops.size();) {
+    const uint64_t step = stops[i].first;
     Divergence d = find_divergence(a, b, step - done, dt);
     if (d.found) {
       d.step += done;
       return d;
     }
     done = step;
-    nudge(side == 0 ? a : b, (side == 0 ? o.a : o.b).perturb->body);
+    // Both sides' perturbations of this step are applied before the worlds are compared again:
+    // sides given the same perturbation stay identical.
+    for (; i < stops.size() && stops[i].first == step; ++i) {
+      const int side = stops[i].second;
+      nudge(side == 0 ? a : b, (side == 0 ? o.a : o.b).perturb->body);
+    }
   }
   Divergence d = find_divergence(a, b, o.steps - done, dt);
   d.step += done;
@@ -440,14 +498,14 @@ Divergence step_side_by_side(World& a, World& b, const DivergeOptions& o, Real d
 }
 
 int diverge(const DivergeOptions& o) {
-  const std::string text = read_file(o.scene, "scene");
+  const std::string text = detail::read_scene_file(o.scene);
   const Scene scene = parse_scene(text, o.scene);
   const Real dt = o.timestep ? Real(*o.timestep) : scene.timestep;
   const auto make = [&](const SideOptions& side) {
     WorldDef def = scene.world;
     if (side.substeps) def.substeps = *side.substeps;
     if (side.iterations) def.iterations = *side.iterations;
-    def.threads = side.threads;
+    def.threads = workers(side.threads);
     def.broadphase = side.broadphase;
     World world = make_world(def, o.scene);
     load_into(scene, world, o.scene);
@@ -472,7 +530,7 @@ int diverge(const DivergeOptions& o) {
     out["value_a"] = d.value_a;
     out["value_b"] = d.value_b;
   }
-  std::cout << out.dump() << std::endl;
+  print(out);
   return d.found ? 1 : 0;
 }
 
@@ -532,15 +590,16 @@ int main(int argc, char** argv) {
   try {
     return dispatch(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "elan: %s (see 'elan --help')\n", e.what());
+    std::fprintf(stderr, "elan: %s (see 'elan --help')\n", elan::one_line(e.what()).c_str());
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "elan: out of memory\n");
   } catch (const elan::SceneError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s\n", elan::one_line(e.what()).c_str());
   } catch (const RecordingError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s\n", elan::one_line(e.what()).c_str());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "elan: %s\n", e.what());
+    // Any other exception's text may hold a path or a word from the command line: one line.
+    std::fprintf(stderr, "elan: %s\n", elan::one_line(e.what()).c_str());
   } catch (...) {
     std::fprintf(stderr, "elan: unexpected error\n");
   }

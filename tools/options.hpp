@@ -10,13 +10,15 @@
 #include <string>
 
 #include "elan/defs.hpp"
+#include "elan/one_line.hpp"
 
 namespace elan::cli {
 
 /// A bad command line: reported with a hint to --help, exit status 2.
 class UsageError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  /// Control characters in `message` (from a command-line word) are escaped (one_line).
+  explicit UsageError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
 struct RunOptions {
@@ -74,7 +76,8 @@ ReplayOptions parse_replay_options(std::span<const std::string> args);
 DivergeOptions parse_diverge_options(std::span<const std::string> args);
 
 const char* broadphase_name(BroadphaseType type);
-/// Worker count that `threads` (0 = all cores) stands for.
+/// Worker count that `threads` (0 = all cores) stands for: at most the threads oneTBB runs at
+/// once (the machine's cores).
 int resolve_threads(int threads);
 
 extern const char* const kMainUsage;

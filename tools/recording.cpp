@@ -13,10 +13,12 @@
 #include <cmath>
 #include <cstring>
 
+#include "elan/defs.hpp"
+
 namespace elan::cli {
 namespace {
 
-constexpr char kMagic[8] = {'\x89', 'E', 'L', 'A', 'N', 'R', 'E', 'C'};
+constexpr char kMagic[kRecordingMagicBytes] = {'\x89', 'E', 'L', 'A', 'N', 'R', 'E', 'C'};
 constexpr uint32_t kVersion = 2;
 constexpr uint32_t kOldestVersion = 1;
 
@@ -117,11 +119,15 @@ std::string encode_recording(const Recording& r) {
   return out;
 }
 
-Recording decode_recording(const std::string& bytes, const std::string& file) {
-  const std::size_t magic_seen = std::min(bytes.size(), sizeof kMagic);
-  if (std::memcmp(bytes.data(), kMagic, magic_seen) != 0 || bytes.empty()) {
+void check_recording_magic(const std::string& head, const std::string& file) {
+  const std::size_t magic_seen = std::min(head.size(), sizeof kMagic);
+  if (head.empty() || std::memcmp(head.data(), kMagic, magic_seen) != 0) {
     throw RecordingError(file + ": not an elan recording (it does not start with the magic bytes)");
   }
+}
+
+Recording decode_recording(const std::string& bytes, const std::string& file) {
+  check_recording_magic(bytes, file);
   if (bytes.size() < sizeof kMagic + 4 + 8) {
     throw RecordingError(file + ": truncated recording (" + std::to_string(bytes.size()) +
                          " bytes)");
@@ -151,10 +157,21 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
   r.iterations = int32_t(in.u32("iterations"));
   r.threads = in.u32("threads");
   r.broadphase = in.u32("broadphase");
-  if (!(r.timestep > 0) || !std::isfinite(r.timestep) || r.substeps < 1 || r.iterations < 1 ||
-      r.broadphase > 1) {
+  if (!(r.timestep > 0) || !std::isfinite(r.timestep) || r.broadphase > 1) {
     throw RecordingError(file + ": corrupt recording: invalid settings");
   }
+  // The library's own ranges (elan/defs.hpp): a value no world accepts is a corrupt recording,
+  // named here rather than failing later as if the recorded scene were wrong.
+  const auto check_range = [&](const char* field, int64_t v, int64_t lo, int64_t hi) {
+    if (v < lo || v > hi) {
+      throw RecordingError(file + ": corrupt recording: recorded " + field + " must be in " +
+                           std::to_string(lo) + ".." + std::to_string(hi) + ", got " +
+                           std::to_string(v));
+    }
+  };
+  check_range("substeps", r.substeps, 1, kMaxSubsteps);
+  check_range("iterations", r.iterations, 1, kMaxIterations);
+  check_range("threads", r.threads, 0, kMaxThreads);
   if (version >= 2) r.keyframe_every = in.u64("keyframe interval");
   r.scene_name = in.string("scene name");
   r.scene_text = in.string("scene text");

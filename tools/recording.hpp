@@ -9,12 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "elan/one_line.hpp"
+
 namespace elan::cli {
 
 /// The file is not a recording, or is truncated or corrupt.
 class RecordingError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  /// Control characters in `message` (from a file or scene name) are escaped (one_line).
+  explicit RecordingError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
 /// A full world snapshot (elan/snapshot.hpp) after `step` steps.
@@ -41,6 +44,13 @@ struct Recording {
 
 /// The keyframe with the largest step <= `step`, or null when there is none.
 const Keyframe* keyframe_at_or_before(const Recording& r, uint64_t step);
+
+/// A recording starts with these many magic bytes: a reader checks them (check_recording_magic)
+/// before reading the rest, so that a file that is no recording is refused at once.
+inline constexpr std::size_t kRecordingMagicBytes = 8;
+/// Throws RecordingError naming `file` unless `head` (a file's first bytes, or all of a shorter
+/// file) starts like a recording.
+void check_recording_magic(const std::string& head, const std::string& file);
 
 std::string encode_recording(const Recording& r);
 /// Reads versions 1 (no keyframes) and 2. Throws RecordingError naming `file` and what is wrong.

@@ -1,12 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Scene files: the top level of the schema (world settings, bodies, generators), read from text
 // or from a file.
-#include <cerrno>
 #include <cstdint>
-#include <cstring>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +10,7 @@
 #include "core/scene/body_schema.hpp"
 #include "core/scene/generators.hpp"
 #include "core/scene/json_reader.hpp"
+#include "core/scene/regular_file.hpp"
 #include "core/scene/schema_checks.hpp"
 #include "elan/limits.hpp"
 #include "elan/scene.hpp"
@@ -21,12 +18,6 @@
 namespace elan {
 
 using namespace detail::scene_file;
-
-namespace {
-
-constexpr int kMaxSolverCount = 10'000;  // substeps, iterations
-
-}  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& file_name) {
   const Json root = parse_json(text, file_name);
@@ -49,11 +40,11 @@ Scene parse_scene(const std::string& text, const std::string& file_name) {
     }
   }
   if (const auto it = root.find("substeps"); it != root.end()) {
-    scene.world.substeps = int(to_int(ctx, *it, "substeps", 1, kMaxSolverCount));
+    scene.world.substeps = int(to_int(ctx, *it, "substeps", 1, kMaxSubsteps));
     scene.has_substeps = true;
   }
   if (const auto it = root.find("iterations"); it != root.end()) {
-    scene.world.iterations = int(to_int(ctx, *it, "iterations", 1, kMaxSolverCount));
+    scene.world.iterations = int(to_int(ctx, *it, "iterations", 1, kMaxIterations));
     scene.has_iterations = true;
   }
   if (const auto it = root.find("allow_sleep"); it != root.end()) {
@@ -118,12 +109,7 @@ Scene parse_scene(const std::string& text, const std::string& file_name) {
 }
 
 Scene load_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open file: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw SceneError(path + ": cannot read file");
-  return parse_scene(text.str(), path);
+  return parse_scene(detail::read_scene_file(path), path);
 }
 
 }  // namespace elan

@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <optional>
+#include <string>
 
 #include "core/world/thread_pool_access.hpp"
+#include "elan/defs.hpp"
 #include "elan/error.hpp"
 #include "elan/tbb_interop.hpp"
 
@@ -20,7 +22,9 @@ struct ThreadPool::Impl {
 };
 
 ThreadPool::ThreadPool(int threads) : impl_(std::make_unique<Impl>()) {
-  if (threads < 0 || threads > 1024) throw Error("threads", "must be in 0..1024");
+  if (threads < 0 || threads > kMaxThreads) {
+    throw Error("threads", "must be in 0.." + std::to_string(kMaxThreads));
+  }
   impl_->own.emplace(threads > 0 ? threads : std::max(1, tbb::info::default_concurrency()));
   impl_->arena = &*impl_->own;
 }

@@ -29,6 +29,11 @@ using detail::index_of;
 
 namespace {
 
+// "must be in LO..HI", the wording every range check of the settings uses.
+std::string in_range(int lo, int hi) {
+  return "must be in " + std::to_string(lo) + ".." + std::to_string(hi);
+}
+
 bool finite(const Vec3& v) {
   return v.allFinite();
 }
@@ -36,9 +41,11 @@ bool finite(const Vec3& v) {
 void validate(const WorldDef& def) {
   check_arg(finite(def.gravity), "gravity", "must be finite");
   check_length(def.gravity, limits::kMaxGravity, "gravity", "m/s^2");
-  check_arg(def.substeps >= 1 && def.substeps <= 64, "substeps", "must be in 1..64");
-  check_arg(def.iterations >= 1 && def.iterations <= 64, "iterations", "must be in 1..64");
-  check_arg(def.threads >= 0 && def.threads <= 1024, "threads", "must be in 0..1024");
+  check_arg(def.substeps >= 1 && def.substeps <= kMaxSubsteps, "substeps",
+            in_range(1, kMaxSubsteps));
+  check_arg(def.iterations >= 1 && def.iterations <= kMaxIterations, "iterations",
+            in_range(1, kMaxIterations));
+  check_arg(def.threads >= 0 && def.threads <= kMaxThreads, "threads", in_range(0, kMaxThreads));
 }
 
 // density x volume, refused unless within the mass range. In double, so that an overflow of the
@@ -285,18 +292,19 @@ const WorldDef& World::settings() const {
 }
 
 void World::set_substeps(int substeps) {
-  check_arg(substeps >= 1 && substeps <= 64, "substeps", "must be in 1..64");
+  check_arg(substeps >= 1 && substeps <= kMaxSubsteps, "substeps", in_range(1, kMaxSubsteps));
   state_->def.substeps = substeps;
 }
 void World::set_iterations(int iterations) {
-  check_arg(iterations >= 1 && iterations <= 64, "iterations", "must be in 1..64");
+  check_arg(iterations >= 1 && iterations <= kMaxIterations, "iterations",
+            in_range(1, kMaxIterations));
   state_->def.iterations = iterations;
 }
 void World::set_broadphase(BroadphaseType type) {
   state_->def.broadphase = type;
 }
 void World::set_threads(int threads) {
-  check_arg(threads >= 0 && threads <= 1024, "threads", "must be in 0..1024");
+  check_arg(threads >= 0 && threads <= kMaxThreads, "threads", in_range(0, kMaxThreads));
   state_->def.threads = threads;
   state_->def.thread_pool = nullptr;
   state_->threads = resolve_threads(threads);

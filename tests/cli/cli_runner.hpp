@@ -67,9 +67,14 @@ inline std::string temp_path(const std::string& name) {
   return ::testing::TempDir() + "elan_cli_" + std::to_string(getpid()) + "_" + test + "_" + name;
 }
 
-inline Result run_elan(const std::vector<std::string>& args) {
+// With `timeout_seconds` > 0 the binary runs under timeout(1), killed after that long: a test of
+// a former hang then fails (status 124, or 137 after the KILL) instead of hanging the suite.
+inline Result run_elan(const std::vector<std::string>& args, int timeout_seconds = 0) {
   const std::string out = temp_path("stdout"), err = temp_path("stderr");
-  std::string cmd = quote(ELAN_CLI);
+  std::string cmd;
+  if (timeout_seconds > 0)
+    cmd.append("timeout -k 5 ").append(std::to_string(timeout_seconds)).append(" ");
+  cmd.append(quote(ELAN_CLI));
   // Appends only: GCC 12 warns falsely (-Wrestrict) on `" " + std::string`.
   for (const std::string& a : args) cmd.append(" ").append(quote(a));
   cmd.append(" >").append(quote(out)).append(" 2>").append(quote(err)).append(" </dev/null");

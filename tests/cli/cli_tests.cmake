@@ -7,6 +7,7 @@ target_link_libraries(test_cli_elan PRIVATE elan_recording elan_options nlohmann
 target_compile_definitions(test_cli_elan PRIVATE
   ELAN_CLI="$<TARGET_FILE:elan_cli>"
   ELAN_BAD_SCENES="${CMAKE_CURRENT_LIST_DIR}/bad_scenes"
+  ELAN_REPRODUCERS="${CMAKE_CURRENT_LIST_DIR}/reproducers"
   ELAN_SCENE_DIR="${ELAN_SCENE_DIR}")
 target_include_directories(test_cli_elan PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
 add_dependencies(test_cli_elan elan_cli)

@@ -6,6 +6,9 @@
 #include "cli/cli_runner.hpp"
 #include "tools/recording.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
@@ -363,6 +366,171 @@ TEST_F(Recording, SceneFileIsNotARecording) {
   const Result r = run_elan({"replay", small_scene()});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("not an elan recording"), std::string::npos) << r.err;
+}
+
+// --- Regression tests for the reproducers of issue 42 (tests/cli/reproducers/) ---
+
+std::string reproducer(const std::string& name) {
+  return std::string(ELAN_REPRODUCERS) + "/" + name;
+}
+
+// Exit 2 with exactly one line on stderr that names `file` and says `what`.
+void expect_one_line_refusal(const Result& r, const std::string& file, const std::string& what) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(what), std::string::npos) << "expected '" << what << "' in " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+// hang_infinite_input_dev_zero.txt: these read without end (1.1 GB after 15 s) before the fix.
+TEST(Cli, EndlessInputIsRefusedAtOnce) {
+  for (const char* device : {"/dev/zero", "/dev/urandom"}) {
+    expect_one_line_refusal(run_elan({"run", device}, 10), device,
+                            "is a character device, not a scene file");
+    expect_one_line_refusal(run_elan({"diverge", device}, 10), device, "not a scene file");
+    expect_one_line_refusal(run_elan({"replay", device}, 10), device,
+                            "is a character device, not a recording file");
+  }
+}
+
+// A FIFO without a writer would block open(2) and read(2): refused without waiting.
+TEST(Cli, FifoIsRefusedWithoutBlocking) {
+  const std::string fifo = temp_path("fifo");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  expect_one_line_refusal(run_elan({"run", fifo}, 10), fifo, "is a FIFO, not a scene file");
+  expect_one_line_refusal(run_elan({"replay", fifo}, 10), fifo, "is a FIFO, not a recording file");
+  std::remove(fifo.c_str());
+}
+
+// A scene file over the cap (a sparse file: no disk used) is refused before it is read.
+TEST(Cli, SceneFileOverTheSizeCapIsRefused) {
+  const std::string big = temp_path("big.json");
+  write(big, "{}");
+  ASSERT_EQ(truncate(big.c_str(), off_t(257) << 20), 0);
+  expect_one_line_refusal(run_elan({"run", big}, 10), big, "file too large for a scene");
+  std::remove(big.c_str());
+}
+
+// A recording's magic is checked on its first 8 bytes, before the rest is read.
+TEST(Cli, RecordingMagicIsCheckedFirst) {
+  const std::string scene = small_scene();
+  expect_one_line_refusal(run_elan({"replay", scene}, 10), scene, "not an elan recording");
+}
+
+// dir_as_scene_message.txt: `elan run /tmp` said "empty file".
+TEST(Cli, DirectoryAsSceneIsNamedADirectory) {
+  const std::string dir = ::testing::TempDir();
+  const Result r = run_elan({"run", dir}, 10);
+  expect_one_line_refusal(r, dir, "is a directory, not a scene file");
+  EXPECT_EQ(r.err.find("empty file"), std::string::npos) << r.err;
+  expect_one_line_refusal(run_elan({"replay", dir}, 10), dir,
+                          "is a directory, not a recording file");
+}
+
+// name_with_newline_breaks_one_line.json, name_with_terminal_escape.json: names were printed
+// raw. Any user string (a name, a key, a generator type, a command-line word) is escaped.
+TEST(Cli, ControlCharactersInMessagesAreEscaped) {
+  const std::string newline = reproducer("name_with_newline_breaks_one_line.json");
+  Result r = run_elan({"run", newline});
+  expect_one_line_refusal(r, newline, R"(body 0 ("a\nb"): shape.radius: must be positive)");
+
+  const std::string escape = reproducer("name_with_terminal_escape.json");
+  r = run_elan({"run", escape});
+  expect_one_line_refusal(r, escape, R"(body 0 ("\u001b[2J\u001b[31mOK"))");
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
+
+  // A NUL, a C1 control (U+009B, CSI) and a DEL in a name; a newline in an unknown key and in a
+  // generator type.
+  const std::string scene = temp_path("names.json");
+  write(scene,
+        R"({"bodies":[{"name":"x\u0000y\u009bz\u007f","shape":{"type":"sphere","radius":-1}}]})");
+  r = run_elan({"run", scene});
+  expect_one_line_refusal(r, scene, R"(body 0 ("x\u0000y\u009bz\u007f"))");
+  write(scene, R"({"bodies":[{"shape":{"type":"sphere","radius":1},"na\nme":1}]})");
+  expect_one_line_refusal(run_elan({"run", scene}), scene, R"(na\nme: unknown key)");
+  write(scene, R"({"generators":[{"type":"gr\r\nid"}]})");
+  expect_one_line_refusal(run_elan({"run", scene}), scene, R"(generator 0 (gr\r\nid))");
+  std::remove(scene.c_str());
+
+  // A command-line word and a file name.
+  r = run_elan({"run", small_scene(), "--broadphase", "a\nb\x1b[2J"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find(R"(got 'a\nb\u001b[2J')"), std::string::npos) << r.err;
+  r = run_elan({"run", "/nonexistent/a\nb.json"});
+  expect_one_line_refusal(r, R"(/nonexistent/a\nb.json)", "cannot open");
+}
+
+// cli_substeps_range_mismatch.txt: --substeps 65 passed the command line and then blamed the
+// scene file; 10001 said "between 1 and 10000". One range, the library's, naming the flag.
+TEST(Cli, SolverCountsTakeTheLibraryRangeNamingTheFlag) {
+  const std::string scene = reproducer("ok_sphere.json");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--substeps", "65"}, "elan: --substeps: must be in 1..64, got 65"},
+      {{"--substeps", "10001"}, "elan: --substeps: must be in 1..64, got 10001"},
+      {{"--substeps", "0"}, "elan: --substeps: must be in 1..64, got 0"},
+      {{"--iterations", "65"}, "elan: --iterations: must be in 1..64, got 65"},
+      {{"--threads", "1025"}, "elan: --threads: must be in 1..1024, got 1025"},
+  };
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> args = {"run", scene, "--steps", "1"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Result r = run_elan(args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.err.rfind(message, 0), 0u) << "expected '" << message << "' in " << r.err;
+    EXPECT_EQ(r.err.find("ok_sphere.json"), std::string::npos) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  }
+  for (const char* side : {"--substeps 65", "--iterations 65"}) {
+    const Result r = run_elan({"diverge", scene, "--steps", "1", "--b", side});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("must be in 1..64, got 65"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(
+      run_elan({"run", scene, "--steps", "1", "--substeps", "64", "--iterations", "64"}).status, 0);
+  // A scene file's own substeps take the same range, at load.
+  const std::string file = temp_path("substeps.json");
+  write(file, R"({"substeps":65,"bodies":[]})");
+  expect_one_line_refusal(run_elan({"run", file}), file, "substeps: must be at most 64, got 65");
+  std::remove(file.c_str());
+}
+
+// `--threads 4` on a 2-core machine ran 2 workers and reported 4: the summary reports the
+// workers that run (never more than the default, all cores), with a warning when fewer than asked.
+TEST(Cli, ThreadsReportedAreTheWorkersThatRun) {
+  const std::string scene = small_scene();
+  const Result all = run_elan({"run", scene, "--steps", "1"});
+  ASSERT_EQ(all.status, 0) << all.err;
+  const int cores = Json::parse(all.out)["threads"].get<int>();
+  ASSERT_GE(cores, 1);
+  const Result many = run_elan({"run", scene, "--steps", "1", "--threads", "1024"});
+  ASSERT_EQ(many.status, 0) << many.err;
+  EXPECT_EQ(Json::parse(many.out)["threads"], cores);
+  if (cores < 1024) {
+    EXPECT_NE(many.err.find("--threads 1024: at most " + std::to_string(cores)), std::string::npos)
+        << many.err;
+  }
+  const Result one = run_elan({"run", scene, "--steps", "1", "--threads", "1"});
+  EXPECT_EQ(Json::parse(one.out)["threads"], 1);
+  EXPECT_TRUE(one.err.empty()) << one.err;
+  EXPECT_EQ(Json::parse(one.out)["state_hash"], Json::parse(many.out)["state_hash"]);
+}
+
+// A scene path that is not valid UTF-8 (a file name may be any bytes) made nlohmann's dump throw
+// after the whole run: the summary is printed, the bad byte replaced by U+FFFD. (The scene
+// reader refuses such bytes inside the file.)
+TEST(Cli, InvalidUtf8InThePathStillPrintsTheSummary) {
+  const std::string scene = temp_path("bad\xff.json");
+  write(scene, R"({"bodies":[{"shape":{"type":"sphere","radius":1}}]})");
+  const Result r = run_elan({"run", scene, "--steps", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(Json::parse(r.out)["scene"].get<std::string>().find("bad\xef\xbf\xbd.json"),
+            std::string::npos);
+  const Result d = run_elan({"diverge", scene, "--steps", "1", "--b", "--perturb 0:0"});
+  EXPECT_EQ(d.status, 1) << d.err;
+  EXPECT_EQ(Json::parse(d.out)["diverged"], true);
+  std::remove(scene.c_str());
 }
 
 }  // namespace

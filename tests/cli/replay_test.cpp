@@ -38,6 +38,9 @@ void put_u64(std::string& out, uint64_t v) {
 void put_u32(std::string& out, uint32_t v) {
   for (int i = 0; i < 4; ++i) out.push_back(char(uint8_t(v >> (8 * i))));
 }
+void put_u32_at(std::string& s, std::size_t at, uint32_t v) {
+  for (int i = 0; i < 4; ++i) s[at + i] = char(uint8_t(v >> (8 * i)));
+}
 uint64_t get_u64(const std::string& s, std::size_t at) {
   uint64_t v = 0;
   for (int i = 0; i < 8; ++i) v |= uint64_t(uint8_t(s[at + i])) << (8 * i);
@@ -247,6 +250,118 @@ TEST_F(Replay, DivergeRefusesBadSides) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--a"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+}
+
+// --- Regression tests for the reproducers of issue 42 (tests/cli/reproducers/) ---
+
+std::string reproducer(const std::string& name) {
+  return std::string(ELAN_REPRODUCERS) + "/" + name;
+}
+
+std::size_t count_lines(const std::string& s) {
+  std::size_t n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+// diverge_same_perturb_false_divergence.txt: with the same perturbation on both sides, side a was
+// compared after its nudge and before b's, and a divergence was reported at that step.
+TEST_F(Replay, DivergeWithIdenticalOptionsNeverDiverges) {
+  for (const char* perturb : {"--perturb 1:0", "--perturb 1:2", "--perturb 2:5", "--perturb 3:8"}) {
+    const Result r =
+        run_elan({"diverge", scene_, "--steps", "8", "--a", perturb, "--b", perturb}, 60);
+    EXPECT_EQ(r.status, 0) << perturb << ": " << r.out << r.err;
+    EXPECT_EQ(Json::parse(r.out)["diverged"], false) << perturb;
+  }
+  const Result tower = run_elan({"diverge", std::string(ELAN_SCENE_DIR) + "/tower20.json",
+                                 "--steps", "5", "--a", "--perturb 1:2", "--b", "--perturb 1:2"},
+                                60);
+  EXPECT_EQ(tower.status, 0) << tower.out << tower.err;
+  const Result sides =
+      run_elan({"diverge", scene_, "--steps", "8", "--a", "--threads 1 --perturb 2:3", "--b",
+                "--threads 2 --broadphase all-pairs --perturb 2:3"},
+               60);
+  EXPECT_EQ(sides.status, 0) << sides.out << sides.err;
+}
+
+TEST_F(Replay, DivergeWithDifferentPerturbationsStillDiverges) {
+  // Another body at the same step: found at that step.
+  Result r = run_elan(
+      {"diverge", scene_, "--steps", "8", "--a", "--perturb 1:2", "--b", "--perturb 2:2"}, 60);
+  EXPECT_EQ(r.status, 1) << r.err;
+  Json j = Json::parse(r.out);
+  EXPECT_EQ(j["step"], 2);
+  EXPECT_EQ(j["body"], 1);
+  EXPECT_EQ(j["field"], "px");
+  // The same body at another step: found at the first of them.
+  r = run_elan({"diverge", scene_, "--steps", "8", "--a", "--perturb 1:4", "--b", "--perturb 1:2"},
+               60);
+  EXPECT_EQ(r.status, 1) << r.err;
+  j = Json::parse(r.out);
+  EXPECT_EQ(j["step"], 2);
+  EXPECT_EQ(j["body"], 1);
+}
+
+// Exit 2 and one line that names the recording (not the scene path it carries) as corrupt.
+void expect_corrupt_recording(const Result& r, const std::string& file, const std::string& what) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind(file + ": corrupt recording: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(what), std::string::npos) << "expected '" << what << "' in " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+// replay_corrupt_embedded_scene.rec (valid checksum, scene text "[]") was reported as
+// "seeds/h_stack.json: expected a JSON object ...".
+TEST(ReplayCorrupt, EmbeddedSceneIsReportedByTheRecording) {
+  const std::string file = reproducer("replay_corrupt_embedded_scene.rec");
+  expect_corrupt_recording(run_elan({"replay", file}, 60), file,
+                           "recorded scene \"seeds/h_stack.json\": expected a JSON object");
+}
+
+// replay_nul_scene_name_empty_message.rec (scene name "\0") printed an empty line.
+TEST(ReplayCorrupt, NulInEmbeddedSceneNameGivesOneEscapedLine) {
+  const std::string file = reproducer("replay_nul_scene_name_empty_message.rec");
+  expect_corrupt_recording(run_elan({"replay", file}, 60), file,
+                           R"(recorded scene "\u0000": expected a JSON object)");
+}
+
+// replay_recorded_substeps_100.rec blamed the scene; replay_recorded_threads_5000.rec was
+// accepted, or failed with "elan: threads: must be in 0..1024" under --perturb.
+TEST(ReplayCorrupt, RecordedSettingsOutOfRangeAreACorruptRecording) {
+  const std::string substeps = reproducer("replay_recorded_substeps_100.rec");
+  expect_corrupt_recording(run_elan({"replay", substeps}, 60), substeps,
+                           "recorded substeps must be in 1..64, got 100");
+  const std::string threads = reproducer("replay_recorded_threads_5000.rec");
+  for (const std::vector<std::string>& extra :
+       std::vector<std::vector<std::string>>{{}, {"--perturb", "1:4"}}) {
+    std::vector<std::string> args = {"replay", threads};
+    args.insert(args.end(), extra.begin(), extra.end());
+    expect_corrupt_recording(run_elan(args, 60), threads,
+                             "recorded threads must be in 0..1024, got 5000");
+  }
+}
+
+// A recording whose settings a world refuses (iterations 65 under a valid checksum) or whose
+// scene has a bad body names the recording too.
+TEST_F(Replay, InvalidRecordedSettingsAndScenesNameTheRecording) {
+  // iterations sits after magic, version, real size, steps, timestep and substeps.
+  std::string bytes = bytes_;
+  const std::size_t at = 8 + 4 + 4 + 8 + 8 + 4;
+  put_u32_at(bytes, at, 65);
+  reseal(bytes);
+  write(path_, bytes);
+  expect_corrupt_recording(run_elan({"replay", path_}, 60), path_,
+                           "recorded iterations must be in 1..64, got 65");
+
+  // A scene whose body is refused at load: radius -1, same length as the recorded "0.5".
+  bytes = bytes_;
+  const std::size_t radius = bytes.find("\"radius\": 0.5");
+  ASSERT_NE(radius, std::string::npos);
+  bytes.replace(radius, 13, "\"radius\": -1 ");
+  reseal(bytes);
+  write(path_, bytes);
+  expect_corrupt_recording(run_elan({"replay", path_}, 60), path_, "shape.radius");
 }
 
 }  // namespace

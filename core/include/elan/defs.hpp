@@ -50,6 +50,13 @@ struct BodyDef {
   bool awake = true;                     ///< start awake (dynamic bodies)
 };
 
+/// The ranges WorldDef, World's setters and ThreadPool accept: substeps and iterations in
+/// 1..kMaxSubsteps and 1..kMaxIterations, threads in 0..kMaxThreads (0 = all cores). Tools and
+/// scene files check against the same constants.
+inline constexpr int kMaxSubsteps = 64;
+inline constexpr int kMaxIterations = 64;
+inline constexpr int kMaxThreads = 1024;
+
 /// World settings.
 struct WorldDef {
   Vec3 gravity = Vec3(0, Real(-9.81), 0);  ///< m/s^2, world

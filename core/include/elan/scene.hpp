@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "elan/defs.hpp"
+#include "elan/one_line.hpp"
 #include "elan/world.hpp"
 
 namespace elan {
@@ -18,7 +19,8 @@ namespace elan {
 /// `scene.json: body 3 ("ball"): shape.radius: must be positive, got -1`.
 class SceneError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  /// Control characters in `message` (from a body name, a key, a path) are escaped (one_line).
+  explicit SceneError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
 struct SceneBody {
