@@ -30,6 +30,13 @@ inline const char* const kSmallScene = R"({
   ]
 })";
 
+// The number of lines of a captured stream: a one-line message counts 1.
+inline std::size_t count_lines(const std::string& s) {
+  std::size_t n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
 struct Result {
   int status = -1;  // exit status; a death by signal shows as 128 + signal through the shell
   std::string out;

@@ -24,12 +24,6 @@ using Json = nlohmann::json;
 
 using namespace elan::test;
 
-std::size_t count_lines(const std::string& s) {
-  std::size_t n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
-
 std::string small_scene() {
   const std::string path = temp_path("scene.json");
   write(path, kSmallScene);

@@ -17,12 +17,6 @@ namespace elan::cli_limits_test {
 using Json = nlohmann::json;
 using namespace elan::test;
 
-std::size_t count_lines(const std::string& s) {
-  std::size_t n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
-
 // Runs a reproducer: exit 2, nothing on stdout, one stderr line naming the file and `expected`.
 void expect_refused(const std::string& file, const std::string& expected) {
   const std::string path = std::string(ELAN_REPRODUCERS) + "/" + file;
