@@ -12,6 +12,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/base/range_checks.hpp"
 #include "elan/limits.hpp"
 
 namespace elan::cli {
@@ -110,7 +111,8 @@ double parse_seconds(const std::string& option, const std::string& text) {
   }
   // The step's range (elan/limits.hpp): outside it World::step would simulate nothing.
   if (!(Real(v) >= Real(limits::kMinTimestep) && Real(v) <= Real(limits::kMaxTimestep))) {
-    throw UsageError(option + ": must be in [1e-06, 1] s, got " + text);
+    throw UsageError(option + ": must be in [" + detail::show_value(limits::kMinTimestep) + ", " +
+                     detail::show_value(limits::kMaxTimestep) + "] s, got " + text);
   }
   return v;
 }
