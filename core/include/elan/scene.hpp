@@ -29,12 +29,21 @@ struct SceneBody {
   BodyDef body;  ///< body.shape is filled by load_into
 };
 
+/// A joint of the scene file, its bodies resolved to scene body indices.
+struct SceneJoint {
+  std::string name;  ///< empty when the file gives none
+  int body_a = -1;   ///< scene body index
+  int body_b = -1;   ///< scene body index, -1 = the static world
+  JointDef def;      ///< def.body_a / body_b are filled by load_into
+};
+
 struct Scene {
   WorldDef world;                    ///< gravity, substeps, iterations, allow_sleep
   Real timestep = Real(1.0 / 60.0);  ///< s per step
   bool has_substeps = false;         ///< the file set `substeps`
   bool has_iterations = false;       ///< the file set `iterations`
   std::vector<SceneBody> bodies;     ///< explicit bodies first, then generated ones, in order
+  std::vector<SceneJoint> joints;    ///< explicit joints first, then generated ones, in order
 };
 
 /// Parses scene text; `file_name` is used in messages only. Throws SceneError.
@@ -42,7 +51,8 @@ Scene parse_scene(const std::string& text, const std::string& file_name);
 /// Reads and parses a scene file. Throws SceneError (also for an unreadable file).
 Scene load_scene(const std::string& path);
 /// Creates the scene's shapes (identical shape definitions are shared) and bodies in `world`,
-/// in scene order, so body index i is the scene's body i. Throws SceneError.
+/// in scene order, so body index i is the scene's body i, then its joints, in order (joint index
+/// j is the scene's joint j). Throws SceneError.
 void load_into(const Scene& scene, World& world, const std::string& file_name);
 
 }  // namespace elan

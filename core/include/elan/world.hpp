@@ -13,6 +13,7 @@
 #include "elan/error.hpp"
 #include "elan/events.hpp"
 #include "elan/ids.hpp"
+#include "elan/joints.hpp"
 #include "elan/math.hpp"
 #include "elan/profile.hpp"
 #include "elan/queries.hpp"
@@ -65,6 +66,37 @@ class World {
   /// are woken. The last body moves into its dense index (swap-remove), so dense indices and
   /// bulk views are invalidated; other ids stay valid.
   void destroy_body(BodyId id);
+
+  /// Creates a joint between steps (see JointDef). Throws elan::Error naming the field: a stale
+  /// body, A == B, neither body dynamic, a zero or non-finite axis, limits lower > upper, a
+  /// negative motor force, a spring frequency <= 0, lengths out of order, a swing limit outside
+  /// [0, pi], break_force <= 0. Wakes the bodies.
+  JointId create_joint(const JointDef& def);
+  /// Removes a joint between steps (no event) and wakes its bodies.
+  void destroy_joint(JointId id);
+  bool is_valid(JointId id) const;
+  std::size_t joint_count() const;
+  /// Id of the joint at dense index `index` (creation order while nothing is removed).
+  JointId joint_at(std::size_t index) const;
+  /// The definition the joint was made with, as changed by the setters below.
+  const JointDef& joint_def(JointId id) const;
+  /// Runtime changes (checked as in create_joint; they wake the bodies).
+  void set_joint_motor(JointId id, const JointMotor& motor);
+  void set_joint_spring(JointId id, const JointSpring& spring);
+  void set_joint_limits(JointId id, const JointLimits& limits);
+  void set_joint_swing_limit(JointId id, Real swing_limit);              ///< Cone, rad in [0, pi]
+  void set_joint_lengths(JointId id, Real min_length, Real max_length);  ///< Distance, m
+  /// Constraint force (N, world) and torque (N m, world) the joint applied to body A over the
+  /// last step (the last substep's impulses / substep time); zero before its first step.
+  Vec3 joint_force(JointId id) const;
+  Vec3 joint_torque(JointId id) const;
+  /// The joint's coordinate at the current poses: hinge angle and cone twist (rad, of A relative
+  /// to B about the axis, in (-pi, pi]), slider position (m, along the axis), distance (m).
+  /// 0 for ball and fixed joints.
+  Real joint_coordinate(JointId id) const;
+  /// Joints that left the world in the last step (broken) or by destroy_body since; cleared when
+  /// the next step starts.
+  std::span<const JointRemovedEvent> joint_removed_events() const;
 
   /// Advances the world by `dt` seconds. Never throws; returns StepStatus flags.
   uint32_t step(Real dt);
