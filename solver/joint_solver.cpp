@@ -77,17 +77,20 @@ Soft soft_of(const JointSolverContext& ctx, bool use_bias) {
 
 // The current geometry of a joint inside a substep.
 struct Pose {
-  Vec3 r_a, r_b;          // m, world arms
-  Quat frame_a, frame_b;  // joint frames, world
-  Vec3 separation;        // m: B's anchor minus A's
+  Vec3 r_a, r_b;                                                // m, world arms
+  Quat frame_a = Quat::Identity(), frame_b = Quat::Identity();  // joint frames, world
+  Vec3 separation;                                              // m: B's anchor minus A's
 };
 
 Pose pose_of(const JointRow& j, const SolverBody& a, const SolverBody& b) {
   Pose p;
   p.r_a = a.dq * j.r_a;
   p.r_b = b.dq * j.r_b;
-  p.frame_a = a.dq * j.frame_a;
-  p.frame_b = b.dq * j.frame_b;
+  // perf: ball and distance joints read no frame (a joint grid is all ball joints).
+  if (j.type != JointType::Ball && j.type != JointType::Distance) {
+    p.frame_a = a.dq * j.frame_a;
+    p.frame_b = b.dq * j.frame_b;
+  }
   p.separation = (b.dp - a.dp) + (p.r_b - p.r_a) + j.delta_center;
   return p;
 }

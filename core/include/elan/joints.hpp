@@ -51,7 +51,7 @@ struct JointSpring {
   bool enabled = false;
   Real frequency = 1;      ///< Hz, > 0
   Real damping_ratio = 0;  ///< >= 0 (1: critical)
-  Real target = 0;
+  Real target = 0;  ///< distance joints: the rest length, m (negative: the distance at creation)
 };
 
 /// One creation struct for every kind, tagged by `type` (the scene format's shape: one create
