@@ -18,6 +18,14 @@ enum JointRowFlags : uint8_t {
   kJointSwing = 8,  // a cone whose swing limit is below pi
 };
 
+// A joint's geometry at the current poses: it changes only when the positions do, once a substep
+// (refresh_joints), and every pass until then reads it.
+struct JointPose {
+  Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();                  // m, world arms
+  Quat frame_a = Quat::Identity(), frame_b = Quat::Identity();  // joint frames, world
+  Vec3 separation = Vec3::Zero();                               // m: B's anchor minus A's
+};
+
 // One joint prepared for the step: its packets, its frames at the step's start, its settings and
 // its impulses (copied from the store and back, so a pass reads one record a joint). Scalar, not
 // bundled across lanes: a scene has far fewer joints than contacts, and the rows of a kind differ
@@ -37,6 +45,10 @@ struct JointRow {
   Real swing_limit = 0;        // rad
   Softness spring;
   JointImpulses impulses;
+  // At the current poses (refresh_joints): the geometry, and the point rows' mass matrix
+  // (J M^-1 J^T)^-1, kg.
+  JointPose pose;
+  SymMat3 point_mass;
 };
 
 // A joint as the islands see it: two dense body indices (UINT32_MAX for the world).

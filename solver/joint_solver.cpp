@@ -75,12 +75,7 @@ Soft soft_of(const JointSolverContext& ctx, bool use_bias) {
              : Soft{};
 }
 
-// The current geometry of a joint inside a substep.
-struct Pose {
-  Vec3 r_a, r_b;                                                // m, world arms
-  Quat frame_a = Quat::Identity(), frame_b = Quat::Identity();  // joint frames, world
-  Vec3 separation;                                              // m: B's anchor minus A's
-};
+using Pose = JointPose;
 
 Pose pose_of(const JointRow& j, const SolverBody& a, const SolverBody& b) {
   Pose p;
@@ -93,6 +88,35 @@ Pose pose_of(const JointRow& j, const SolverBody& a, const SolverBody& b) {
   }
   p.separation = (b.dp - a.dp) + (p.r_b - p.r_a) + j.delta_center;
   return p;
+}
+
+// The point rows' mass matrix at the current arms: K = (m_a + m_b) E - [r_a] I_a^-1 [r_a] -
+// [r_b] I_b^-1 [r_b], inverted.
+SymMat3 point_mass_of(const Pose& p, const SolverBodyMass& a, const SolverBodyMass& b) {
+  const Mat3 sa = skew(p.r_a), sb = skew(p.r_b);
+  const Mat3 k = (a.inv_mass + b.inv_mass) * Mat3::Identity() - sa * to_mat(a.inv_inertia) * sa -
+                 sb * to_mat(b.inv_inertia) * sb;
+  const Mat3 m = inverse_or_zero(k);
+  SymMat3 out;
+  out.xx = m(0, 0);
+  out.yy = m(1, 1);
+  out.zz = m(2, 2);
+  out.xy = m(0, 1);
+  out.xz = m(0, 2);
+  out.yz = m(1, 2);
+  return out;
+}
+
+bool has_point_rows(JointType type) {
+  return type != JointType::Slider && type != JointType::Distance;
+}
+
+void refresh_row(JointRow& j, std::span<const SolverBody> packets,
+                 std::span<const SolverBodyMass> masses) {
+  j.pose = pose_of(j, packets[j.packet_a], packets[j.packet_b]);
+  if (has_point_rows(j.type)) {
+    j.point_mass = point_mass_of(j.pose, masses[j.packet_a], masses[j.packet_b]);
+  }
 }
 
 // A row that turns A about `axis` (unit, world) against B: rate = axis . (w_a - w_b).
@@ -330,8 +354,7 @@ void for_joint(const JointSolverContext& ctx, JointRow& j, F&& f) {
   const SolverBodyMass& mb = ctx.masses[j.packet_b];
   Side a{pa.v, pa.w, ma.inv_mass, to_mat(ma.inv_inertia)};
   Side b{pb.v, pb.w, mb.inv_mass, to_mat(mb.inv_inertia)};
-  const Pose p = pose_of(j, pa, pb);
-  f(p, a, b);
+  f(j.pose, a, b);
   // determinism: only the packets of awake dynamic bodies are written; the static dummy and
   // kinematic packets are read by both halves at once.
   if (written_packet(j.packet_a, ctx.written_end)) {
@@ -462,7 +485,12 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
     if (!(r.flags & kJointMotor)) r.impulses.motor = 0;
     if (!(r.flags & kJointLimit)) r.impulses.lower = r.impulses.upper = 0;
     if (!(r.flags & kJointSwing)) r.impulses.swing = 0;
+    refresh_row(r, st.packets, st.masses);
   }
+}
+
+void refresh_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
+  for (JointRow& j : rows) refresh_row(j, ctx.bodies, ctx.masses);
 }
 
 void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {

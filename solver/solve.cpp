@@ -125,6 +125,7 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
         // perf: refreshing a bundle reads only the poses, which no constraint pass changes, and
         // writes only the bundle, so it is done in the relax pass rather than as a pass of its
         // own: one sweep of the bundles' memory and one sync fewer a substep.
+        refresh_joints(joint_ctx, joints);
         refresh_contacts(ctx, bodies, contacts, tails, begin, end);
         solve_joints(joint_ctx, joints, false);
         solve_contacts(ctx, begin, end, false);
