@@ -37,7 +37,7 @@ int body_ref(const Ctx& ctx, const Json& v, const std::string& field, const Body
 }
 
 std::string describe(int body, const BodyRefs& refs) {
-  if (body < 0) return "the world";
+  if (body < 0) return "the world is static";
   const SceneBody& b = refs.bodies[std::size_t(body)];
   const char* motion = b.body.motion == MotionType::Static ? "static" : "kinematic";
   std::string s = "body " + std::to_string(body);

@@ -96,7 +96,7 @@ void expand_ragdoll(const RagdollDef& r, const Vec3& origin, std::vector<SceneBo
   const Eigen::Quaterniond q = r.orientation.cast<double>();
   const Eigen::Vector3d o = origin.cast<double>();
   const double s = double(r.scale);
-  const auto place = [&](double x, double y, double z) {
+  const auto place = [&](double x, double y, double z) -> Vec3 {
     return (o + q * (s * Eigen::Vector3d(x, y, z))).cast<Real>();
   };
   // A capsule's axis is its local Y: a quarter turn about z lays it along x.
