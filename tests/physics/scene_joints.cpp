@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scene/joint_schema.hpp"
 #include "elan/elan.hpp"
 
 namespace elan {
@@ -553,6 +554,37 @@ TEST(SceneJoints, LoadIntoCreatesTheJointsInSceneOrder) {
       EXPECT_EQ(d.body_b, world.body_at(std::size_t(s.joints[j].body_b))) << j;
     }
   }
+}
+
+// Past the parser, the library must still refuse a bad joint, and the message speaks the file's
+// language: the joint as the file numbers and names it, the field as the file spells it.
+TEST(SceneJoints, LibraryErrorsArePrefixedWithFileAndJoint) {
+  Scene s = parse_scene(scene(R"({"type": "ball", "bodies": ["a", "b"], "anchor": [0, 3, 0]},
+      {"type": "hinge", "name": "h", "bodies": ["a", null], "anchor": [0, 3, 0], "axis": [1, 0, 0]})"),
+                        "t.json");
+  s.joints[1].def.axis = Vec3::Zero();
+  World world;
+  try {
+    load_into(s, world, "t.json");
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("t.json: joint 1 (\"h\"): axis", 0), 0u) << m;
+  }
+}
+
+TEST(SceneJoints, LibraryFieldsAreNamedAsInTheFile) {
+  using detail::scene_file::scene_field;
+  EXPECT_EQ(scene_field(JointType::Hinge, "motor.max_force"), "motor.max_torque");
+  EXPECT_EQ(scene_field(JointType::Slider, "motor.max_force"), "motor.max_force");
+  EXPECT_EQ(scene_field(JointType::Cone, "limits"), "twist_limits");
+  EXPECT_EQ(scene_field(JointType::Cone, "limits.lower"), "twist_limits.lower");
+  EXPECT_EQ(scene_field(JointType::Distance, "anchor"), "anchors[0]");
+  EXPECT_EQ(scene_field(JointType::Distance, "anchor_b"), "anchors[1]");
+  EXPECT_EQ(scene_field(JointType::Distance, "spring.target"), "rest_length");
+  EXPECT_EQ(scene_field(JointType::Ball, "body_a"), "bodies");
+  EXPECT_EQ(scene_field(JointType::Ball, "body_b"), "bodies");
+  EXPECT_EQ(scene_field(JointType::Hinge, "axis"), "axis");
 }
 
 }  // namespace scene_joints_test
