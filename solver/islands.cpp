@@ -19,22 +19,30 @@ uint32_t find_root(ScratchVector<uint32_t>& parent, uint32_t i) {
 }  // namespace
 
 std::size_t update_islands(BodyStore& bodies, std::span<const ManifoldHead> contacts,
-                           const IslandSettings& settings, IslandScratch& s,
-                           StepScratch& step_scratch) {
+                           std::span<const JointLink> joints, const IslandSettings& settings,
+                           IslandScratch& s, StepScratch& step_scratch) {
   const std::size_t n = bodies.size();
   take_from(s.parent, step_scratch, n);
   for (std::size_t i = 0; i < n; ++i) s.parent[i] = uint32_t(i);
-  for (const ManifoldHead& m : contacts) {
-    if (m.point_count == 0) continue;
-    if (!bodies.is_dynamic(m.body_a) || !bodies.is_dynamic(m.body_b)) continue;
-    const uint32_t ra = find_root(s.parent, m.body_a);
-    const uint32_t rb = find_root(s.parent, m.body_b);
+  auto link = [&](uint32_t a, uint32_t b) {
+    const uint32_t ra = find_root(s.parent, a);
+    const uint32_t rb = find_root(s.parent, b);
     // determinism: link toward the lower index, so the root is the island's lowest body
     // whatever the contact order.
     if (ra < rb)
       s.parent[rb] = ra;
     else if (rb < ra)
       s.parent[ra] = rb;
+  };
+  for (const ManifoldHead& m : contacts) {
+    if (m.point_count == 0) continue;
+    if (!bodies.is_dynamic(m.body_a) || !bodies.is_dynamic(m.body_b)) continue;
+    link(m.body_a, m.body_b);
+  }
+  for (const JointLink& j : joints) {
+    if (j.a == UINT32_MAX || j.b == UINT32_MAX) continue;
+    if (!bodies.is_dynamic(j.a) || !bodies.is_dynamic(j.b)) continue;
+    link(j.a, j.b);
   }
 
   take_from(s.island_sleep_time, step_scratch);
@@ -61,13 +69,21 @@ std::size_t update_islands(BodyStore& bodies, std::span<const ManifoldHead> cont
   };
   bool any_moving = false;
   for (std::size_t k = 0; k < n && !any_moving; ++k) any_moving = moving(uint32_t(k));
+  auto keep_awake = [&](uint32_t dynamic) {
+    const uint32_t r = s.parent[dynamic];
+    s.island_awake[r] = 1;
+    s.island_sleep_time[r] = 0;
+  };
   for (const ManifoldHead& m : any_moving ? contacts : std::span<const ManifoldHead>()) {
     if (m.point_count == 0) continue;
     // A kinematic body of a pair is B.
     if (!moving(m.body_b) || !bodies.is_dynamic(m.body_a)) continue;
-    const uint32_t r = s.parent[m.body_a];
-    s.island_awake[r] = 1;
-    s.island_sleep_time[r] = 0;
+    keep_awake(m.body_a);
+  }
+  for (const JointLink& j : any_moving ? joints : std::span<const JointLink>()) {
+    if (j.a == UINT32_MAX || j.b == UINT32_MAX) continue;
+    if (moving(j.b) && bodies.is_dynamic(j.a) && !(bodies.flags[j.a] & kFrozen)) keep_awake(j.a);
+    if (moving(j.a) && bodies.is_dynamic(j.b) && !(bodies.flags[j.b] & kFrozen)) keep_awake(j.b);
   }
 
   std::size_t islands = 0;

@@ -4,7 +4,7 @@
 // slow for a while, and wakes as a whole when any of its bodies is awake or touched by a moving
 // kinematic body.
 //
-// Reads: contacts, motion types, flags, sleep timers, kinematic velocities.
+// Reads: contacts, joint links, motion types, flags, sleep timers, kinematic velocities.
 // Writes: awake flags, sleep timers and the velocities of bodies put to sleep (zeroed).
 // Serial: union-find is cheap next to the solve, and its result does not depend on link order.
 #pragma once
@@ -16,6 +16,7 @@
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
 #include "core/base/step_scratch.hpp"
+#include "solver/joint_rows.hpp"
 
 namespace elan::detail {
 
@@ -31,11 +32,13 @@ struct IslandSettings {
   Real time_to_sleep = Real(0.5);  // s an island must stay slow before it sleeps
 };
 
+// Joints link their bodies like touching contacts (a joint to the world or to a static body links
+// nothing; one to a moving kinematic body keeps its island awake, as a contact does).
 // Returns the number of islands with more than one body (for the profile).
 // `scratch`'s arrays are taken from `step_scratch` in its current phase and given back.
 std::size_t update_islands(BodyStore& bodies, std::span<const ManifoldHead> contacts,
-                           const IslandSettings& settings, IslandScratch& scratch,
-                           StepScratch& step_scratch);
+                           std::span<const JointLink> joints, const IslandSettings& settings,
+                           IslandScratch& scratch, StepScratch& step_scratch);
 
 // Updates each awake dynamic body's sleep timer from its velocity after the step: the timer
 // grows by dt while max(|v|, |w| * bounding_radius) stays under `threshold` m/s (Box2D v3's

@@ -10,6 +10,7 @@
 #include "core/base/parallel.hpp"
 #include "elan/profile.hpp"
 #include "solver/integrate.hpp"
+#include "solver/joint_solver.hpp"
 
 namespace elan::detail {
 
@@ -55,13 +56,15 @@ ContactSolverContext make_solver_context(const SolveSettings& settings, SolverSt
 void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<ManifoldTail> tails,
            const SolveSettings& settings, SolverState& st) {
   ContactSolverContext ctx = make_solver_context(settings, st);
+  const JointSolverContext joint_ctx = make_joint_context(settings, st);
 
   // The schedule: every pass is a stage of the two halves (block h solves half h) and then, if
   // any contact crosses the cut, a stage of one block for those (partition.hpp): two syncs a
   // pass. The halves integrate their own packets in the stage before the pass that needs it.
   std::vector<StageSpec>& stages = st.stages;
   stages.clear();
-  const bool cut = st.bundle_start[kSegments] > st.bundle_start[kCutGroup * kSegmentsPerGroup];
+  const bool cut = st.bundle_start[kSegments] > st.bundle_start[kCutGroup * kSegmentsPerGroup] ||
+                   st.joint_group_start[kGroups] > st.joint_group_start[kCutGroup];
   const uint32_t packet_count = uint32_t(st.packets.size());
   const bool kinematic = packet_count > st.half_start[kHalves];
   auto add_pass = [&](StageKind kind) {
@@ -99,15 +102,19 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
     const uint32_t begin = st.bundle_start[group * kSegmentsPerGroup];
     const uint32_t end = st.bundle_start[(group + 1) * kSegmentsPerGroup];
     const bool half = group < kHalves;
+    const std::span<JointRow> joints(st.joint_rows.data() + st.joint_group_start[group],
+                                     st.joint_group_start[group + 1] - st.joint_group_start[group]);
     switch (stage.kind) {
       case kWarmStart:
         if (half) {
           integrate_velocities(st.packets, st.masses, bodies, settings.gravity, h,
                                st.half_start[group], st.half_start[group + 1]);
         }
+        warm_start_joints(joint_ctx, joints);
         warm_start_contacts(ctx, begin, end);
         break;
       case kSolve:
+        solve_joints(joint_ctx, joints, true);
         solve_contacts(ctx, begin, end, true);
         break;
       case kRelax:
@@ -119,6 +126,7 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
         // writes only the bundle, so it is done in the relax pass rather than as a pass of its
         // own: one sweep of the bundles' memory and one sync fewer a substep.
         refresh_contacts(ctx, bodies, contacts, tails, begin, end);
+        solve_joints(joint_ctx, joints, false);
         solve_contacts(ctx, begin, end, false);
         break;
       case kRestitution:

@@ -20,6 +20,7 @@
 #include "solver/coloring.hpp"
 #include "solver/contact_solver.hpp"
 #include "solver/islands.hpp"
+#include "solver/joint_rows.hpp"
 #include "solver/solver_types.hpp"
 #include "solver/stage_executor.hpp"
 
@@ -93,6 +94,11 @@ struct SolverState {
   ScratchVector<WideContactPoint> rows;
   ScratchVector<BundleRestitution> restitution;  // per bundle; empty when no body bounces
   std::vector<uint32_t> bundle_start;  // segment s is bundles[bundle_start[s], bundle_start[s+1])
+  // The joints' rows, group by group (prepare_joints): group g is
+  // joint_rows[joint_group_start[g], joint_group_start[g + 1]); joint_group is per joint.
+  std::vector<JointRow> joint_rows;
+  uint32_t joint_group_start[kGroups + 1] = {};
+  std::vector<uint8_t> joint_group;
   ColorScratch color_scratch[kGroups];
   IslandScratch island_scratch;
   StageExecutor executor;
@@ -107,7 +113,8 @@ struct SolverState {
 ContactSolverContext make_solver_context(const SolveSettings& settings, SolverState& state);
 
 // The substeps, restitution and impulse storage. Reads: the bundles and rows (prepare_contacts),
-// the bodies' poses. Writes: state.packets, the bundles, the contacts' impulses. Results stay in
+// the joint rows (prepare_joints), the bodies' poses. Writes: state.packets, the bundles, the
+// joint rows, the contacts' impulses. Results stay in
 // state.packets; the bundles stay taken (release_bundles).
 void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<ManifoldTail> tails,
            const SolveSettings& settings, SolverState& state);

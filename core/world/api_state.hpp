@@ -10,12 +10,14 @@
 #include "core/base/grow.hpp"
 #include "elan/events.hpp"
 #include "elan/ids.hpp"
+#include "elan/joints.hpp"
 
 namespace elan::detail {
 
 struct ApiState {
   std::vector<ContactBeginEvent> begin_events;
   std::vector<ContactEndEvent> end_events;
+  std::vector<JointRemovedEvent> joint_events;
   SpikeTrim begin_trim, end_trim;  // a pile's landing begins thousands of contacts in one step
   PairFilter pair_filter;
   std::vector<uint8_t> pair_keep;  // per broadphase pair: the filter's answer

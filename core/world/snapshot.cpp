@@ -263,6 +263,133 @@ bool read_friction(ByteReader& r, Manifold& m, PairCache& c) {
 }
 
 // Everything a snapshot holds, decoded and checked before any of it reaches a world.
+// --- joints ------------------------------------------------------------------------------
+
+void write_joints(ByteWriter& w, const detail::JointStore& js) {
+  w.u32(uint32_t(js.size()));
+  for (const detail::Joint& j : js.joints) {
+    const JointDef& d = j.def;
+    w.u8(uint8_t(d.type));
+    w.u32(j.slot_a);
+    w.u32(j.slot_b);
+    w.u32(j.slot);
+    w.vec3(d.anchor);
+    w.vec3(d.anchor_b);
+    w.vec3(d.axis);
+    w.u8(uint8_t(d.has_anchor) | uint8_t(d.collide_connected) << 1 |
+         uint8_t(d.limits.enabled) << 2 | uint8_t(d.motor.enabled) << 3 |
+         uint8_t(d.spring.enabled) << 4);
+    for (Real v : {d.limits.lower, d.limits.upper, d.motor.speed, d.motor.max_force,
+                   d.spring.frequency, d.spring.damping_ratio, d.spring.target, d.min_length,
+                   d.max_length, d.swing_limit, d.break_force}) {
+      w.real(v);
+    }
+    w.vec3(j.anchor_a);
+    w.vec3(j.anchor_b);
+    write_quat(w, j.frame_a);
+    write_quat(w, j.frame_b);
+    w.real(j.min_length);
+    w.real(j.max_length);
+    w.real(j.rest_length);
+    const detail::JointImpulses& im = j.impulses;
+    w.vec3(im.point);
+    w.vec3(im.angular);
+    w.vec3(im.linear);
+    for (Real v : {im.axial, im.spring, im.motor, im.lower, im.upper, im.swing}) w.real(v);
+    w.vec3(j.force);
+    w.vec3(j.torque);
+  }
+  w.u32(uint32_t(js.slot_index.size()));
+  for (uint32_t v : js.slot_index) w.u32(v);
+  for (uint32_t v : js.slot_generation) w.u32(v);
+  w.u32(uint32_t(js.free_slots.size()));
+  for (uint32_t v : js.free_slots) w.u32(v);
+}
+
+// Reads a joint section and checks it against the bodies' id slots: every joint names live
+// bodies (or the world), not the same one twice, and the joint slots point back at the joints.
+detail::JointStore read_joints(ByteReader& r, std::span<const uint32_t> body_slot_index) {
+  detail::JointStore js;
+  constexpr std::size_t kJointBytes = 14 + 58 * sizeof(Real);
+  js.joints.resize(r.count(kJointBytes, "joint"));
+  auto body_slot = [&](uint32_t slot, std::size_t k) {
+    if (slot == detail::kWorldSlot) return;
+    if (slot >= body_slot_index.size() || body_slot_index[slot] == UINT32_MAX) {
+      r.fail("joint " + std::to_string(k) + ": names a body that does not exist");
+    }
+  };
+  for (std::size_t k = 0; k < js.joints.size(); ++k) {
+    detail::Joint& j = js.joints[k];
+    JointDef& d = j.def;
+    const uint8_t type = r.u8();
+    if (type > uint8_t(JointType::Cone)) r.fail("joint " + std::to_string(k) + ": bad type");
+    d.type = JointType(type);
+    j.slot_a = r.u32();
+    j.slot_b = r.u32();
+    j.slot = r.u32();
+    body_slot(j.slot_a, k);
+    body_slot(j.slot_b, k);
+    if (j.slot_a == detail::kWorldSlot || j.slot_a == j.slot_b) {
+      r.fail("joint " + std::to_string(k) + ": bad bodies");
+    }
+    d.anchor = r.vec3();
+    d.anchor_b = r.vec3();
+    d.axis = r.vec3();
+    const uint8_t flags = r.u8();
+    d.has_anchor = flags & 1;
+    d.collide_connected = flags & 2;
+    d.limits.enabled = flags & 4;
+    d.motor.enabled = flags & 8;
+    d.spring.enabled = flags & 16;
+    for (Real* v : {&d.limits.lower, &d.limits.upper, &d.motor.speed, &d.motor.max_force,
+                    &d.spring.frequency, &d.spring.damping_ratio, &d.spring.target, &d.min_length,
+                    &d.max_length, &d.swing_limit, &d.break_force}) {
+      *v = r.real();
+    }
+    j.anchor_a = r.vec3();
+    j.anchor_b = r.vec3();
+    j.frame_a = read_quat(r);
+    j.frame_b = read_quat(r);
+    j.min_length = r.real();
+    j.max_length = r.real();
+    j.rest_length = r.real();
+    detail::JointImpulses& im = j.impulses;
+    im.point = r.vec3();
+    im.angular = r.vec3();
+    im.linear = r.vec3();
+    for (Real* v : {&im.axial, &im.spring, &im.motor, &im.lower, &im.upper, &im.swing}) {
+      *v = r.real();
+    }
+    j.force = r.vec3();
+    j.torque = r.vec3();
+  }
+  const uint32_t slots = r.count(8, "joint slot");
+  js.slot_index.resize(slots);
+  js.slot_generation.resize(slots);
+  for (uint32_t& v : js.slot_index) v = r.u32();
+  for (uint32_t& v : js.slot_generation) v = r.u32();
+  js.free_slots.resize(r.count(4, "free joint slot"));
+  for (uint32_t& v : js.free_slots) v = r.u32();
+  std::size_t live = 0;
+  for (uint32_t index : js.slot_index) {
+    if (index != UINT32_MAX && index >= js.size()) r.fail("joint slot points past the joints");
+    live += index != UINT32_MAX;
+  }
+  if (live != js.size()) r.fail("joint slots and joints disagree");
+  for (std::size_t k = 0; k < js.size(); ++k) {
+    const uint32_t slot = js.joints[k].slot;
+    if (slot >= slots || js.slot_index[slot] != k) {
+      r.fail("joint " + std::to_string(k) + ": id slot does not point back at it");
+    }
+  }
+  for (uint32_t slot : js.free_slots) {
+    if (slot >= slots || js.slot_index[slot] != UINT32_MAX) {
+      r.fail("free joint list holds a live or unknown slot");
+    }
+  }
+  return js;
+}
+
 struct Decoded {
   WorldDef def;
   uint64_t step_count = 0;
@@ -273,6 +400,7 @@ struct Decoded {
   std::vector<uint32_t> slot_index, slot_generation, free_slots;
   std::vector<Manifold> contacts;
   std::vector<PairCache> pair_cache;
+  detail::JointStore joints;
 };
 
 void check_def(ByteReader& r, const WorldDef& d) {
@@ -403,7 +531,8 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
     PairCache c;
     if (read_friction(r, m, c)) d.pair_cache.push_back(c);
   }
-  if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
+  d.joints = read_joints(r, d.slot_index);
+  if (r.remaining() != 0) r.fail("trailing bytes after the joints");
   return d;
 }
 
@@ -413,6 +542,7 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
 void forget_api_caches(WorldState& s) {
   s.api.begin_events.clear();
   s.api.end_events.clear();
+  s.api.joint_events.clear();
   s.api.body_ids.clear();
   ++s.api.mutations;
 }
@@ -433,6 +563,8 @@ void commit(WorldState& s, Decoded&& d) {
   s.slot_generation = std::move(d.slot_generation);
   s.free_slots = std::move(d.free_slots);
   s.contacts.restore(d.contacts, d.pair_cache);
+  s.joints = std::move(d.joints);
+  ++s.joints.version;
   s.pairs.clear();
   s.sap = detail::SweepAndPrune{};
   s.all_pairs = detail::AllPairs{};
@@ -514,7 +646,12 @@ void read_rollback(ByteReader& r, WorldState& s) {
     const bool cached = read_friction(r, m, c);
     if constexpr (Apply) s.contacts.restore_manifold(k, m, cached ? &c : nullptr);
   }
-  if (r.remaining() != 0) r.fail("trailing bytes after the contacts");
+  detail::JointStore joints = read_joints(r, s.slot_index);
+  if (r.remaining() != 0) r.fail("trailing bytes after the joints");
+  if constexpr (Apply) {
+    s.joints = std::move(joints);
+    ++s.joints.version;
+  }
 }
 
 }  // namespace
@@ -579,6 +716,7 @@ std::vector<uint8_t> save_snapshot(const World& world) {
     for (const ContactPoint& p : m.points) write_point(w, p);
     write_friction(w, m, cache);
   });
+  write_joints(w, s.joints);
   seal(out);
   return out;
 }
@@ -623,6 +761,7 @@ void save_rollback(const World& world, std::vector<uint8_t>& out) {
     for (int p = 0; p < m.point_count; ++p) write_point(w, m.points[p]);
     write_friction(w, m, cache);
   });
+  write_joints(w, s.joints);
   seal(out);
 }
 

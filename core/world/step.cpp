@@ -1,17 +1,19 @@
 // SPDX-License-Identifier: MIT
 // One step: bounds, pairs, collide, islands and sleep, the median cut, packets, colour, bundles,
-// prepare, substeps and restitution, continuous collision, finalize. Each stage is a function
-// over the world's arrays; this file orders and times them, and shows every scratch buffer that
-// one stage leaves to another.
+// prepare (contacts, then joints), substeps and restitution, continuous collision, finalize. Each
+// stage is a function over the world's arrays; this file orders and times them, and shows every
+// scratch buffer that one stage leaves to another.
 #include "core/world/step.hpp"
 
 #include <chrono>
 
 #include "core/world/continuous.hpp"
 #include "core/world/events.hpp"
+#include "core/world/joints.hpp"
 #include "narrowphase/collide.hpp"
 #include "solver/bundles.hpp"
 #include "solver/color_contacts.hpp"
+#include "solver/joint_solver.hpp"
 #include "solver/packets.hpp"
 
 namespace elan::detail {
@@ -31,6 +33,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   BodyStore& bodies = w.bodies;
   const std::size_t n = bodies.size();
   const auto t0 = clock::now();
+  w.api.joint_events.clear();
 
   w.scratch.begin_phase();
   w.bounds.take_from(w.scratch);
@@ -53,6 +56,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   // stage, whose buffers start at the front again.
   w.scratch.rewind_front();
   filter_pairs(w);
+  drop_jointed_pairs(w);
   const auto t2 = clock::now();
 
   CollideSettings collide_settings;
@@ -74,7 +78,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   // The solver's phase of the scratch. Each stage takes and gives back its own buffers, but for
   // the bundles and their rows: build_bundles takes them, release_bundles gives them back.
   w.scratch.begin_phase();
-  update_islands(bodies, w.contacts.heads(),
+  joint_links(w.joints, w.slot_index, w.joint_links);
+  update_islands(bodies, w.contacts.heads(), w.joint_links,
                  {solve_settings.allow_sleep, solve_settings.time_to_sleep},
                  w.solver.island_scratch, w.scratch);
   const auto t_islands = clock::now();
@@ -90,9 +95,14 @@ uint32_t run_step(WorldState& w, Real dt) {
   build_bundles(w.contacts.heads(), bodies.trait_table.any_restitution(), w.solver, w.scratch);
   const auto t_bundles = clock::now();
   prepare_contacts(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
+  prepare_joints(bodies, w.joints, w.slot_index, solve_settings, w.solver);
   const auto t4 = clock::now();
   solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
   release_bundles(w.solver);
+  if (!w.joints.empty()) {
+    store_joint_impulses(w.solver.joint_rows, make_joint_context(solve_settings, w.solver),
+                         w.joints, w.broken_joints);
+  }
   // The body columns still hold the step's start poses: finalize_bodies writes the new ones.
   compute_contact_events(w, bodies);
   const auto t5 = clock::now();
@@ -100,6 +110,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve_continuous(bodies, w.shapes, candidates.separated, candidates.keys, w.solver);
   const auto t6 = clock::now();
   const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
+  if (!w.broken_joints.empty()) remove_broken_joints(w);
   const auto t7 = clock::now();
 
   stats.manifolds = w.contacts.size();

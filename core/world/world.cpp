@@ -12,6 +12,7 @@
 #include "core/base/range_checks.hpp"
 #include "core/base/state_hash.hpp"
 #include "core/world/events.hpp"
+#include "core/world/joints.hpp"
 #include "core/world/step.hpp"
 #include "core/world/thread_pool_access.hpp"
 #include "core/world/world_access.hpp"
@@ -203,6 +204,12 @@ void World::destroy_body(BodyId id) {
   WorldState& s = *state_;
   const uint32_t i = uint32_t(index_of(s, id));
   const uint32_t last = uint32_t(s.bodies.size() - 1);
+  // Joints: removed with the body (an event each), their other bodies woken.
+  if (!s.joints.empty()) {
+    detail::remove_joints_of(s, id.slot);
+    // The last body's index changes: the pairs kept from colliding are keyed by index.
+    ++s.joints.version;
+  }
   // Contacts: drop the body's own (an end event for each touching one, partners woken); the
   // last body takes index i, so the store renames its manifolds.
   s.contacts.remove_body(i, last, [&](const detail::ManifoldHead& m) {

@@ -18,6 +18,7 @@
 #include "elan/defs.hpp"
 #include "elan/profile.hpp"
 #include "narrowphase/collide.hpp"
+#include "solver/joint_store.hpp"
 #include "solver/solve.hpp"
 
 namespace elan::detail {
@@ -62,6 +63,15 @@ struct WorldState {
   // Contacts kept from step to step (manifolds, the body pair cache, the separation cache),
   // which the collide stage rewrites, with what it changed (the contact events).
   ContactStore contacts;
+
+  // Joints kept from step to step, and what the step derives from them: the island links, the
+  // pair keys of the joints that keep their bodies from colliding (sorted; rebuilt when the
+  // store's version moves), and the joints that broke in the step.
+  JointStore joints;
+  std::vector<JointLink> joint_links;
+  std::vector<uint64_t> unconnected_pairs;
+  uint64_t unconnected_version = UINT64_MAX;
+  std::vector<uint32_t> broken_joints;
 
   SolverState solver;
   ApiState api;

@@ -105,8 +105,14 @@ TEST(SnapshotFormat, OtherVersionAndRealSizeAreRefusedByName) {
             std::string::npos);
 }
 
-// The snapshot's bytes after the body columns: the applied forces, contacts, id slots and the
-// checksum, counted back from the end.
+// The joint section's bytes (it follows the contacts).
+std::size_t joint_bytes(const detail::WorldState& s) {
+  return 4 + s.joints.size() * (14 + 58 * sizeof(Real)) + 4 + 8 * s.joints.slot_index.size() + 4 +
+         4 * s.joints.free_slots.size();
+}
+
+// The snapshot's bytes after the body columns: the applied forces, contacts, id slots, joints
+// and the checksum, counted back from the end.
 std::size_t bytes_after_columns(const detail::WorldState& s) {
   constexpr std::size_t kR = sizeof(Real);
   const std::size_t forces = 4 + s.bodies.applied_forces.size() * (4 + 6 * kR);
@@ -117,7 +123,7 @@ std::size_t bytes_after_columns(const detail::WorldState& s) {
   const std::size_t contacts = 4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (5 * kR + 4) + 1) +
                                s.contacts.pair_cache().size() * (14 * kR + 7);
   const std::size_t slots = 4 + 8 * s.slot_index.size() + 4 + 4 * s.free_slots.size();
-  return forces + traits + contacts + slots + 8;
+  return forces + traits + contacts + slots + joint_bytes(s) + 8;
 }
 
 // The error a fresh world gives for `bytes` with the byte at `at` (which must hold `was`) set to
@@ -178,8 +184,8 @@ TEST(SnapshotFormat, ResealedForceSlotWithoutItsForceIsRefused) {
 }
 
 TEST(SnapshotFormat, ResealedBadPackedRotationIsRefused) {
-  // The last manifold ends the contents and, with its pair cache poses, its packed exact rotation
-  // ends it: the byte before the checksum says which component was left out, 0..3. Before the
+  // The last manifold ends the contacts and, with its pair cache poses, its packed exact rotation
+  // ends them: the byte before the joints says which component was left out, 0..3. Before the
   // poses, a byte says whether they follow.
   World world = small_world();
   const detail::WorldState& s = detail::state_of(world);
@@ -189,7 +195,8 @@ TEST(SnapshotFormat, ResealedBadPackedRotationIsRefused) {
       << "the last manifold has poses";
   const std::vector<uint8_t> saved = save_snapshot(world);
   std::vector<uint8_t> bytes = saved;
-  uint8_t& dropped = bytes[bytes.size() - 9];
+  const std::size_t tail = 8 + joint_bytes(s);  // the joints and the checksum
+  uint8_t& dropped = bytes[bytes.size() - tail - 1];
   ASSERT_LE(dropped, 3);
   dropped = 4;
   reseal(bytes);
@@ -198,7 +205,7 @@ TEST(SnapshotFormat, ResealedBadPackedRotationIsRefused) {
             std::string::npos)
       << error_of(target, bytes);
   bytes = saved;
-  uint8_t& has_poses = bytes[bytes.size() - 8 - (14 * sizeof(Real) + 7) - 1];
+  uint8_t& has_poses = bytes[bytes.size() - tail - (14 * sizeof(Real) + 7) - 1];
   ASSERT_EQ(has_poses, 1);
   has_poses = 2;
   reseal(bytes);

@@ -64,8 +64,11 @@ TEST(Rollback, SizeIsEightyOneBytesPerMovingBodyPlusContacts) {
   contact_bytes += s.contacts.pair_cache().size() * (14 * sizeof(Real) + 7);
   ASSERT_GT(s.contacts.pair_cache().size(), 0u);
   const std::size_t per_body = 20 * sizeof(Real) + 1;
+  // The joint section: counts of joints, slots and free slots, none of them here.
+  ASSERT_TRUE(s.joints.empty());
+  const std::size_t joint_bytes = 12;
   // Header 16, body count 4, fingerprint 8, step count 8, checksum 8.
-  EXPECT_EQ(saved.size(), 44 + moving * per_body + contact_bytes);
+  EXPECT_EQ(saved.size(), 44 + moving * per_body + contact_bytes + joint_bytes);
   if constexpr (sizeof(Real) == 4) {
     EXPECT_LE(per_body, 128u);
   }

@@ -15,7 +15,7 @@
 namespace elan {
 
 /// Format version written by save_snapshot and save_rollback; other versions are refused.
-inline constexpr uint32_t kSnapshotVersion = 7;
+inline constexpr uint32_t kSnapshotVersion = 8;
 
 /// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built
 /// (hull vertices, faces and edges in the principal frame, frames, mass properties), every body
@@ -50,6 +50,15 @@ inline constexpr uint32_t kSnapshotVersion = 7;
 ///       (version 2 added the poses, 3 the exact ones; 4 dropped anchor b, derived from
 ///       a, and the max normal impulse, which nothing read; 5 packed the exact rotation; 6
 ///       kept the poses only where they are read)
+///     | joints (version 8): u32 joints, each: u8 type, u32 body slot a, u32 body slot b
+///       (UINT32_MAX: the world), u32 joint slot, 3R anchor, 3R anchor b, 3R axis, u8 flags
+///       (has_anchor 1, collide_connected 2, limits 4, motor 8, spring 16), R limits lower,
+///       upper, motor speed, max force, spring frequency, damping ratio, target, min length,
+///       max length, swing limit, break force, 3R anchor a and 3R anchor b in the bodies'
+///       frames, 4R frame a, 4R frame b, R min, max and rest length as resolved, impulses
+///       (3R point, 3R angular, 3R linear, R axial, spring, motor, lower, upper, swing), 3R force,
+///       3R torque | u32 joint slots m, m x u32 index, m x u32 generation | u32 f, f x u32 free
+///       joint slots
 ///     | u64 checksum: 64-bit FNV-1a over 8-byte little-endian words of every byte before it
 ///       (the tail zero-padded), so any single changed byte changes it.
 ///
@@ -71,8 +80,9 @@ World load_snapshot(std::span<const uint8_t> bytes);
 /// Saves only what a step changes, for rolling back a world whose bodies and shapes stay the
 /// same (no body created or destroyed in between): for every non-static body its pose,
 /// velocities, applied force and torque, sleep timer and flags (20 R + 1 byte: 81 bytes per
-/// body with float), the step count, and every contact manifold with its impulses, keyed by pair
-/// key and feature id. The manifold geometry (normal, anchors, separation) is kept too: a
+/// body with float), the step count, every contact manifold with its impulses, keyed by pair
+/// key and feature id, and the joints as in a snapshot (a joint that broke or was created since
+/// is back as it was). The manifold geometry (normal, anchors, separation) is kept too: a
 /// sleeping island's manifolds are carried from step to step as they are and solved as stored
 /// when the island wakes, and a point whose feature id finds no match is warm-started by
 /// position, so neither can be re-derived from the poses.
@@ -85,7 +95,7 @@ World load_snapshot(std::span<const uint8_t> bytes);
 /// u8 point count, per point: 3R anchor a, R separation, u32 feature id,
 /// R normal impulse; then 2R tangent impulses, R twist impulse, u8 has poses and, if 1,
 /// 4R orientation a, 4R orientation b, 3R relative position, 3R exact position, 7-byte exact
-/// rotation (as in the snapshot) | u64 checksum as above.
+/// rotation (as in the snapshot) | joints as in the snapshot | u64 checksum as above.
 std::vector<uint8_t> save_rollback(const World& world);
 /// As above, into `out` (cleared first), reusing its capacity: no allocation once warm.
 void save_rollback(const World& world, std::vector<uint8_t>& out);

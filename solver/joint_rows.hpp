@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// A joint in solver form for one step (JointRow), and the links joints add to the islands.
+#pragma once
+
+#include <cstdint>
+
+#include "elan/joints.hpp"
+#include "solver/joint_store.hpp"
+#include "solver/solver_types.hpp"
+
+namespace elan::detail {
+
+// What a joint uses, decided once a step from its definition.
+enum JointRowFlags : uint8_t {
+  kJointLimit = 1,
+  kJointMotor = 2,
+  kJointSpring = 4,
+  kJointSwing = 8,  // a cone whose swing limit is below pi
+};
+
+// One joint prepared for the step: its packets, its frames at the step's start, its settings and
+// its impulses (copied from the store and back, so a pass reads one record a joint). Scalar, not
+// bundled across lanes: a scene has far fewer joints than contacts, and the rows of a kind differ
+// in shape.
+struct JointRow {
+  uint32_t joint = 0;  // dense index in the JointStore
+  uint32_t packet_a = 0, packet_b = 0;
+  JointType type = JointType::Ball;
+  uint8_t flags = 0;
+  Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();  // m, world: anchors minus centres at the start
+  Quat frame_a = Quat::Identity(), frame_b = Quat::Identity();  // joint frames at the start
+  Vec3 delta_center = Vec3::Zero();  // m: B's centre minus A's at the start
+  Real lower = 0, upper = 0;         // limits (distance: min and max length)
+  Real motor_speed = 0;
+  Real max_motor_impulse = 0;  // N s (N m s) per substep
+  Real spring_target = 0;      // rad, m; distance: rest length
+  Real swing_limit = 0;        // rad
+  Softness spring;
+  JointImpulses impulses;
+};
+
+// A joint as the islands see it: two dense body indices (UINT32_MAX for the world).
+struct JointLink {
+  uint32_t a = UINT32_MAX;
+  uint32_t b = UINT32_MAX;
+};
+
+}  // namespace elan::detail

@@ -1,0 +1,640 @@
+// SPDX-License-Identifier: MIT
+// Joint rows: preparation, warm start, the soft solve and relax, and the impulses' storage.
+#include "solver/joint_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace elan::detail {
+
+namespace {
+
+constexpr Real kPi = Real(3.14159265358979323846);
+
+// Joints are stiffer than contacts, as in Box2D v3 (twice the contact stiffness): a chain or a
+// ragdoll sags less, and a joint has no speculative margin to hide a soft response in.
+constexpr Real kJointHertzScale = 2;
+constexpr Real kJointDampingRatio = 2;
+
+Real wrap_angle(Real a) {
+  if (a > kPi) return a - 2 * kPi;
+  if (a <= -kPi) return a + 2 * kPi;
+  return a;
+}
+
+// rel = A's joint frame seen in B's.
+Quat relative_frame(const Quat& frame_a, const Quat& frame_b) {
+  return frame_b.conjugate() * frame_a;
+}
+
+// The twist of rel about x (the hinge angle, the cone's twist), rad in (-pi, pi].
+Real twist_angle(const Quat& rel) {
+  return wrap_angle(2 * std::atan2(rel.x(), rel.w()));
+}
+
+Mat3 to_mat(const SymMat3& m) {
+  Mat3 r;
+  r << m.xx, m.xy, m.xz, m.xy, m.yy, m.yz, m.xz, m.yz, m.zz;
+  return r;
+}
+
+Mat3 skew(const Vec3& r) {
+  Mat3 s;
+  s << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return s;
+}
+
+// The inverse of a symmetric positive semi-definite 3x3 matrix, or zero when singular (a joint
+// between two bodies that cannot move along those rows).
+Mat3 inverse_or_zero(const Mat3& k) {
+  const Real det = k.determinant();
+  if (!(std::abs(det) > Real(1e-30))) return Mat3::Zero();
+  return k.inverse();
+}
+
+Real inverse_or_zero(Real k) {
+  return k > Real(1e-30) ? 1 / k : 0;
+}
+
+// A body's side of a joint for one pass: its velocities (copied, written back only if the
+// packet is written), mass and inverse inertia.
+struct Side {
+  Vec3 v, w;
+  Real m;
+  Mat3 i;
+};
+
+// The soft coefficients of a position row: Box2D v3's, off in the relax pass.
+struct Soft {
+  Real bias_rate = 0, mass_scale = 1, impulse_scale = 0;
+};
+
+Soft soft_of(const JointSolverContext& ctx, bool use_bias) {
+  return use_bias
+             ? Soft{ctx.softness.bias_rate, ctx.softness.mass_scale, ctx.softness.impulse_scale}
+             : Soft{};
+}
+
+// The current geometry of a joint inside a substep.
+struct Pose {
+  Vec3 r_a, r_b;          // m, world arms
+  Quat frame_a, frame_b;  // joint frames, world
+  Vec3 separation;        // m: B's anchor minus A's
+};
+
+Pose pose_of(const JointRow& j, const SolverBody& a, const SolverBody& b) {
+  Pose p;
+  p.r_a = a.dq * j.r_a;
+  p.r_b = b.dq * j.r_b;
+  p.frame_a = a.dq * j.frame_a;
+  p.frame_b = b.dq * j.frame_b;
+  p.separation = (b.dp - a.dp) + (p.r_b - p.r_a) + j.delta_center;
+  return p;
+}
+
+// A row that turns A about `axis` (unit, world) against B: rate = axis . (w_a - w_b).
+struct AngularRow {
+  Vec3 axis;
+  Real mass;  // kg m^2
+};
+AngularRow angular_row(const Side& a, const Side& b, const Vec3& axis) {
+  return {axis, inverse_or_zero(axis.dot((a.i + b.i) * axis))};
+}
+Real rate_of(const AngularRow& r, const Side& a, const Side& b) {
+  return r.axis.dot(a.w - b.w);
+}
+void apply(const AngularRow& r, Side& a, Side& b, Real impulse) {
+  a.w += a.i * (r.axis * impulse);
+  b.w -= b.i * (r.axis * impulse);
+}
+
+// A row along `e` (unit, world) of A's anchor relative to B's: rate = e . (v_a + w_a x r_a -
+// v_b - w_b x r_b'), with r_b' the arm from B's centre to A's anchor (so the row's torque on B is
+// taken where the force acts: the slider's rows).
+struct LinearRow {
+  Vec3 e, ra_e, rb_e;  // e, r_a x e, r_b' x e
+  Real mass;
+};
+LinearRow linear_row(const Side& a, const Side& b, const Vec3& e, const Vec3& r_a,
+                     const Vec3& r_b) {
+  LinearRow r{e, r_a.cross(e), r_b.cross(e), 0};
+  r.mass = inverse_or_zero(a.m + b.m + r.ra_e.dot(a.i * r.ra_e) + r.rb_e.dot(b.i * r.rb_e));
+  return r;
+}
+Real rate_of(const LinearRow& r, const Side& a, const Side& b) {
+  return r.e.dot(a.v - b.v) + r.ra_e.dot(a.w) - r.rb_e.dot(b.w);
+}
+void apply(const LinearRow& r, Side& a, Side& b, Real impulse) {
+  a.v += r.e * (a.m * impulse);
+  a.w += a.i * (r.ra_e * impulse);
+  b.v -= r.e * (b.m * impulse);
+  b.w -= b.i * (r.rb_e * impulse);
+}
+
+// Spring, motor and limits on one coordinate x whose rate is rate_of(row) (Box2D v3's revolute
+// and prismatic joints, in their order: spring, motor, lower, upper).
+template <class Row>
+void solve_axis(const JointSolverContext& ctx, JointRow& j, const Row& row, Real x, Side& a,
+                Side& b, bool use_bias) {
+  if (j.flags & kJointSpring) {
+    const Real c = x - j.spring_target;
+    const Real rate = rate_of(row, a, b);
+    const Real impulse = -j.spring.mass_scale * row.mass * (rate + j.spring.bias_rate * c) -
+                         j.spring.impulse_scale * j.impulses.spring;
+    j.impulses.spring += impulse;
+    apply(row, a, b, impulse);
+  }
+  if (j.flags & kJointMotor) {
+    const Real rate = rate_of(row, a, b);
+    const Real impulse = -row.mass * (rate - j.motor_speed);
+    const Real old = j.impulses.motor;
+    j.impulses.motor = std::clamp(old + impulse, -j.max_motor_impulse, j.max_motor_impulse);
+    apply(row, a, b, j.impulses.motor - old);
+  }
+  if (j.flags & kJointLimit) {
+    const Soft soft = soft_of(ctx, use_bias);
+    // A limit not yet reached is speculative: it lets the coordinate close the gap in this
+    // substep and no further (bias = gap / h, rigid).
+    auto limit = [&](Real c, Real sign, Real& accumulated) {
+      Real bias = 0, mass_scale = 1, impulse_scale = 0;
+      if (c > 0) {
+        bias = c * ctx.inv_h;
+      } else if (use_bias) {
+        bias = soft.bias_rate * c;
+        mass_scale = soft.mass_scale;
+        impulse_scale = soft.impulse_scale;
+      }
+      const Real rate = sign * rate_of(row, a, b);
+      const Real impulse = -row.mass * mass_scale * (rate + bias) - impulse_scale * accumulated;
+      const Real updated = std::max(accumulated + impulse, Real(0));
+      apply(row, a, b, sign * (updated - accumulated));
+      accumulated = updated;
+    };
+    limit(x - j.lower, 1, j.impulses.lower);
+    limit(j.upper - x, -1, j.impulses.upper);
+  }
+}
+
+// The anchors coincide: three rows solved as one block.
+void solve_point(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
+                 bool use_bias) {
+  const Soft soft = soft_of(ctx, use_bias);
+  const Vec3 rate = b.v + b.w.cross(p.r_b) - a.v - a.w.cross(p.r_a);
+  const Mat3 sa = skew(p.r_a), sb = skew(p.r_b);
+  const Mat3 k = (a.m + b.m) * Mat3::Identity() - sa * a.i * sa - sb * b.i * sb;
+  const Vec3 impulse =
+      -soft.mass_scale * (inverse_or_zero(k) * (rate + soft.bias_rate * p.separation)) -
+      soft.impulse_scale * j.impulses.point;
+  j.impulses.point += impulse;
+  a.v -= a.m * impulse;
+  a.w -= a.i * p.r_a.cross(impulse);
+  b.v += b.m * impulse;
+  b.w += b.i * p.r_b.cross(impulse);
+}
+
+// The orientation error of A's joint frame against B's, world (rad, small-angle).
+Vec3 orientation_error(const Pose& p) {
+  Quat rel = relative_frame(p.frame_a, p.frame_b);
+  if (rel.w() < 0) rel.coeffs() = -rel.coeffs();
+  return p.frame_b * (2 * rel.vec());
+}
+
+// The relative orientation is locked: three rows, one block.
+void solve_orientation(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
+                       bool use_bias) {
+  const Soft soft = soft_of(ctx, use_bias);
+  const Vec3 rate = a.w - b.w;
+  const Vec3 impulse = -soft.mass_scale * (inverse_or_zero(a.i + b.i) *
+                                           (rate + soft.bias_rate * orientation_error(p))) -
+                       soft.impulse_scale * j.impulses.angular;
+  j.impulses.angular += impulse;
+  a.w += a.i * impulse;
+  b.w -= b.i * impulse;
+}
+
+// The hinge's axes stay aligned: A's axis a keeps a . b1 = a . b2 = 0 with B's two normals;
+// rate_k = (a x b_k) . (w_a - w_b). Two rows, one block.
+void solve_hinge_axes(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
+                      bool use_bias) {
+  const Soft soft = soft_of(ctx, use_bias);
+  const Vec3 axis = p.frame_a * Vec3::UnitX();
+  const Vec3 b1 = p.frame_b * Vec3::UnitY(), b2 = p.frame_b * Vec3::UnitZ();
+  const Vec3 u1 = axis.cross(b1), u2 = axis.cross(b2);
+  const Mat3 inv_i = a.i + b.i;
+  const Real k11 = u1.dot(inv_i * u1), k12 = u1.dot(inv_i * u2), k22 = u2.dot(inv_i * u2);
+  const Real det = k11 * k22 - k12 * k12;
+  const Real inv_det = std::abs(det) > Real(1e-30) ? 1 / det : 0;
+  const Vec3 dw = a.w - b.w;
+  const Real r1 = u1.dot(dw) + soft.bias_rate * axis.dot(b1);
+  const Real r2 = u2.dot(dw) + soft.bias_rate * axis.dot(b2);
+  const Real x1 = inv_det * (k22 * r1 - k12 * r2);
+  const Real x2 = inv_det * (k11 * r2 - k12 * r1);
+  const Real l1 = -soft.mass_scale * x1 - soft.impulse_scale * j.impulses.angular.x();
+  const Real l2 = -soft.mass_scale * x2 - soft.impulse_scale * j.impulses.angular.y();
+  j.impulses.angular.x() += l1;
+  j.impulses.angular.y() += l2;
+  const Vec3 torque = u1 * l1 + u2 * l2;
+  a.w += a.i * torque;
+  b.w -= b.i * torque;
+}
+
+// The slider's anchor stays on B's axis: two rows along B's normals, one block.
+void solve_slider_line(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
+                       bool use_bias) {
+  const Soft soft = soft_of(ctx, use_bias);
+  const Vec3 d = -p.separation;  // A's anchor minus B's
+  const Vec3 r_b = p.r_b + d;    // B's centre to A's anchor
+  const LinearRow row1 = linear_row(a, b, p.frame_b * Vec3::UnitY(), p.r_a, r_b);
+  const LinearRow row2 = linear_row(a, b, p.frame_b * Vec3::UnitZ(), p.r_a, r_b);
+  const Real k11 = a.m + b.m + row1.ra_e.dot(a.i * row1.ra_e) + row1.rb_e.dot(b.i * row1.rb_e);
+  const Real k22 = a.m + b.m + row2.ra_e.dot(a.i * row2.ra_e) + row2.rb_e.dot(b.i * row2.rb_e);
+  const Real k12 = row1.ra_e.dot(a.i * row2.ra_e) + row1.rb_e.dot(b.i * row2.rb_e);
+  const Real det = k11 * k22 - k12 * k12;
+  const Real inv_det = std::abs(det) > Real(1e-30) ? 1 / det : 0;
+  const Real r1 = rate_of(row1, a, b) + soft.bias_rate * row1.e.dot(d);
+  const Real r2 = rate_of(row2, a, b) + soft.bias_rate * row2.e.dot(d);
+  const Real l1 = -soft.mass_scale * inv_det * (k22 * r1 - k12 * r2) -
+                  soft.impulse_scale * j.impulses.linear.x();
+  const Real l2 = -soft.mass_scale * inv_det * (k11 * r2 - k12 * r1) -
+                  soft.impulse_scale * j.impulses.linear.y();
+  j.impulses.linear.x() += l1;
+  j.impulses.linear.y() += l2;
+  apply(row1, a, b, l1);
+  apply(row2, a, b, l2);
+}
+
+// The cone's swing: A's axis stays within swing_limit of B's. The row turns about the axis of
+// the swing (B's axis x A's axis); none while the axes are (anti)parallel.
+void solve_swing(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
+                 bool use_bias) {
+  const Vec3 axis_a = p.frame_a * Vec3::UnitX(), axis_b = p.frame_b * Vec3::UnitX();
+  const Vec3 n = axis_b.cross(axis_a);
+  const Real sin_swing = n.norm();
+  if (!(sin_swing > Real(1e-6))) return;
+  const Real swing = std::atan2(sin_swing, axis_a.dot(axis_b));
+  const AngularRow row = angular_row(a, b, n / sin_swing);
+  const Real c = j.swing_limit - swing;
+  Real bias = 0, mass_scale = 1, impulse_scale = 0;
+  if (c > 0) {
+    bias = c * ctx.inv_h;
+  } else if (use_bias) {
+    bias = ctx.softness.bias_rate * c;
+    mass_scale = ctx.softness.mass_scale;
+    impulse_scale = ctx.softness.impulse_scale;
+  }
+  const Real rate = -rate_of(row, a, b);
+  const Real impulse = -row.mass * mass_scale * (rate + bias) - impulse_scale * j.impulses.swing;
+  const Real updated = std::max(j.impulses.swing + impulse, Real(0));
+  apply(row, a, b, -(updated - j.impulses.swing));
+  j.impulses.swing = updated;
+}
+
+// The distance rows along the anchors' line (B's anchor minus A's).
+struct DistanceGeometry {
+  LinearRow row;
+  Real length;
+};
+DistanceGeometry distance_geometry(const Pose& p, const Side& a, const Side& b) {
+  const Real length = p.separation.norm();
+  const Vec3 e = length > Real(1e-9) ? Vec3(p.separation / length) : Vec3(Vec3::UnitY());
+  // In the LinearRow convention (A relative to B) the row is along -e: its rate is that of the
+  // length.
+  return {linear_row(a, b, -e, p.r_a, p.r_b), length};
+}
+
+void solve_distance(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
+                    bool use_bias) {
+  const DistanceGeometry g = distance_geometry(p, a, b);
+  const bool rigid = j.lower == j.upper && !(j.flags & kJointSpring);
+  if (rigid) {
+    const Soft soft = soft_of(ctx, use_bias);
+    const Real c = g.length - j.lower;
+    const Real impulse =
+        -soft.mass_scale * g.row.mass * (rate_of(g.row, a, b) + soft.bias_rate * c) -
+        soft.impulse_scale * j.impulses.axial;
+    j.impulses.axial += impulse;
+    apply(g.row, a, b, impulse);
+    return;
+  }
+  solve_axis(ctx, j, g.row, g.length, a, b, use_bias);
+}
+
+template <class F>
+void for_joint(const JointSolverContext& ctx, JointRow& j, F&& f) {
+  SolverBody& pa = ctx.bodies[j.packet_a];
+  SolverBody& pb = ctx.bodies[j.packet_b];
+  const SolverBodyMass& ma = ctx.masses[j.packet_a];
+  const SolverBodyMass& mb = ctx.masses[j.packet_b];
+  Side a{pa.v, pa.w, ma.inv_mass, to_mat(ma.inv_inertia)};
+  Side b{pb.v, pb.w, mb.inv_mass, to_mat(mb.inv_inertia)};
+  const Pose p = pose_of(j, pa, pb);
+  f(p, a, b);
+  // determinism: only the packets of awake dynamic bodies are written; the static dummy and
+  // kinematic packets are read by both halves at once.
+  if (written_packet(j.packet_a, ctx.written_end)) {
+    pa.v = a.v;
+    pa.w = a.w;
+  }
+  if (written_packet(j.packet_b, ctx.written_end)) {
+    pb.v = b.v;
+    pb.w = b.w;
+  }
+}
+
+}  // namespace
+
+void joint_links(const JointStore& joints, std::span<const uint32_t> slot_index,
+                 std::vector<JointLink>& links) {
+  links.resize(joints.size());
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    const Joint& j = joints.joints[k];
+    links[k].a = j.slot_a == kWorldSlot ? UINT32_MAX : slot_index[j.slot_a];
+    links[k].b = j.slot_b == kWorldSlot ? UINT32_MAX : slot_index[j.slot_b];
+  }
+}
+
+JointSolverContext make_joint_context(const SolveSettings& settings, SolverState& state) {
+  JointSolverContext ctx;
+  ctx.bodies = state.packets;
+  ctx.masses = state.masses;
+  ctx.written_end = state.half_start[kHalves];
+  ctx.h = settings.dt / Real(settings.substeps);
+  ctx.inv_h = 1 / ctx.h;
+  const Real contact_hertz = std::min(settings.contact_hertz, Real(0.25) * ctx.inv_h);
+  ctx.softness = make_softness(kJointHertzScale * contact_hertz, kJointDampingRatio, ctx.h);
+  return ctx;
+}
+
+void prepare_joints(const BodyStore& bodies, const JointStore& joints,
+                    std::span<const uint32_t> slot_index, const SolveSettings& settings,
+                    SolverState& st) {
+  const Real h = settings.dt / Real(settings.substeps);
+  auto group_of = [&](uint32_t packet) -> int {
+    if (packet == 0 || packet >= st.half_start[kHalves]) return -1;  // not written
+    return packet < st.half_start[1] ? 0 : 1;
+  };
+  // Two passes: count per group, then place, so rows land group by group in joint order.
+  uint32_t count[kGroups] = {};
+  std::vector<uint8_t>& group = st.joint_group;
+  group.resize(joints.size());
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    const Joint& j = joints.joints[k];
+    const uint32_t pa = j.slot_a == kWorldSlot ? 0 : st.packet_of[slot_index[j.slot_a]];
+    const uint32_t pb = j.slot_b == kWorldSlot ? 0 : st.packet_of[slot_index[j.slot_b]];
+    const int ga = group_of(pa), gb = group_of(pb);
+    uint8_t g = UINT8_MAX;  // asleep (or both sides read-only): not solved
+    if (ga >= 0 || gb >= 0) {
+      g = uint8_t(ga < 0 ? gb : gb < 0 ? ga : ga == gb ? ga : int(kCutGroup));
+      ++count[g];
+    }
+    group[k] = g;
+  }
+  st.joint_group_start[0] = 0;
+  for (uint32_t g = 0; g < kGroups; ++g) {
+    st.joint_group_start[g + 1] = st.joint_group_start[g] + count[g];
+  }
+  st.joint_rows.resize(st.joint_group_start[kGroups]);
+  uint32_t next[kGroups];
+  for (uint32_t g = 0; g < kGroups; ++g) next[g] = st.joint_group_start[g];
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    if (group[k] == UINT8_MAX) continue;
+    const Joint& j = joints.joints[k];
+    JointRow& r = st.joint_rows[next[group[k]]++];
+    r.joint = uint32_t(k);
+    Vec3 c_a = Vec3::Zero(), c_b = Vec3::Zero();
+    Quat q_a = Quat::Identity(), q_b = Quat::Identity();
+    r.packet_a = r.packet_b = 0;
+    if (j.slot_a != kWorldSlot) {
+      const uint32_t i = slot_index[j.slot_a];
+      c_a = bodies.position(i);
+      q_a = bodies.orientation(i);
+      r.packet_a = st.packet_of[i];
+    }
+    if (j.slot_b != kWorldSlot) {
+      const uint32_t i = slot_index[j.slot_b];
+      c_b = bodies.position(i);
+      q_b = bodies.orientation(i);
+      r.packet_b = st.packet_of[i];
+    }
+    r.type = j.def.type;
+    r.r_a = q_a * j.anchor_a;
+    r.r_b = q_b * j.anchor_b;
+    r.frame_a = q_a * j.frame_a;
+    r.frame_b = q_b * j.frame_b;
+    r.delta_center = c_b - c_a;
+    r.flags = 0;
+    const JointDef& d = j.def;
+    const bool axial = r.type == JointType::Hinge || r.type == JointType::Slider;
+    if (r.type == JointType::Distance) {
+      r.lower = j.min_length;
+      r.upper = j.max_length;
+      if (r.lower < r.upper) r.flags |= kJointLimit;
+      if (d.spring.enabled) {
+        r.flags |= kJointSpring | kJointLimit;
+        r.spring_target = j.rest_length;
+      }
+    } else if ((axial || r.type == JointType::Cone) && d.limits.enabled) {
+      r.flags |= kJointLimit;
+      r.lower = d.limits.lower;
+      r.upper = d.limits.upper;
+    }
+    if (axial && d.motor.enabled) {
+      r.flags |= kJointMotor;
+      r.motor_speed = d.motor.speed;
+      r.max_motor_impulse = d.motor.max_force * h;
+    }
+    if (axial && d.spring.enabled) {
+      r.flags |= kJointSpring;
+      r.spring_target = d.spring.target;
+    }
+    if (r.flags & kJointSpring)
+      r.spring = make_softness(d.spring.frequency, d.spring.damping_ratio, h);
+    if (r.type == JointType::Cone && d.swing_limit < kPi) {
+      r.flags |= kJointSwing;
+      r.swing_limit = d.swing_limit;
+    }
+    r.impulses = j.impulses;
+    // A part switched off since the last step has nothing to warm start.
+    if (!(r.flags & kJointSpring)) r.impulses.spring = 0;
+    if (!(r.flags & kJointMotor)) r.impulses.motor = 0;
+    if (!(r.flags & kJointLimit)) r.impulses.lower = r.impulses.upper = 0;
+    if (!(r.flags & kJointSwing)) r.impulses.swing = 0;
+  }
+}
+
+void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
+  for (JointRow& j : rows) {
+    for_joint(ctx, j, [&](const Pose& p, Side& a, Side& b) {
+      const JointImpulses& im = j.impulses;
+      if (j.type != JointType::Slider && j.type != JointType::Distance) {
+        const Vec3 P = im.point;
+        a.v -= a.m * P;
+        a.w -= a.i * p.r_a.cross(P);
+        b.v += b.m * P;
+        b.w += b.i * p.r_b.cross(P);
+      }
+      const Real axial = im.spring + im.motor + im.lower - im.upper;
+      const Vec3 axis_a = p.frame_a * Vec3::UnitX();
+      Vec3 torque = Vec3::Zero();
+      switch (j.type) {
+        case JointType::Fixed:
+          torque = im.angular;
+          break;
+        case JointType::Hinge:
+          torque = axis_a.cross(p.frame_b * Vec3::UnitY()) * im.angular.x() +
+                   axis_a.cross(p.frame_b * Vec3::UnitZ()) * im.angular.y() + axis_a * axial;
+          break;
+        case JointType::Cone: {
+          const Vec3 axis_b = p.frame_b * Vec3::UnitX();
+          const Vec3 twist = axis_a + axis_b;
+          if (twist.squaredNorm() > Real(1e-12)) torque += twist.normalized() * axial;
+          const Vec3 n = axis_b.cross(axis_a);
+          if (n.norm() > Real(1e-6)) torque -= n.normalized() * im.swing;
+          break;
+        }
+        case JointType::Slider: {
+          torque = im.angular;
+          const Vec3 d = -p.separation;
+          const Vec3 r_b = p.r_b + d;
+          apply(linear_row(a, b, p.frame_b * Vec3::UnitY(), p.r_a, r_b), a, b, im.linear.x());
+          apply(linear_row(a, b, p.frame_b * Vec3::UnitZ(), p.r_a, r_b), a, b, im.linear.y());
+          apply(linear_row(a, b, p.frame_b * Vec3::UnitX(), p.r_a, r_b), a, b, axial);
+          break;
+        }
+        case JointType::Distance: {
+          const DistanceGeometry g = distance_geometry(p, a, b);
+          apply(g.row, a, b, im.axial + axial);
+          break;
+        }
+        case JointType::Ball:
+          break;
+      }
+      a.w += a.i * torque;
+      b.w -= b.i * torque;
+    });
+  }
+}
+
+void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool use_bias) {
+  for (JointRow& j : rows) {
+    for_joint(ctx, j, [&](const Pose& p, Side& a, Side& b) {
+      switch (j.type) {
+        case JointType::Ball:
+          solve_point(ctx, j, p, a, b, use_bias);
+          break;
+        case JointType::Hinge: {
+          const Quat rel = relative_frame(p.frame_a, p.frame_b);
+          if (j.flags & (kJointSpring | kJointMotor | kJointLimit)) {
+            const AngularRow row = angular_row(a, b, p.frame_a * Vec3::UnitX());
+            solve_axis(ctx, j, row, twist_angle(rel), a, b, use_bias);
+          }
+          solve_hinge_axes(ctx, j, p, a, b, use_bias);
+          solve_point(ctx, j, p, a, b, use_bias);
+          break;
+        }
+        case JointType::Slider: {
+          if (j.flags & (kJointSpring | kJointMotor | kJointLimit)) {
+            const Vec3 d = -p.separation;
+            const Vec3 axis = p.frame_b * Vec3::UnitX();
+            const LinearRow row = linear_row(a, b, axis, p.r_a, p.r_b + d);
+            solve_axis(ctx, j, row, axis.dot(d), a, b, use_bias);
+          }
+          solve_orientation(ctx, j, p, a, b, use_bias);
+          solve_slider_line(ctx, j, p, a, b, use_bias);
+          break;
+        }
+        case JointType::Fixed:
+          solve_orientation(ctx, j, p, a, b, use_bias);
+          solve_point(ctx, j, p, a, b, use_bias);
+          break;
+        case JointType::Distance:
+          solve_distance(ctx, j, p, a, b, use_bias);
+          break;
+        case JointType::Cone: {
+          if (j.flags & kJointSwing) solve_swing(ctx, j, p, a, b, use_bias);
+          if (j.flags & kJointLimit) {
+            const Vec3 twist = p.frame_a * Vec3::UnitX() + p.frame_b * Vec3::UnitX();
+            if (twist.squaredNorm() > Real(1e-12)) {
+              const AngularRow row = angular_row(a, b, twist.normalized());
+              solve_axis(ctx, j, row, twist_angle(relative_frame(p.frame_a, p.frame_b)), a, b,
+                         use_bias);
+            }
+          }
+          solve_point(ctx, j, p, a, b, use_bias);
+          break;
+        }
+      }
+    });
+  }
+}
+
+void store_joint_impulses(std::span<const JointRow> rows, const JointSolverContext& ctx,
+                          JointStore& store, std::vector<uint32_t>& broken) {
+  for (const JointRow& r : rows) {
+    Joint& j = store.joints[r.joint];
+    j.impulses = r.impulses;
+    // The force and torque on A at the end of the step, from the last substep's impulses and the
+    // final geometry.
+    const SolverBody& pa = ctx.bodies[r.packet_a];
+    const SolverBody& pb = ctx.bodies[r.packet_b];
+    const Pose p = pose_of(r, pa, pb);
+    const JointImpulses& im = r.impulses;
+    const Real axial = im.spring + im.motor + im.lower - im.upper;
+    const Vec3 axis_a = p.frame_a * Vec3::UnitX();
+    Vec3 force = -im.point;
+    Vec3 torque = Vec3::Zero();
+    switch (r.type) {
+      case JointType::Ball:
+        break;
+      case JointType::Fixed:
+        torque = im.angular;
+        break;
+      case JointType::Hinge:
+        torque = axis_a.cross(p.frame_b * Vec3::UnitY()) * im.angular.x() +
+                 axis_a.cross(p.frame_b * Vec3::UnitZ()) * im.angular.y() + axis_a * axial;
+        break;
+      case JointType::Cone: {
+        const Vec3 axis_b = p.frame_b * Vec3::UnitX();
+        const Vec3 twist = axis_a + axis_b;
+        if (twist.squaredNorm() > Real(1e-12)) torque += twist.normalized() * axial;
+        const Vec3 n = axis_b.cross(axis_a);
+        if (n.norm() > Real(1e-6)) torque -= n.normalized() * im.swing;
+        break;
+      }
+      case JointType::Slider:
+        torque = im.angular;
+        force = p.frame_b * Vec3(axial, im.linear.x(), im.linear.y());
+        break;
+      case JointType::Distance: {
+        const Real length = p.separation.norm();
+        const Vec3 e = length > Real(1e-9) ? Vec3(p.separation / length) : Vec3(Vec3::UnitY());
+        force = -e * (im.axial + axial);
+        break;
+      }
+    }
+    j.force = force * ctx.inv_h;
+    j.torque = torque * ctx.inv_h;
+    if (j.force.norm() > j.def.break_force) broken.push_back(r.joint);
+  }
+}
+
+Real joint_coordinate(const Joint& j, const Vec3& c_a, const Quat& q_a, const Vec3& c_b,
+                      const Quat& q_b) {
+  const Quat frame_a = q_a * j.frame_a, frame_b = q_b * j.frame_b;
+  const Vec3 p_a = c_a + q_a * j.anchor_a, p_b = c_b + q_b * j.anchor_b;
+  switch (j.def.type) {
+    case JointType::Hinge:
+    case JointType::Cone:
+      return twist_angle(relative_frame(frame_a, frame_b));
+    case JointType::Slider:
+      return (frame_b * Vec3::UnitX()).dot(p_a - p_b);
+    case JointType::Distance:
+      return (p_b - p_a).norm();
+    case JointType::Ball:
+    case JointType::Fixed:
+      break;
+  }
+  return 0;
+}
+
+}  // namespace elan::detail
