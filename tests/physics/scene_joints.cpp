@@ -556,6 +556,46 @@ TEST(SceneJoints, LoadIntoCreatesTheJointsInSceneOrder) {
   }
 }
 
+// A few ragdolls dropped in a heap stay in one piece: each joint's two anchors, carried by the
+// bodies from their load poses, still meet after two seconds, and nothing is flung away.
+TEST(SceneJoints, RagdollHeapHoldsTogether) {
+  const Scene s = parse_scene(R"j({"bodies": [{"motion": "static",
+        "shape": {"type": "box", "half_extents": [20, 1, 20]}, "position": [0, -1, 0]}],
+      "generators": [
+        {"type": "ragdoll", "origin": [-1, 0.5, 0.9], "orientation": [0.70710678, -0.70710678, 0, 0],
+         "count": [2, 2, 1], "spacing": [2, 0.6, 0]},
+        {"type": "ragdoll", "origin": [0, 1.6, -0.5], "orientation": [0.70710678, 0, 0.70710678, 0]}]})j",
+                              "t");
+  World world(s.world);
+  load_into(s, world, "t");
+  ASSERT_EQ(world.joint_count(), 5u * 15u);
+  // Each anchor in its body's frame, at load.
+  struct Local {
+    Vec3 a, b;
+  };
+  std::vector<Local> local;
+  for (const SceneJoint& j : s.joints) {
+    const SceneBody& a = s.bodies[std::size_t(j.body_a)];
+    const SceneBody& b = s.bodies[std::size_t(j.body_b)];
+    local.push_back({a.body.orientation.conjugate() * (j.def.anchor - a.body.position),
+                     b.body.orientation.conjugate() * (j.def.anchor - b.body.position)});
+  }
+  for (int i = 0; i < 120; ++i) world.step(s.timestep);
+  for (std::size_t k = 0; k < s.joints.size(); ++k) {
+    const BodyId a = world.body_at(std::size_t(s.joints[k].body_a));
+    const BodyId b = world.body_at(std::size_t(s.joints[k].body_b));
+    const Vec3 wa = world.position(a) + world.orientation(a) * local[k].a;
+    const Vec3 wb = world.position(b) + world.orientation(b) * local[k].b;
+    EXPECT_LT((wa - wb).norm(), Real(0.02)) << "joint " << k;
+  }
+  for (std::size_t i = 1; i < world.body_count(); ++i) {
+    const Vec3 p = world.position(world.body_at(i));
+    EXPECT_TRUE(p.allFinite()) << i;
+    EXPECT_LT(p.norm(), Real(6)) << i;
+    EXPECT_GT(p.y(), Real(-0.01)) << i;
+  }
+}
+
 // Past the parser, the library must still refuse a bad joint, and the message speaks the file's
 // language: the joint as the file numbers and names it, the field as the file spells it.
 TEST(SceneJoints, LibraryErrorsArePrefixedWithFileAndJoint) {
