@@ -297,6 +297,7 @@ int run(const RunOptions& o) {
   Json out;
   out["scene"] = o.scene;
   out["bodies"] = world.body_count();
+  out["joints"] = world.joint_count();  // still in the world: broken ones are gone
   out["steps"] = o.steps;
   out["threads"] = def.threads;
   out["broadphase"] = broadphase_name(def.broadphase);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The scene file's generators: validation and expansion into bodies.
+// The scene file's generators: validation and expansion into bodies (and joints).
 #include "core/scene/generators.hpp"
 
 #include <string>
@@ -9,23 +9,44 @@
 
 namespace elan::detail::scene_file {
 
+namespace {
+
+// count [nx, ny, nz] (integers >= 1) with at most kMaxBodies / `per_copy` copies: the grid's
+// bodies, or the copies of a chain or a ragdoll.
+void parse_count(const Ctx& ctx, const Json& j, Generator& g, uint64_t per_copy) {
+  const Json& count = array_of(ctx, j, "count", 3);
+  uint64_t total = per_copy;
+  for (int i = 0; i < 3; ++i) {
+    g.count[i] = to_int(ctx, count[i], "count[" + std::to_string(i) + "]", 1, kMaxBodies);
+    total *= uint64_t(g.count[i]);
+    if (total > kMaxBodies) {
+      fail(ctx, "count",
+           "too many bodies: at most " + std::to_string(kMaxBodies) + " bodies are allowed");
+    }
+  }
+}
+
+// Copies of a chain or a ragdoll: `count` and `spacing` as a grid's, both optional (one copy).
+uint64_t parse_copies(const Ctx& ctx, const Json& j, Generator& g, uint64_t per_copy) {
+  if (const auto it = j.find("count"); it != j.end()) {
+    parse_count(ctx, *it, g, per_copy);
+    g.spacing = to_vec3(ctx, require(ctx, j, "spacing", "spacing"), "spacing");
+  } else if (const auto sp = j.find("spacing"); sp != j.end()) {
+    g.spacing = to_vec3(ctx, *sp, "spacing");
+  }
+  return uint64_t(g.count[0]) * uint64_t(g.count[1]) * uint64_t(g.count[2]);
+}
+
+}  // namespace
+
 Generator parse_generator(const Ctx& ctx, const Json& j) {
   object_of(ctx, j, "");
   const std::string type = to_string(ctx, require(ctx, j, "type", "type"), "type");
   Generator g;
   if (type == "grid") {
     check_keys(ctx, j, {"type", "count", "spacing", "origin", "body"}, "", "a grid generator");
-    const Json& count = array_of(ctx, require(ctx, j, "count", "count"), "count", 3);
-    uint64_t total = 1;
-    for (int i = 0; i < 3; ++i) {
-      g.count[i] = to_int(ctx, count[i], "count[" + std::to_string(i) + "]", 1, kMaxBodies);
-      total *= uint64_t(g.count[i]);
-      if (total > kMaxBodies) {
-        fail(ctx, "count",
-             "too many bodies: at most " + std::to_string(kMaxBodies) + " bodies are allowed");
-      }
-    }
-    g.bodies = total;
+    parse_count(ctx, require(ctx, j, "count", "count"), g, 1);
+    g.bodies = uint64_t(g.count[0]) * uint64_t(g.count[1]) * uint64_t(g.count[2]);
     g.spacing = to_vec3(ctx, require(ctx, j, "spacing", "spacing"), "spacing");
     const Ctx body_ctx{ctx.file, ctx.where, "body."};
     g.body = parse_body(body_ctx, require(ctx, j, "body", "body"));
@@ -36,7 +57,7 @@ Generator parse_generator(const Ctx& ctx, const Json& j) {
     check_keys(ctx, j, {"type", "base", "half_extent", "origin"}, "", "a pyramid generator");
     // base(base+1)(2 base+1)/6 <= kMaxBodies needs base <= 310; 10^6 keeps the product exact.
     g.base = to_int(ctx, require(ctx, j, "base", "base"), "base", 1, 1'000'000);
-    g.pyramid = true;
+    g.kind = GeneratorKind::Pyramid;
     g.bodies = uint64_t(g.base) * uint64_t(g.base + 1) * uint64_t(2 * g.base + 1) / 6;
     if (g.bodies > kMaxBodies) {
       fail(ctx, "base",
@@ -47,8 +68,35 @@ Generator parse_generator(const Ctx& ctx, const Json& j) {
     if (const auto it = j.find("half_extent"); it != j.end()) {
       g.half_extent = positive(ctx, *it, "half_extent");
     }
+  } else if (type == "chain") {
+    check_keys(ctx, j,
+               {"type", "links", "link", "origin", "direction", "link_spacing", "joint", "axis",
+                "count", "spacing"},
+               "", "a chain generator");
+    g.kind = GeneratorKind::Chain;
+    g.chain = parse_chain(ctx, j, g.body);
+    const uint64_t copies = parse_copies(ctx, j, g, uint64_t(g.chain.links));
+    g.bodies = copies * uint64_t(g.chain.links);
+    g.joints = copies * chain_joints(g.chain);
+  } else if (type == "ragdoll") {
+    check_keys(ctx, j, {"type", "origin", "orientation", "scale", "hands", "count", "spacing"}, "",
+               "a ragdoll generator");
+    g.kind = GeneratorKind::Ragdoll;
+    g.ragdoll = parse_ragdoll(ctx, j);
+    const uint64_t copies = parse_copies(ctx, j, g, ragdoll_bodies(g.ragdoll));
+    g.bodies = copies * ragdoll_bodies(g.ragdoll);
+    g.joints = copies * ragdoll_joints(g.ragdoll);
+  } else if (type == "joint_grid") {
+    check_keys(ctx, j, {"type", "count", "spacing", "radius", "origin", "pinned"}, "",
+               "a joint_grid generator");
+    g.kind = GeneratorKind::JointGrid;
+    g.joint_grid = parse_joint_grid(ctx, j);
+    g.bodies = uint64_t(g.joint_grid.count) * uint64_t(g.joint_grid.count);
+    g.joints = joint_grid_joints(g.joint_grid);
   } else {
-    fail(ctx, "type", "unknown generator type \"" + type + "\" (allowed: grid, pyramid)");
+    fail(ctx, "type",
+         "unknown generator type \"" + type +
+             "\" (allowed: grid, pyramid, chain, ragdoll, joint_grid)");
   }
   if (const auto it = j.find("origin"); it != j.end()) g.origin = to_vec3(ctx, *it, "origin");
   return g;
@@ -56,9 +104,31 @@ Generator parse_generator(const Ctx& ctx, const Json& j) {
 
 // Positions are computed in double and rounded once, so a pyramid's cubes touch exactly as far
 // as Real can say.
-void expand(const Generator& g, std::vector<SceneBody>& out) {
+void expand(const Generator& g, std::vector<SceneBody>& out, std::vector<SceneJoint>& joints) {
   const Vec3& o = g.origin;
-  if (!g.pyramid) {
+  if (g.kind == GeneratorKind::JointGrid) {
+    expand_joint_grid(g.joint_grid, o, out, joints);
+    return;
+  }
+  if (g.kind == GeneratorKind::Chain || g.kind == GeneratorKind::Ragdoll) {
+    // Copies x fastest, then y, then z, each copy's bodies together.
+    for (int64_t k = 0; k < g.count[2]; ++k) {
+      for (int64_t j = 0; j < g.count[1]; ++j) {
+        for (int64_t i = 0; i < g.count[0]; ++i) {
+          const Vec3 at(Real(double(o.x()) + double(i) * double(g.spacing.x())),
+                        Real(double(o.y()) + double(j) * double(g.spacing.y())),
+                        Real(double(o.z()) + double(k) * double(g.spacing.z())));
+          if (g.kind == GeneratorKind::Chain) {
+            expand_chain(g.chain, g.body, at, out, joints);
+          } else {
+            expand_ragdoll(g.ragdoll, at, out, joints);
+          }
+        }
+      }
+    }
+    return;
+  }
+  if (g.kind == GeneratorKind::Grid) {
     for (int64_t k = 0; k < g.count[2]; ++k) {
       for (int64_t j = 0; j < g.count[1]; ++j) {
         for (int64_t i = 0; i < g.count[0]; ++i) {

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
-// Loading a scene into a World: identical shapes shared, bodies created in scene order, and the
-// World's errors turned into scene messages naming the body and field.
+// Loading a scene into a World: identical shapes shared, bodies and then joints created in scene
+// order, and the World's errors turned into scene messages naming the body or joint and field.
 #include <map>
 #include <string>
+#include <vector>
 
 #include "core/scene/body_schema.hpp"
+#include "core/scene/joint_schema.hpp"
 #include "core/scene/schema_checks.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/scene.hpp"
@@ -59,6 +61,8 @@ void load_into(const Scene& scene, World& world, const std::string& file_name) {
   }
   world.reserve(world.body_count() + scene.bodies.size(),
                 detail::state_of(world).shapes.size() + shapes.size());
+  std::vector<BodyId> ids;  // the world's id of scene body i
+  ids.reserve(scene.bodies.size());
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const SceneBody& b = scene.bodies[i];
     const Ctx ctx{file_name, body_where(i, b.name), ""};
@@ -77,10 +81,30 @@ void load_into(const Scene& scene, World& world, const std::string& file_name) {
     BodyDef def = b.body;
     def.shape = it->second;
     try {
-      world.create_body(def);
+      ids.push_back(world.create_body(def));
     } catch (const Error& e) {
       const std::string& f = e.field();
       fail(ctx, f.empty() ? "body" : f,
+           f.empty() ? e.what() : std::string(e.what()).substr(f.size() + 2));
+    }
+  }
+  for (std::size_t i = 0; i < scene.joints.size(); ++i) {
+    const SceneJoint& j = scene.joints[i];
+    const Ctx ctx{file_name, joint_where(i, j.name), ""};
+    const auto id = [&](int body, const char* field) {
+      if (body < -1 || body >= int(ids.size())) {
+        fail(ctx, field, "no body " + std::to_string(body) + " in the scene");
+      }
+      return body < 0 ? BodyId{} : ids[std::size_t(body)];
+    };
+    JointDef def = j.def;
+    def.body_a = id(j.body_a, "bodies[0]");
+    def.body_b = id(j.body_b, "bodies[1]");
+    try {
+      world.create_joint(def);
+    } catch (const Error& e) {
+      const std::string& f = e.field();
+      fail(ctx, f.empty() ? "joint" : scene_field(def.type, f),
            f.empty() ? e.what() : std::string(e.what()).substr(f.size() + 2));
     }
   }

@@ -16,6 +16,7 @@ namespace elan::detail::scene_file {
 // A generator typo such as a count of [100000, 100000, 100000] must fail at once with a message,
 // not exhaust memory over minutes.
 inline constexpr uint64_t kMaxBodies = 10'000'000;
+inline constexpr uint64_t kMaxJoints = 10'000'000;
 
 // Where a value sits: the file, the body or generator, and a field prefix ("body." inside a
 // grid's template body).

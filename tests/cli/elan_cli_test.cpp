@@ -99,7 +99,34 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"negative_timestep.json", "timestep: must be positive"},
         BadScene{"zero_substeps.json", "substeps: must be at least 1"},
         BadScene{"zero_iterations.json", "iterations: must be at least 1"},
-        BadScene{"zero_quaternion.json", "body 0: orientation: zero quaternion"}),
+        BadScene{"zero_quaternion.json", "body 0: orientation: zero quaternion"},
+        BadScene{"joints_not_array.json", "joints: expected an array of joints"},
+        BadScene{"joint_unknown_body.json", "joint 0 (\"j\"): bodies[1]: no body named \"c\""},
+        BadScene{"joint_body_out_of_range.json", "joint 0: bodies[1]: no body 3"},
+        BadScene{"joint_missing_bodies.json", "joint 0: bodies: missing"},
+        BadScene{"joint_same_body.json", "joint 0: bodies: the same body twice"},
+        BadScene{"joint_two_static.json", "joint 1: bodies: at least one body must be dynamic"},
+        BadScene{"joint_unknown_key.json", "joint 0: axis: unknown key for a ball joint"},
+        BadScene{"joint_unknown_type.json", "joint 0: type: unknown joint type \"weld\""},
+        BadScene{"joint_missing_anchor.json", "joint 0 (\"neck\"): anchor: missing"},
+        BadScene{"joint_wrong_type_limits.json", "joint 0: limits: expected an array"},
+        BadScene{"joint_non_finite.json", "joint 0: anchor[1]: not a finite number"},
+        BadScene{"joint_zero_axis.json", "joint 0: axis: zero axis"},
+        BadScene{"joint_reversed_limits.json", "joint 0 (\"door\"): limits: lo > hi"},
+        BadScene{"joint_limit_beyond_pi.json", "joint 0: limits[0]: must be in [-pi, pi]"},
+        BadScene{"joint_negative_torque.json", "joint 0: motor.max_torque: must not be negative"},
+        BadScene{"joint_negative_force.json", "joint 0: motor.max_force: must not be negative"},
+        BadScene{"joint_zero_frequency.json", "joint 0: spring.frequency: must be positive"},
+        BadScene{"joint_negative_damping.json", "joint 0: spring.damping_ratio: must not be"},
+        BadScene{"joint_swing_beyond_pi.json", "joint 0: swing_limit: must be in [0, pi]"},
+        BadScene{"joint_reversed_twist.json", "joint 0: twist_limits: lo > hi"},
+        BadScene{"joint_min_above_max.json", "joint 0: min_length: min_length 3 is above"},
+        BadScene{"joint_negative_length.json", "joint 0: min_length: must not be negative"},
+        BadScene{"joint_zero_break_force.json", "joint 0: break_force: must be positive"},
+        BadScene{"joint_duplicate_name.json", "joint 1 (\"j\"): name: duplicate name"},
+        BadScene{"chain_kinematic_link.json", "generator 0 (chain): link.motion"},
+        BadScene{"ragdoll_negative_scale.json", "generator 0 (ragdoll): scale: must be positive"},
+        BadScene{"joint_grid_zero_count.json", "generator 0 (joint_grid): count"}),
     [](const ::testing::TestParamInfo<BadScene>& info) {
       std::string name = info.param.file;
       name = name.substr(0, name.find('.'));
@@ -166,10 +193,11 @@ TEST(Cli, SummaryHasTheContractKeys) {
   for (const char* key :
        {"bodies", "steps", "threads", "broadphase", "wall_seconds", "ms_per_step", "state_hash",
         "kinetic_energy", "linear_momentum", "angular_momentum", "pairs", "contacts", "awake",
-        "timestep", "substeps", "iterations", "profile_ms"}) {
+        "timestep", "substeps", "iterations", "profile_ms", "joints"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["bodies"], 4);
+  EXPECT_EQ(j["joints"], 0);
   EXPECT_EQ(j["steps"], 10);
   EXPECT_EQ(j["threads"], 1);
   EXPECT_EQ(j["broadphase"], "sap");
@@ -185,6 +213,24 @@ TEST(Cli, SummaryHasTheContractKeys) {
                             "bundles", "prepare", "solve", "ccd", "finalize", "total"}) {
     EXPECT_TRUE(j["profile_ms"].contains(stage)) << stage;
   }
+}
+
+// The summary counts the joints still in the world: the scene's explicit joints and those its
+// generators make.
+TEST(Cli, SummaryCountsTheJoints) {
+  const std::string path = temp_path("jointed.json");
+  write(path, R"({"bodies": [
+      {"name": "door", "shape": {"type": "box", "half_extents": [0.5, 1, 0.05]},
+       "position": [0.5, 1, 0]}],
+    "generators": [{"type": "chain", "links": 4, "origin": [3, 5, 0],
+                    "link": {"shape": {"type": "capsule", "radius": 0.05, "half_height": 0.1}}}],
+    "joints": [{"type": "hinge", "bodies": ["door", null], "anchor": [0, 1, 0],
+                "axis": [0, 1, 0], "limits": [-1, 1]}]})");
+  const Result r = run_elan({"run", path, "--steps", "5", "--threads", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_EQ(j["bodies"], 5);
+  EXPECT_EQ(j["joints"], 5);
 }
 
 TEST(Cli, OverridesReachTheSummary) {
