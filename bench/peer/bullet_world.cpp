@@ -354,9 +354,12 @@ void BulletWorld::Impl::add_joints(const Scene& scene) {
     };
     // A hinge or slider with a spring: btHingeConstraint and btSliderConstraint have none, so a
     // btGeneric6DofSpring2Constraint with every axis locked but the joint's (`free`: 0 = X
-    // translation, 3 = X rotation). Its coordinate is B relative to A, elan's A relative to B:
-    // limits, target and motor speed are negated.
+    // translation, 3 = X rotation). Its X rotation is elan's angle (A relative to B); its X
+    // translation is B's relative to A, elan's negated, so linear limits and target are negated.
+    // Its motor drives A relative to B along both, and its bound is a force (this Bullet divides
+    // it by the step rate).
     const auto six_dof = [&](int free, btScalar inv_mass) {
+      const btScalar sign = free < 3 ? -1 : 1;
       const btTransform f = axis_frame(anchor, axis, 0);
       auto g = std::make_unique<btGeneric6DofSpring2Constraint>(a, b, ta_inv * f, tb_inv * f);
       g->setLinearLowerLimit(btVector3(0, 0, 0));
@@ -364,21 +367,21 @@ void BulletWorld::Impl::add_joints(const Scene& scene) {
       g->setAngularLowerLimit(btVector3(0, 0, 0));
       g->setAngularUpperLimit(btVector3(0, 0, 0));
       if (lim.enabled) {
-        g->setLimit(free, -btScalar(lim.upper), -btScalar(lim.lower));
+        const btScalar x = sign * btScalar(lim.lower), y = sign * btScalar(lim.upper);
+        g->setLimit(free, std::min(x, y), std::max(x, y));
       } else {
         g->setLimit(free, 1, -1);  // lower > upper: free
       }
       if (motor.enabled) {
         g->enableMotor(free, true);
-        g->setTargetVelocity(free, -btScalar(motor.speed));
-        // The 6-DOF motor's "force" is the impulse bound of one step.
-        g->setMaxMotorForce(free, btScalar(motor.max_force) * dt);
+        g->setTargetVelocity(free, btScalar(motor.speed));
+        g->setMaxMotorForce(free, btScalar(motor.max_force));
       }
       const auto [k, c] = spring_gains(inv_mass);
       g->enableSpring(free, true);
       g->setStiffness(free, k);
       g->setDamping(free, c);
-      g->setEquilibriumPoint(free, -btScalar(spring.target));
+      g->setEquilibriumPoint(free, sign * btScalar(spring.target));
       return g;
     };
     const btVector3 arm_a = anchor - a.getCenterOfMassPosition();
@@ -424,9 +427,8 @@ void BulletWorld::Impl::add_joints(const Scene& scene) {
           if (motor.enabled) {
             sl->setPoweredLinMotor(true);
             sl->setTargetLinMotorVelocity(-btScalar(motor.speed));
-            // btSliderConstraint::getInfo2NonVirtual bounds the motor's impulse by
-            // maxLinMotorForce * fps (not / fps): max_force dt^2 makes that bound max_force dt.
-            sl->setMaxLinMotorForce(btScalar(motor.max_force) * dt * dt);
+            // A force: this Bullet bounds the motor's impulse by it over the step rate.
+            sl->setMaxLinMotorForce(btScalar(motor.max_force));
           }
           c = std::move(sl);
         }
