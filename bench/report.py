@@ -39,7 +39,8 @@ MEASURES_NOTHING_MS = 0.02
 SCENE_HEADER = (["threads", "ms", "ms_min", "ms_max"] + [s + "_ms" for s in STAGES] +
                 ["bodies", "pairs", "contacts", "colors", "awake", "state_hash", "errors",
                  "top_drift_cm", "top_drop_cm", "expected_drop_cm", "bullet_ms",
-                 "bullet_top_drift_cm", "bullet_top_drop_cm"])
+                 "bullet_top_drift_cm", "bullet_top_drop_cm", "joints", "max_move_m",
+                 "bullet_max_move_m", "bullet_joints_left"])
 NOT_SCENES = {"calibration", "paired", "paired_bullet", "sweep", "memory", "meta"}
 MEMORY_PARTS = ("bodies", "shapes", "broadphase", "contacts", "solver", "api", "scratch")
 
@@ -171,7 +172,9 @@ def tables_from_raw(a):
                          len(runs[n]) - len(good), f4(r0.get("top_drift_cm", 0)),
                          f4(r0.get("top_drop_cm", 0)), f4(r0.get("expected_drop_cm", 0)),
                          f4(med(bullet, "ms_per_step")), f4(med(bullet, "top_drift_cm")),
-                         f4(med(bullet, "top_drop_cm"))])
+                         f4(med(bullet, "top_drop_cm")), int(r0.get("joints", 0)),
+                         f4(r0.get("max_move_m")), f4(med(bullet, "max_move_m")),
+                         f4(med(bullet, "joints_left"))])
         write_csv(os.path.join(a.out, s + ".csv"), SCENE_HEADER, rows)
 
     # Sweep: ms per step against N for each engine/broadphase/thread count.
@@ -380,6 +383,21 @@ def summarize(out, mode_arg):
     if left_out:
         L.append(f"\nLeft out, under {MEASURES_NOTHING_MS} ms a step at 1 thread (they time the loop around "
                  f"the step, not the engine; their CSVs are kept): {', '.join(left_out)}.")
+    jointed = [s for s in shown if scene_rows[s][0].get("joints", 0) > 0]
+    if jointed:
+        L.append("\n## Joint scenes\n")
+        L.append("The same scene file in both engines; Bullet's constraints as docs/benchmarks.md maps them. "
+                 "`farthest move` is the farthest any body went from its start by the end (m): a blown-up "
+                 "scene shows there. The paired ratio, where present, is in the table of paired runs below.\n")
+        L.append("| scene | bodies | joints | elan 1t | elan 2t | Bullet 1t | Bullet / elan 1t | "
+                 "farthest move elan / Bullet | Bullet's joints left |")
+        L.append("|" + " --- |" * 9)
+        for s in jointed:
+            r1, r2 = scene_rows[s]
+            L.append(f"| {s} | {fmt(r1['bodies'], 0)} | {fmt(r1['joints'], 0)} | {fmt(r1['ms'])} | "
+                     f"{fmt(r2['ms'])} | {fmt(r1['bullet_ms'])} | {fmt(r1['bullet_ms'] / r1['ms'])} | "
+                     f"{fmt(r1.get('max_move_m'))} / {fmt(r1.get('bullet_max_move_m'))} | "
+                     f"{fmt(r1.get('bullet_joints_left'), 0)} |")
     if paired:
         L.append("\n## 2-thread speedup from paired runs\n")
         L.append("Each repetition runs 1 thread and 2 threads back to back (the order alternating), so both see "

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Whole steps: the standard scenes and a generated pile sweep at 1 and 2 threads, the same scenes
-// in Bullet, heap bytes per body, and the 2-thread ceiling of this machine (an FMA kernel and a
-// streaming kernel) measured in the same run; the target scenes' speedups and the FMA ceiling
-// also from 1- and 2-thread runs paired back to back. bench/run_suite.sh drives it; flags in
-// usage().
+// Whole steps: the standard scenes, the joint scenes and a generated pile sweep at 1 and 2
+// threads, the same scenes in Bullet (the joint scenes also paired with it back to back), heap
+// bytes per body, and the 2-thread ceiling of this machine (an FMA kernel and a streaming kernel)
+// measured in the same run; the target scenes' speedups and the FMA ceiling also from 1- and
+// 2-thread runs paired back to back. bench/run_suite.sh drives it; flags in usage().
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 #include <tbb/parallel_for.h>
@@ -47,6 +47,10 @@ struct Options {
   // Scenes that fall asleep within the warm-up, run once more with allow_sleep = false under the
   // name "<scene>-no-sleep", so that the work of their stacks is timed, not only their sleep.
   std::vector<std::string> no_sleep = {"pyramid20"};
+  // Scenes with joints, with warm-up and timed steps of their own (-1: --warmup, --steps): they
+  // are timed against Bullet's constraints, elan at 1 thread and Bullet paired back to back.
+  std::vector<std::string> joint_scenes = {"joint_grid", "ragdolls", "chains"};
+  int joint_warmup = -1, joint_steps = -1;
   std::vector<int> sweep = {1000, 2000, 4000, 8000, 16000, 32000};
   int allpairs_max = 8000;
   bool bullet = true;
@@ -58,6 +62,7 @@ void usage() {
       "bench_scenes [benchmark flags] [--warmup=N] [--steps=N] [--reps=N]\n"
       "  [--sweep_warmup=N] [--sweep_steps=N] [--sweep_reps=N] [--calib_reps=N]\n"
       "  [--scenes=a,b,...] [--no_sleep=a,b,...] [--sweep=1000,2000,...] [--allpairs_max=N]\n"
+      "  [--joint_scenes=a,b,...] [--joint_warmup=N] [--joint_steps=N]\n"
       "  [--no_bullet]\n");
 }
 
@@ -99,6 +104,12 @@ Options parse_options(int& argc, char** argv) {
       o.scenes = split(value);
     else if (key == "--no_sleep")
       o.no_sleep = split(value);
+    else if (key == "--joint_scenes")
+      o.joint_scenes = split(value);
+    else if (key == "--joint_warmup")
+      o.joint_warmup = number();
+    else if (key == "--joint_steps")
+      o.joint_steps = number();
     else if (key == "--no_bullet")
       o.bullet = false;
     else if (key == "--sweep") {
@@ -112,7 +123,9 @@ Options parse_options(int& argc, char** argv) {
     }
   }
   argc = kept;
-  if (o.steps < 1 || o.reps < 1 || o.sweep_steps < 1 || o.warmup < 0) {
+  if (o.joint_warmup < 0) o.joint_warmup = o.warmup;
+  if (o.joint_steps < 0) o.joint_steps = o.steps;
+  if (o.steps < 1 || o.reps < 1 || o.sweep_steps < 1 || o.warmup < 0 || o.joint_steps < 1) {
     usage();
     std::exit(2);
   }
@@ -227,6 +240,17 @@ double expected_drop_cm(const elan::Scene& s, const std::vector<std::size_t>& to
   return std::max(0.0, 100 * (top_y + top_h - floor - solid));
 }
 
+// The farthest any dynamic body went from its start, m: a joint scene that blew up (bodies flung
+// away, a chain torn apart) shows here, where its timing alone would not.
+template <class PositionOf>
+double max_move_m(const elan::Scene& s, PositionOf pos) {
+  double most = 0;
+  for (std::size_t i = 0; i < s.bodies.size(); ++i)
+    if (s.bodies[i].body.motion == elan::MotionType::Dynamic)
+      most = std::max(most, double((pos(i) - s.bodies[i].body.position).norm()));
+  return most;
+}
+
 // The state hash after warm-up + steps must be one value whatever the thread count, broadphase
 // and repetition; the first run of a (scene, step count) sets it, every later run is checked.
 struct HashBook {
@@ -259,6 +283,7 @@ struct ElanRun {
   elan::StepStats last;
   uint64_t hash = 0;
   TopMotion moved;
+  double max_move_m = 0;
 };
 
 ElanRun run_elan(const Case& c, int threads, elan::BroadphaseType bp,
@@ -285,8 +310,9 @@ ElanRun run_elan(const Case& c, int threads, elan::BroadphaseType bp,
     r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     r.last = world.last_step();
     r.hash = world.state_hash();
-    r.moved =
-        top_motion(*c.scene, tops, [&](std::size_t i) { return world.position(world.body_at(i)); });
+    const auto position = [&](std::size_t i) { return world.position(world.body_at(i)); };
+    r.moved = top_motion(*c.scene, tops, position);
+    if (!c.scene->joints.empty()) r.max_move_m = max_move_m(*c.scene, position);
   });
   return r;
 }
@@ -326,6 +352,10 @@ void bm_elan(benchmark::State& state, Case c, int threads, elan::BroadphaseType 
   state.counters["top_drift_cm"] = r.moved.drift_cm;
   state.counters["top_drop_cm"] = r.moved.drop_cm;
   state.counters["expected_drop_cm"] = expected_drop_cm(*c.scene, tops);
+  if (!c.scene->joints.empty()) {
+    state.counters["joints"] = double(c.scene->joints.size());
+    state.counters["max_move_m"] = r.max_move_m;
+  }
   state.SetItemsProcessed(int64_t(c.scene->bodies.size()) * c.steps * state.iterations());
   set_hash_counters(state, r.hash);
   if (!book->check(hash_key(c), r.hash))
@@ -373,6 +403,8 @@ struct BulletRun {
   double seconds = 0;
   elan::peer::BulletCounts counts;
   TopMotion moved;
+  double max_move_m = 0;
+  std::size_t joints_left = 0;
 };
 
 BulletRun run_bullet(const Case& c, const std::vector<std::size_t>& tops) {
@@ -383,7 +415,10 @@ BulletRun run_bullet(const Case& c, const std::vector<std::size_t>& tops) {
   for (int i = 0; i < c.steps; ++i) world.step();
   r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   r.counts = world.counts();
-  r.moved = top_motion(*c.scene, tops, [&](std::size_t i) { return world.position(i); });
+  const auto position = [&](std::size_t i) { return world.position(i); };
+  r.moved = top_motion(*c.scene, tops, position);
+  if (!c.scene->joints.empty()) r.max_move_m = max_move_m(*c.scene, position);
+  r.joints_left = world.joint_count();
   return r;
 }
 
@@ -402,6 +437,11 @@ void bm_bullet(benchmark::State& state, Case c) {
   state.counters["top_drift_cm"] = r.moved.drift_cm;
   state.counters["top_drop_cm"] = r.moved.drop_cm;
   state.counters["expected_drop_cm"] = expected_drop_cm(*c.scene, tops);
+  if (!c.scene->joints.empty()) {
+    state.counters["joints"] = double(c.scene->joints.size());
+    state.counters["joints_left"] = double(r.joints_left);
+    state.counters["max_move_m"] = r.max_move_m;
+  }
   state.SetItemsProcessed(int64_t(c.scene->bodies.size()) * c.steps * state.iterations());
 }
 
@@ -588,6 +628,18 @@ void register_all(const Options& o, HashBook* book, std::vector<float>* a, std::
     // The scene of the against-Bullet target: the ratio paired too.
     if (o.bullet && name == "pile4k")
       add("paired-bullet/" + name, bm_paired_bullet, o.reps, c, book, std::make_shared<int>(0));
+#endif
+  }
+  for (const auto& name : o.joint_scenes) {
+    const Case c{name, load(name), o.joint_warmup, o.joint_steps};
+    for (int t : {1, 2})
+      add("elan/" + name + "/threads:" + std::to_string(t), bm_elan, o.reps, c, t,
+          elan::BroadphaseType::SweepAndPrune, book);
+#ifdef ELAN_HAVE_BULLET
+    if (o.bullet) {
+      add("bullet/" + name, bm_bullet, o.reps, c);
+      add("paired-bullet/" + name, bm_paired_bullet, o.reps, c, book, std::make_shared<int>(0));
+    }
 #endif
   }
   for (int n : o.sweep) {

@@ -56,9 +56,9 @@ int main(int argc, char** argv) {
     std::printf(
         "{\"engine\": \"bullet\", \"bodies\": %zu, \"steps\": %ld, \"threads\": 1, "
         "\"wall_seconds\": %.6f, \"ms_per_step\": %.6f, \"manifolds\": %zu, \"contacts\": %zu, "
-        "\"awake\": %zu, \"peak_rss_kib\": %ld}\n",
+        "\"awake\": %zu, \"joints\": %zu, \"peak_rss_kib\": %ld}\n",
         world.body_count(), steps, seconds, 1000 * seconds / double(steps), c.manifolds, c.contacts,
-        c.awake, long(usage.ru_maxrss));
+        c.awake, world.joint_count(), long(usage.ru_maxrss));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

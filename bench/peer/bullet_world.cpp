@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Builds a Bullet 3 world from an elan::Scene: Bullet's own shapes, mass from density x volume as
-// elan computes it, elan's material mixing and damping law, sleeping as the scene asks.
+// elan computes it, elan's material mixing and damping law, sleeping as the scene asks, and the
+// scene's joints as Bullet's constraints (the mapping is in docs/benchmarks.md, "Joints in
+// Bullet").
 #include "bench/peer/bullet_world.hpp"
 
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
@@ -9,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <stdexcept>
@@ -95,6 +98,104 @@ double volume_of(const ShapeDef& s) {
   }
 }
 
+// A frame at `origin` whose column `column` (0: X, 2: Z) is `axis`, the other two any
+// perpendicular pair: Bullet's hinge turns about its frames' Z, its slider, cone twist and the
+// 6-DOF free axis used below are X.
+btTransform axis_frame(const btVector3& origin, const btVector3& axis, int column) {
+  btVector3 u, v;
+  btPlaneSpace1(axis, u, v);  // u, v, axis right-handed
+  btMatrix3x3 basis;
+  if (column == 0) {
+    basis.setValue(axis.x(), u.x(), v.x(), axis.y(), u.y(), v.y(), axis.z(), u.z(), v.z());
+  } else {
+    basis.setValue(u.x(), v.x(), axis.x(), u.y(), v.y(), axis.y(), u.z(), v.z(), axis.z());
+  }
+  return btTransform(basis, origin);
+}
+
+// Inverse effective mass of the two bodies along a linear direction at the given arms (m from the
+// centre of mass, world) and about an angular direction: J M^-1 J^T of one constraint row.
+btScalar inverse_mass_along(const btRigidBody& a, const btRigidBody& b, const btVector3& lin,
+                            const btVector3& arm_a, const btVector3& arm_b, const btVector3& ang) {
+  const auto one = [&](const btRigidBody& body, const btVector3& arm) {
+    const btVector3 w = arm.cross(lin) + ang;
+    return body.getInvMass() * lin.length2() + w.dot(body.getInvInertiaTensorWorld() * w);
+  };
+  return one(a, arm_a) + one(b, arm_b);
+}
+
+// A distance joint: one row along the line between the anchors, |pB - pA| kept in
+// [min_length, max_length]. Bullet has no such constraint (a 6-DOF limit along a frame axis
+// turns that axis with body A, so it constrains a projection, not the distance); this is the same
+// row btPoint2PointConstraint writes, along the anchors' line only, solved by Bullet's own solver.
+class DistanceConstraint final : public btTypedConstraint {
+ public:
+  DistanceConstraint(btRigidBody& a, btRigidBody& b, const btVector3& local_a,
+                     const btVector3& local_b, btScalar min_length, btScalar max_length)
+      // No Bullet type fits; the type is read only by debug drawing and serialization, which
+      // skip a type they do not know.
+      : btTypedConstraint(MAX_CONSTRAINT_TYPE, a, b),
+        local_a_(local_a),
+        local_b_(local_b),
+        min_(min_length),
+        max_(max_length) {}
+
+  void getInfo1(btConstraintInfo1* info) override {
+    const btScalar len = (world_b() - world_a()).length();
+    info->m_numConstraintRows = (min_ == max_ || len <= min_ || len >= max_) ? 1 : 0;
+    info->nub = 6 - info->m_numConstraintRows;
+  }
+
+  void getInfo2(btConstraintInfo2* info) override {
+    const btVector3 pa = world_a(), pb = world_b();
+    const btVector3 d = pb - pa;
+    const btScalar len = d.length();
+    if (len > btScalar(1e-6)) normal_ = d / len;
+    const btVector3 ra = pa - m_rbA.getCenterOfMassPosition();
+    const btVector3 rb = pb - m_rbB.getCenterOfMassPosition();
+    const btVector3 ja = -ra.cross(normal_), jb = rb.cross(normal_);
+    for (int k = 0; k < 3; ++k) {
+      info->m_J1linearAxis[k] = -normal_[k];
+      info->m_J1angularAxis[k] = ja[k];
+      if (info->m_J2linearAxis) info->m_J2linearAxis[k] = normal_[k];
+      info->m_J2angularAxis[k] = jb[k];
+    }
+    // J v = -erp/dt C drives the length back into range; a one-sided range (rope, strut) only
+    // pulls or only pushes.
+    const btScalar target = std::clamp(len, min_, max_);
+    info->m_constraintError[0] = info->fps * info->erp * (target - len);
+    if (min_ == max_) {
+      info->m_lowerLimit[0] = -SIMD_INFINITY;
+      info->m_upperLimit[0] = SIMD_INFINITY;
+    } else if (len >= max_) {
+      info->m_lowerLimit[0] = -SIMD_INFINITY;
+      info->m_upperLimit[0] = 0;
+    } else {
+      info->m_lowerLimit[0] = 0;
+      info->m_upperLimit[0] = SIMD_INFINITY;
+    }
+  }
+
+  void setParam(int, btScalar, int) override {}
+  btScalar getParam(int, int) const override { return 0; }
+
+  btVector3 world_a() const { return m_rbA.getCenterOfMassTransform() * local_a_; }
+  btVector3 world_b() const { return m_rbB.getCenterOfMassTransform() * local_b_; }
+
+ private:
+  btVector3 local_a_, local_b_;
+  btScalar min_, max_;
+  btVector3 normal_{0, 1, 0};
+};
+
+// A spring-damper between two anchor points along their line, as a force applied before each
+// step: Bullet's springs (btGeneric6DofSpring2Constraint) act along a frame axis of body A, not
+// along the line, so they cannot pull toward a rest length.
+struct DistanceSpring {
+  DistanceConstraint* joint;
+  btScalar stiffness, damping, rest;
+};
+
 }  // namespace
 
 struct BulletWorld::Impl {
@@ -112,9 +213,16 @@ struct BulletWorld::Impl {
     btVector3 v, w;
   };
   std::vector<Kinematic> kinematic;
+  std::vector<std::unique_ptr<btTypedConstraint>> joints;
+  std::vector<DistanceSpring> springs;
   btScalar dt = 0;
 
+  void add_joints(const Scene& scene);
+
   ~Impl() {
+    // Constraints first: removing one drops its references from both bodies, and Bullet's shared
+    // fixed body (the world side of a joint to the world) outlives this world.
+    for (auto& j : joints) world.removeConstraint(j.get());
     for (auto& b : bodies) world.removeRigidBody(b.get());
   }
 };
@@ -216,6 +324,170 @@ BulletWorld::BulletWorld(const Scene& scene) : impl_(std::make_unique<Impl>()) {
       m.world.addRigidBody(body, int(d.category_bits), int(d.mask_bits));
     }
   }
+  m.add_joints(scene);
+}
+
+void BulletWorld::Impl::add_joints(const Scene& scene) {
+  for (const SceneJoint& sj : scene.joints) {
+    const JointDef& d = sj.def;
+    btRigidBody& a = *bodies.at(std::size_t(sj.body_a));
+    // The world side: Bullet's shared static body at the origin, so a frame in it is a world
+    // frame (what the single-body constructors use internally).
+    btRigidBody& b =
+        sj.body_b < 0 ? btTypedConstraint::getFixedBody() : *bodies.at(std::size_t(sj.body_b));
+    // Bullet's body frame is the centre of mass (a hull's is off its shape origin): a world frame
+    // seen from each body.
+    const btTransform ta_inv = a.getCenterOfMassTransform().inverse();
+    const btTransform tb_inv = b.getCenterOfMassTransform().inverse();
+    const btVector3 anchor = to_bt(d.anchor);
+    const btVector3 axis = to_bt(d.axis).normalized();
+    const JointLimits& lim = d.limits;
+    const JointMotor& motor = d.motor;
+    const JointSpring& spring = d.spring;
+    // The spring's stiffness and damping from its frequency and damping ratio over the joint's
+    // effective mass along the driven coordinate at load.
+    const auto spring_gains = [&](btScalar inv_mass) {
+      const double omega = 2 * std::numbers::pi * double(spring.frequency);
+      const double mass = inv_mass > 0 ? 1 / double(inv_mass) : 0;
+      return std::make_pair(btScalar(mass * omega * omega),
+                            btScalar(2 * double(spring.damping_ratio) * mass * omega));
+    };
+    // A hinge or slider with a spring: btHingeConstraint and btSliderConstraint have none, so a
+    // btGeneric6DofSpring2Constraint with every axis locked but the joint's (`free`: 0 = X
+    // translation, 3 = X rotation). Its X rotation is elan's angle (A relative to B); its X
+    // translation is B's relative to A, elan's negated, so linear limits and target are negated.
+    // Its motor drives A relative to B along both, and its bound is a force (this Bullet divides
+    // it by the step rate).
+    const auto six_dof = [&](int free, btScalar inv_mass) {
+      const btScalar sign = free < 3 ? -1 : 1;
+      const btTransform f = axis_frame(anchor, axis, 0);
+      auto g = std::make_unique<btGeneric6DofSpring2Constraint>(a, b, ta_inv * f, tb_inv * f);
+      g->setLinearLowerLimit(btVector3(0, 0, 0));
+      g->setLinearUpperLimit(btVector3(0, 0, 0));
+      g->setAngularLowerLimit(btVector3(0, 0, 0));
+      g->setAngularUpperLimit(btVector3(0, 0, 0));
+      if (lim.enabled) {
+        const btScalar x = sign * btScalar(lim.lower), y = sign * btScalar(lim.upper);
+        g->setLimit(free, std::min(x, y), std::max(x, y));
+      } else {
+        g->setLimit(free, 1, -1);  // lower > upper: free
+      }
+      if (motor.enabled) {
+        g->enableMotor(free, true);
+        g->setTargetVelocity(free, btScalar(motor.speed));
+        g->setMaxMotorForce(free, btScalar(motor.max_force));
+      }
+      const auto [k, c] = spring_gains(inv_mass);
+      g->enableSpring(free, true);
+      g->setStiffness(free, k);
+      g->setDamping(free, c);
+      g->setEquilibriumPoint(free, sign * btScalar(spring.target));
+      return g;
+    };
+    const btVector3 arm_a = anchor - a.getCenterOfMassPosition();
+    const btVector3 arm_b = anchor - b.getCenterOfMassPosition();
+    const btVector3 zero(0, 0, 0);
+    std::unique_ptr<btTypedConstraint> c;
+    switch (d.type) {
+      case JointType::Ball:
+        c = std::make_unique<btPoint2PointConstraint>(a, b, ta_inv(anchor), tb_inv(anchor));
+        break;
+      case JointType::Hinge:
+        if (spring.enabled) {
+          c = six_dof(3, inverse_mass_along(a, b, zero, arm_a, arm_b, axis));
+        } else {
+          // Bullet's hinge angle (useReferenceFrameA = false) is A's about Z relative to B, and
+          // its motor drives A's rate relative to B: elan's convention, no sign change.
+          const btTransform f = axis_frame(anchor, axis, 2);
+          auto h = std::make_unique<btHingeConstraint>(a, b, ta_inv * f, tb_inv * f, false);
+          if (lim.enabled) h->setLimit(btScalar(lim.lower), btScalar(lim.upper));
+          // Bullet's bound is an impulse per step.
+          if (motor.enabled)
+            h->enableAngularMotor(true, btScalar(motor.speed), btScalar(motor.max_force) * dt);
+          c = std::move(h);
+        }
+        break;
+      case JointType::Slider:
+        if (spring.enabled) {
+          c = six_dof(0, inverse_mass_along(a, b, axis, zero, zero, zero));
+        } else {
+          // Bullet's slider axis is its frames' X, and its position is B's relative to A along
+          // it (useLinearReferenceFrameA = true): limits and motor speed negated.
+          const btTransform f = axis_frame(anchor, axis, 0);
+          auto sl = std::make_unique<btSliderConstraint>(a, b, ta_inv * f, tb_inv * f, true);
+          sl->setLowerAngLimit(0);
+          sl->setUpperAngLimit(0);
+          if (lim.enabled) {
+            sl->setLowerLinLimit(-btScalar(lim.upper));
+            sl->setUpperLinLimit(-btScalar(lim.lower));
+          } else {
+            sl->setLowerLinLimit(1);  // lower > upper: free
+            sl->setUpperLinLimit(-1);
+          }
+          if (motor.enabled) {
+            sl->setPoweredLinMotor(true);
+            sl->setTargetLinMotorVelocity(-btScalar(motor.speed));
+            // A force: this Bullet bounds the motor's impulse by it over the step rate.
+            sl->setMaxLinMotorForce(btScalar(motor.max_force));
+          }
+          c = std::move(sl);
+        }
+        break;
+      case JointType::Fixed: {
+        // Without an anchor, elan welds at the midpoint of the two shape frames (A's alone when
+        // B is the world); where the weld's frame sits changes only how errors are shared.
+        btVector3 at = anchor;
+        if (!d.has_anchor) {
+          const Vec3 pa = scene.bodies[std::size_t(sj.body_a)].body.position;
+          const Vec3 pb = sj.body_b < 0 ? pa : scene.bodies[std::size_t(sj.body_b)].body.position;
+          at = to_bt(Vec3((pa + pb) / 2));
+        }
+        const btTransform f(btMatrix3x3::getIdentity(), at);
+        c = std::make_unique<btFixedConstraint>(a, b, ta_inv * f, tb_inv * f);
+        break;
+      }
+      case JointType::Distance: {
+        const btVector3 on_b = to_bt(d.anchor_b);
+        const btScalar at_load = (on_b - anchor).length();
+        const btScalar lo = d.min_length < 0 ? at_load : btScalar(d.min_length);
+        const btScalar hi = d.max_length < 0 ? at_load : btScalar(d.max_length);
+        auto dc = std::make_unique<DistanceConstraint>(a, b, ta_inv(anchor), tb_inv(on_b), lo, hi);
+        if (spring.enabled) {
+          const btVector3 n = at_load > 0 ? (on_b - anchor) / at_load : btVector3(0, 1, 0);
+          const auto [k, cd] = spring_gains(
+              inverse_mass_along(a, b, n, arm_a, on_b - b.getCenterOfMassPosition(), zero));
+          springs.push_back(
+              {dc.get(), k, cd, spring.target < 0 ? at_load : btScalar(spring.target)});
+        }
+        c = std::move(dc);
+        break;
+      }
+      case JointType::Cone: {
+        // Bullet's twist axis is its frames' X and its twist limit is symmetric, +-span about
+        // the frames' zero: B's frame is turned about X by the middle of elan's [lower, upper],
+        // so +-(upper - lower) / 2 about it is elan's range. Swing: both spans = swing_limit
+        // (a circular cone). Unlimited twist: a span of pi, since the twist is in (-pi, pi].
+        const btTransform fa = axis_frame(anchor, axis, 0);
+        btTransform fb = fa;
+        btScalar span = SIMD_PI;
+        if (lim.enabled) {
+          span = btScalar(lim.upper - lim.lower) / 2;
+          fb.setBasis(
+              fa.getBasis() *
+              btMatrix3x3(btQuaternion(btVector3(1, 0, 0), btScalar(lim.upper + lim.lower) / 2)));
+        }
+        auto cone = std::make_unique<btConeTwistConstraint>(a, b, ta_inv * fa, tb_inv * fb);
+        cone->setLimit(btScalar(d.swing_limit), btScalar(d.swing_limit), span);
+        c = std::move(cone);
+        break;
+      }
+    }
+    // Bullet compares each row's impulse of one step with the threshold; elan, the joint's force.
+    if (std::isfinite(double(d.break_force)))
+      c->setBreakingImpulseThreshold(btScalar(d.break_force) * dt);
+    world.addConstraint(c.get(), !d.collide_connected);
+    joints.push_back(std::move(c));
+  }
 }
 
 BulletWorld::~BulletWorld() = default;
@@ -229,6 +501,22 @@ void BulletWorld::step() {
     btTransformUtil::integrateTransform(k.body->getWorldTransform(), k.v, k.w, m.dt, next);
     k.body->getMotionState()->setWorldTransform(next);
   }
+  for (const DistanceSpring& sp : m.springs) {
+    if (!sp.joint->isEnabled()) continue;
+    btRigidBody &a = sp.joint->getRigidBodyA(), &b = sp.joint->getRigidBodyB();
+    const btVector3 pa = sp.joint->world_a(), pb = sp.joint->world_b();
+    const btVector3 d = pb - pa;
+    const btScalar len = d.length();
+    if (len < btScalar(1e-6)) continue;
+    const btVector3 n = d / len;
+    const btVector3 ra = pa - a.getCenterOfMassPosition(), rb = pb - b.getCenterOfMassPosition();
+    const btScalar rate = n.dot(b.getVelocityInLocalPoint(rb) - a.getVelocityInLocalPoint(ra));
+    const btVector3 f = n * (sp.stiffness * (len - sp.rest) + sp.damping * rate);
+    a.applyForce(f, ra);  // pulls A toward B when stretched
+    b.applyForce(-f, rb);
+    a.activate();
+    b.activate();
+  }
   m.world.stepSimulation(m.dt, 0);  // maxSubSteps = 0: exactly one step of dt
 }
 
@@ -240,6 +528,12 @@ Vec3 BulletWorld::position(std::size_t i) const {
   const btTransform& t = impl_->bodies[i]->getWorldTransform();
   const btVector3 p = t.getOrigin() - t.getBasis() * impl_->com_ls[i];
   return Vec3(Real(p.x()), Real(p.y()), Real(p.z()));
+}
+
+std::size_t BulletWorld::joint_count() const {
+  std::size_t n = 0;
+  for (const auto& j : impl_->joints) n += j->isEnabled();
+  return n;
 }
 
 BulletCounts BulletWorld::counts() const {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Bullet 3 world built from an elan::Scene (same shapes, masses, materials and poses), stepped the
-// way Bullet users step it, so both engines can be timed on the same scene in one process.
+// Bullet 3 world built from an elan::Scene (same shapes, masses, materials, poses and joints),
+// stepped the way Bullet users step it, so both engines can be timed on the same scene in one
+// process.
 #pragma once
 
 #include <cstddef>
@@ -28,6 +29,8 @@ class BulletWorld {
 
   void step();
   std::size_t body_count() const;
+  /// Joints still in the world: those a break threshold has not disabled.
+  std::size_t joint_count() const;
   /// Origin of body i's shape frame (as given in the scene), world, m.
   Vec3 position(std::size_t i) const;
   BulletCounts counts() const;
