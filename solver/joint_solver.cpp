@@ -38,12 +38,6 @@ Mat3 to_mat(const SymMat3& m) {
   return r;
 }
 
-Mat3 skew(const Vec3& r) {
-  Mat3 s;
-  s << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return s;
-}
-
 // The inverse of a symmetric positive semi-definite 3x3 matrix, or zero when singular (a joint
 // between two bodies that cannot move along those rows).
 Mat3 inverse_or_zero(const Mat3& k) {
@@ -61,8 +55,12 @@ Real inverse_or_zero(Real k) {
 struct Side {
   Vec3 v, w;
   Real m;
-  Mat3 i;
+  SymMat3 i;
 };
+
+SymMat3 operator+(const SymMat3& a, const SymMat3& b) {
+  return {a.xx + b.xx, a.yy + b.yy, a.zz + b.zz, a.xy + b.xy, a.xz + b.xz, a.yz + b.yz};
+}
 
 // The soft coefficients of a position row: Box2D v3's, off in the relax pass.
 struct Soft {
@@ -90,21 +88,28 @@ Pose pose_of(const JointRow& j, const SolverBody& a, const SolverBody& b) {
   return p;
 }
 
-// The point rows' mass matrix at the current arms: K = (m_a + m_b) E - [r_a] I_a^-1 [r_a] -
-// [r_b] I_b^-1 [r_b], inverted.
+// The point rows' mass matrix at the current arms, inverted: K = (m_a + m_b) E + P(r_a, I_a^-1)
+// + P(r_b, I_b^-1), with P(r, I) = [r]x I [r]x^T, whose column j is r x (I (e_j x r)). perf:
+// written out on the symmetric entries (a joint grid refreshes every joint once a substep).
+SymMat3 arm_term(const Vec3& r, const SymMat3& i) {
+  const Vec3 c0 = r.cross(i * Vec3(0, -r.z(), r.y()));
+  const Vec3 c1 = r.cross(i * Vec3(r.z(), 0, -r.x()));
+  const Vec3 c2 = r.cross(i * Vec3(-r.y(), r.x(), 0));
+  return {c0.x(), c1.y(), c2.z(), c1.x(), c2.x(), c2.y()};
+}
+
 SymMat3 point_mass_of(const Pose& p, const SolverBodyMass& a, const SolverBodyMass& b) {
-  const Mat3 sa = skew(p.r_a), sb = skew(p.r_b);
-  const Mat3 k = (a.inv_mass + b.inv_mass) * Mat3::Identity() - sa * to_mat(a.inv_inertia) * sa -
-                 sb * to_mat(b.inv_inertia) * sb;
-  const Mat3 m = inverse_or_zero(k);
-  SymMat3 out;
-  out.xx = m(0, 0);
-  out.yy = m(1, 1);
-  out.zz = m(2, 2);
-  out.xy = m(0, 1);
-  out.xz = m(0, 2);
-  out.yz = m(1, 2);
-  return out;
+  const SymMat3 ta = arm_term(p.r_a, a.inv_inertia), tb = arm_term(p.r_b, b.inv_inertia);
+  const Real m = a.inv_mass + b.inv_mass;
+  const Real xx = m + ta.xx + tb.xx, yy = m + ta.yy + tb.yy, zz = m + ta.zz + tb.zz;
+  const Real xy = ta.xy + tb.xy, xz = ta.xz + tb.xz, yz = ta.yz + tb.yz;
+  // The inverse by cofactors.
+  const Real c00 = yy * zz - yz * yz, c01 = xz * yz - xy * zz, c02 = xy * yz - xz * yy;
+  const Real det = xx * c00 + xy * c01 + xz * c02;
+  if (!(std::abs(det) > Real(1e-30))) return {};
+  const Real inv = 1 / det;
+  return {c00 * inv, (xx * zz - xz * xz) * inv, (xx * yy - xy * xy) * inv, c01 * inv,
+          c02 * inv, (xy * xz - xx * yz) * inv};
 }
 
 bool has_point_rows(JointType type) {
@@ -207,11 +212,8 @@ void solve_point(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side
                  bool use_bias) {
   const Soft soft = soft_of(ctx, use_bias);
   const Vec3 rate = b.v + b.w.cross(p.r_b) - a.v - a.w.cross(p.r_a);
-  const Mat3 sa = skew(p.r_a), sb = skew(p.r_b);
-  const Mat3 k = (a.m + b.m) * Mat3::Identity() - sa * a.i * sa - sb * b.i * sb;
-  const Vec3 impulse =
-      -soft.mass_scale * (inverse_or_zero(k) * (rate + soft.bias_rate * p.separation)) -
-      soft.impulse_scale * j.impulses.point;
+  const Vec3 impulse = -soft.mass_scale * (j.point_mass * (rate + soft.bias_rate * p.separation)) -
+                       soft.impulse_scale * j.impulses.point;
   j.impulses.point += impulse;
   a.v -= a.m * impulse;
   a.w -= a.i * p.r_a.cross(impulse);
@@ -231,7 +233,7 @@ void solve_orientation(const JointSolverContext& ctx, JointRow& j, const Pose& p
                        bool use_bias) {
   const Soft soft = soft_of(ctx, use_bias);
   const Vec3 rate = a.w - b.w;
-  const Vec3 impulse = -soft.mass_scale * (inverse_or_zero(a.i + b.i) *
+  const Vec3 impulse = -soft.mass_scale * (inverse_or_zero(to_mat(a.i + b.i)) *
                                            (rate + soft.bias_rate * orientation_error(p))) -
                        soft.impulse_scale * j.impulses.angular;
   j.impulses.angular += impulse;
@@ -247,7 +249,7 @@ void solve_hinge_axes(const JointSolverContext& ctx, JointRow& j, const Pose& p,
   const Vec3 axis = p.frame_a * Vec3::UnitX();
   const Vec3 b1 = p.frame_b * Vec3::UnitY(), b2 = p.frame_b * Vec3::UnitZ();
   const Vec3 u1 = axis.cross(b1), u2 = axis.cross(b2);
-  const Mat3 inv_i = a.i + b.i;
+  const SymMat3 inv_i = a.i + b.i;
   const Real k11 = u1.dot(inv_i * u1), k12 = u1.dot(inv_i * u2), k22 = u2.dot(inv_i * u2);
   const Real det = k11 * k22 - k12 * k12;
   const Real inv_det = std::abs(det) > Real(1e-30) ? 1 / det : 0;
@@ -346,14 +348,44 @@ void solve_distance(const JointSolverContext& ctx, JointRow& j, const Pose& p, S
   solve_axis(ctx, j, g.row, g.length, a, b, use_bias);
 }
 
+// Applies the point impulse P (on B; -P on A) at the current arms.
+void apply_point(const JointSolverContext& ctx, const JointRow& j, const Vec3& impulse) {
+  if (written_packet(j.packet_a, ctx.written_end)) {
+    SolverBody& pa = ctx.bodies[j.packet_a];
+    const SolverBodyMass& ma = ctx.masses[j.packet_a];
+    pa.v -= ma.inv_mass * impulse;
+    pa.w -= ma.inv_inertia * j.pose.r_a.cross(impulse);
+  }
+  if (written_packet(j.packet_b, ctx.written_end)) {
+    SolverBody& pb = ctx.bodies[j.packet_b];
+    const SolverBodyMass& mb = ctx.masses[j.packet_b];
+    pb.v += mb.inv_mass * impulse;
+    pb.w += mb.inv_inertia * j.pose.r_b.cross(impulse);
+  }
+}
+
+// A ball joint's passes, on the packets directly. perf: a joint grid is all ball joints, and
+// the general path's copies of both sides cost as much as the rows.
+void solve_ball(const JointSolverContext& ctx, JointRow& j, bool use_bias) {
+  SolverBody& pa = ctx.bodies[j.packet_a];
+  SolverBody& pb = ctx.bodies[j.packet_b];
+  const Soft soft = soft_of(ctx, use_bias);
+  const Pose& p = j.pose;
+  const Vec3 rate = pb.v + pb.w.cross(p.r_b) - pa.v - pa.w.cross(p.r_a);
+  const Vec3 impulse = -soft.mass_scale * (j.point_mass * (rate + soft.bias_rate * p.separation)) -
+                       soft.impulse_scale * j.impulses.point;
+  j.impulses.point += impulse;
+  apply_point(ctx, j, impulse);
+}
+
 template <class F>
 void for_joint(const JointSolverContext& ctx, JointRow& j, F&& f) {
   SolverBody& pa = ctx.bodies[j.packet_a];
   SolverBody& pb = ctx.bodies[j.packet_b];
   const SolverBodyMass& ma = ctx.masses[j.packet_a];
   const SolverBodyMass& mb = ctx.masses[j.packet_b];
-  Side a{pa.v, pa.w, ma.inv_mass, to_mat(ma.inv_inertia)};
-  Side b{pb.v, pb.w, mb.inv_mass, to_mat(mb.inv_inertia)};
+  Side a{pa.v, pa.w, ma.inv_mass, ma.inv_inertia};
+  Side b{pb.v, pb.w, mb.inv_mass, mb.inv_inertia};
   f(j.pose, a, b);
   // determinism: only the packets of awake dynamic bodies are written; the static dummy and
   // kinematic packets are read by both halves at once.
@@ -495,6 +527,10 @@ void refresh_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
 
 void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
   for (JointRow& j : rows) {
+    if (j.type == JointType::Ball) {
+      apply_point(ctx, j, j.impulses.point);
+      continue;
+    }
     for_joint(ctx, j, [&](const Pose& p, Side& a, Side& b) {
       const JointImpulses& im = j.impulses;
       if (j.type != JointType::Slider && j.type != JointType::Distance) {
@@ -548,6 +584,10 @@ void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) 
 
 void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool use_bias) {
   for (JointRow& j : rows) {
+    if (j.type == JointType::Ball) {
+      solve_ball(ctx, j, use_bias);
+      continue;
+    }
     for_joint(ctx, j, [&](const Pose& p, Side& a, Side& b) {
       switch (j.type) {
         case JointType::Ball:
