@@ -45,8 +45,8 @@ struct JointRow {
   Real swing_limit = 0;        // rad
   Softness spring;
   JointImpulses impulses;
-  // At the current poses (refresh_joints): the geometry, and the point rows' mass matrix
-  // (J M^-1 J^T)^-1, kg.
+  // The geometry at the current poses (refresh_joints), and the point rows' mass matrix
+  // (J M^-1 J^T)^-1 (kg) at the step's start.
   JointPose pose;
   SymMat3 point_mass;
 };

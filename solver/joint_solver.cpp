@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/parallel.hpp"
+
 namespace elan::detail {
 
 namespace {
@@ -15,6 +17,9 @@ constexpr Real kPi = Real(3.14159265358979323846);
 // ragdoll sags less, and a joint has no speculative margin to hide a soft response in.
 constexpr Real kJointHertzScale = 2;
 constexpr Real kJointDampingRatio = 2;
+
+// Joint rows prepared per block of the parallel loop.
+constexpr std::size_t kPrepareGrain = 256;
 
 Real wrap_angle(Real a) {
   if (a > kPi) return a - 2 * kPi;
@@ -116,12 +121,8 @@ bool has_point_rows(JointType type) {
   return type != JointType::Slider && type != JointType::Distance;
 }
 
-void refresh_row(JointRow& j, std::span<const SolverBody> packets,
-                 std::span<const SolverBodyMass> masses) {
+void refresh_row(JointRow& j, std::span<const SolverBody> packets) {
   j.pose = pose_of(j, packets[j.packet_a], packets[j.packet_b]);
-  if (has_point_rows(j.type)) {
-    j.point_mass = point_mass_of(j.pose, masses[j.packet_a], masses[j.packet_b]);
-  }
 }
 
 // A row that turns A about `axis` (unit, world) against B: rate = axis . (w_a - w_b).
@@ -452,13 +453,8 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
     st.joint_group_start[g + 1] = st.joint_group_start[g] + count[g];
   }
   st.joint_rows.resize(st.joint_group_start[kGroups]);
-  uint32_t next[kGroups];
-  for (uint32_t g = 0; g < kGroups; ++g) next[g] = st.joint_group_start[g];
-  for (std::size_t k = 0; k < joints.size(); ++k) {
-    if (group[k] == UINT8_MAX) continue;
-    const Joint& j = joints.joints[k];
-    JointRow& r = st.joint_rows[next[group[k]]++];
-    r.joint = uint32_t(k);
+  auto prepare_row = [&](JointRow& r) {
+    const Joint& j = joints.joints[r.joint];
     Vec3 c_a = Vec3::Zero(), c_b = Vec3::Zero();
     Quat q_a = Quat::Identity(), q_b = Quat::Identity();
     r.packet_a = r.packet_b = 0;
@@ -517,12 +513,28 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
     if (!(r.flags & kJointMotor)) r.impulses.motor = 0;
     if (!(r.flags & kJointLimit)) r.impulses.lower = r.impulses.upper = 0;
     if (!(r.flags & kJointSwing)) r.impulses.swing = 0;
-    refresh_row(r, st.packets, st.masses);
+    refresh_row(r, st.packets);
+    // perf: the point rows' mass matrix is the step's start one in every substep (as Box2D v3
+    // prepares its joints' masses once a step): the arms turn little in a step, and a mass off by
+    // that much changes how fast a pass converges, not what it converges to.
+    if (has_point_rows(r.type)) {
+      r.point_mass = point_mass_of(r.pose, st.masses[r.packet_a], st.masses[r.packet_b]);
+    }
+  };
+  uint32_t next[kGroups];
+  for (uint32_t g = 0; g < kGroups; ++g) next[g] = st.joint_group_start[g];
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    if (group[k] != UINT8_MAX) st.joint_rows[next[group[k]]++].joint = uint32_t(k);
   }
+  // determinism: each row is written by its block alone, from its joint alone (rule 1).
+  for_blocks(st.joint_rows.size(), kPrepareGrain,
+             [&](std::size_t begin, std::size_t end, std::size_t) {
+               for (std::size_t row = begin; row < end; ++row) prepare_row(st.joint_rows[row]);
+             });
 }
 
 void refresh_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
-  for (JointRow& j : rows) refresh_row(j, ctx.bodies, ctx.masses);
+  for (JointRow& j : rows) refresh_row(j, ctx.bodies);
 }
 
 void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {

@@ -46,7 +46,7 @@ struct JointSolverContext {
 JointSolverContext make_joint_context(const SolveSettings& settings, SolverState& state);
 
 // The passes over rows [begin, end) of SolverState::joint_rows. refresh_joints re-reads the
-// packets' pose changes and inverse inertias after the positions moved (the relax pass, before
+// packets' pose changes after the positions moved (the relax pass, before
 // any other pass over the rows), as refresh_contacts does for the contacts.
 void refresh_joints(const JointSolverContext& ctx, std::span<JointRow> rows);
 void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows);
