@@ -16,6 +16,7 @@ enum JointRowFlags : uint8_t {
   kJointMotor = 2,
   kJointSpring = 4,
   kJointSwing = 8,  // a cone whose swing limit is below pi
+  kJointFriction = 16,
 };
 
 // A joint's geometry at the current poses: it changes only when the positions do, once a substep
@@ -40,9 +41,10 @@ struct JointRow {
   Vec3 delta_center = Vec3::Zero();  // m: B's centre minus A's at the start
   Real lower = 0, upper = 0;         // limits (distance: min and max length)
   Real motor_speed = 0;
-  Real max_motor_impulse = 0;  // N s (N m s) per substep
-  Real spring_target = 0;      // rad, m; distance: rest length
-  Real swing_limit = 0;        // rad
+  Real max_motor_impulse = 0;     // N s (N m s) per substep
+  Real max_friction_impulse = 0;  // N s (N m s) per substep
+  Real spring_target = 0;         // rad, m; distance: rest length
+  Real swing_limit = 0;           // rad
   Softness spring;
   JointImpulses impulses;
   // The geometry at the current poses (refresh_joints), and the point rows' mass matrix

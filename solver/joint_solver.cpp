@@ -169,6 +169,13 @@ void apply(const LinearRow& r, Side& a, Side& b, Real impulse) {
 template <class Row>
 void solve_axis(const JointSolverContext& ctx, JointRow& j, const Row& row, Real x, Side& a,
                 Side& b, bool use_bias) {
+  if ((j.flags & kJointFriction) && (j.type == JointType::Hinge || j.type == JointType::Slider)) {
+    const Real old = j.impulses.friction.x();
+    const Real updated = std::clamp(old - row.mass * rate_of(row, a, b), -j.max_friction_impulse,
+                                    j.max_friction_impulse);
+    j.impulses.friction.x() = updated;
+    apply(row, a, b, updated - old);
+  }
   if (j.flags & kJointSpring) {
     const Real c = x - j.spring_target;
     const Real rate = rate_of(row, a, b);
@@ -206,6 +213,18 @@ void solve_axis(const JointSolverContext& ctx, JointRow& j, const Row& row, Real
     limit(x - j.lower, 1, j.impulses.lower);
     limit(j.upper - x, -1, j.impulses.upper);
   }
+}
+
+// Joint friction about every axis (ball, cone): the relative angular velocity is stopped by an
+// impulse whose accumulated length stays within the friction's (Jolt's friction torque).
+void solve_angular_friction(JointRow& j, Side& a, Side& b) {
+  const Vec3 old = j.impulses.friction;
+  Vec3 updated = old - inverse_or_zero(to_mat(a.i + b.i)) * (a.w - b.w);
+  const Real length = updated.norm();
+  if (length > j.max_friction_impulse) updated *= j.max_friction_impulse / length;
+  j.impulses.friction = updated;
+  a.w += a.i * (updated - old);
+  b.w -= b.i * (updated - old);
 }
 
 // The anchors coincide: three rows solved as one block.
@@ -513,6 +532,13 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
     if (!(r.flags & kJointMotor)) r.impulses.motor = 0;
     if (!(r.flags & kJointLimit)) r.impulses.lower = r.impulses.upper = 0;
     if (!(r.flags & kJointSwing)) r.impulses.swing = 0;
+    const bool frictional = r.type == JointType::Ball || r.type == JointType::Cone || axial;
+    if (frictional && d.friction > 0) {
+      r.flags |= kJointFriction;
+      r.max_friction_impulse = d.friction * h;
+    } else {
+      r.impulses.friction.setZero();
+    }
     refresh_row(r, st.packets);
     // perf: the point rows' mass matrix is the step's start one in every substep (as Box2D v3
     // prepares its joints' masses once a step): the arms turn little in a step, and a mass off by
@@ -539,7 +565,7 @@ void refresh_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
 
 void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
   for (JointRow& j : rows) {
-    if (j.type == JointType::Ball) {
+    if (j.type == JointType::Ball && !(j.flags & kJointFriction)) {
       apply_point(ctx, j, j.impulses.point);
       continue;
     }
@@ -552,7 +578,9 @@ void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) 
         b.v += b.m * P;
         b.w += b.i * p.r_b.cross(P);
       }
-      const Real axial = im.spring + im.motor + im.lower - im.upper;
+      const bool along_axis = j.type == JointType::Hinge || j.type == JointType::Slider;
+      const Real axial =
+          im.spring + im.motor + im.lower - im.upper + (along_axis ? im.friction.x() : Real(0));
       const Vec3 axis_a = p.frame_a * Vec3::UnitX();
       Vec3 torque = Vec3::Zero();
       switch (j.type) {
@@ -564,6 +592,7 @@ void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) 
                    axis_a.cross(p.frame_b * Vec3::UnitZ()) * im.angular.y() + axis_a * axial;
           break;
         case JointType::Cone: {
+          torque = im.friction;
           const Vec3 axis_b = p.frame_b * Vec3::UnitX();
           const Vec3 twist = axis_a + axis_b;
           if (twist.squaredNorm() > Real(1e-12)) torque += twist.normalized() * axial;
@@ -586,6 +615,7 @@ void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) 
           break;
         }
         case JointType::Ball:
+          torque = im.friction;
           break;
       }
       a.w += a.i * torque;
@@ -596,18 +626,19 @@ void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) 
 
 void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool use_bias) {
   for (JointRow& j : rows) {
-    if (j.type == JointType::Ball) {
+    if (j.type == JointType::Ball && !(j.flags & kJointFriction)) {
       solve_ball(ctx, j, use_bias);
       continue;
     }
     for_joint(ctx, j, [&](const Pose& p, Side& a, Side& b) {
       switch (j.type) {
         case JointType::Ball:
+          if (j.flags & kJointFriction) solve_angular_friction(j, a, b);
           solve_point(ctx, j, p, a, b, use_bias);
           break;
         case JointType::Hinge: {
           const Quat rel = relative_frame(p.frame_a, p.frame_b);
-          if (j.flags & (kJointSpring | kJointMotor | kJointLimit)) {
+          if (j.flags & (kJointSpring | kJointMotor | kJointLimit | kJointFriction)) {
             const AngularRow row = angular_row(a, b, p.frame_a * Vec3::UnitX());
             solve_axis(ctx, j, row, twist_angle(rel), a, b, use_bias);
           }
@@ -616,7 +647,7 @@ void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool 
           break;
         }
         case JointType::Slider: {
-          if (j.flags & (kJointSpring | kJointMotor | kJointLimit)) {
+          if (j.flags & (kJointSpring | kJointMotor | kJointLimit | kJointFriction)) {
             const Vec3 d = -p.separation;
             const Vec3 axis = p.frame_b * Vec3::UnitX();
             const LinearRow row = linear_row(a, b, axis, p.r_a, p.r_b + d);
@@ -634,6 +665,7 @@ void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool 
           solve_distance(ctx, j, p, a, b, use_bias);
           break;
         case JointType::Cone: {
+          if (j.flags & kJointFriction) solve_angular_friction(j, a, b);
           if (j.flags & kJointSwing) solve_swing(ctx, j, p, a, b, use_bias);
           if (j.flags & kJointLimit) {
             const Vec3 twist = p.frame_a * Vec3::UnitX() + p.frame_b * Vec3::UnitX();
@@ -662,12 +694,15 @@ void store_joint_impulses(std::span<const JointRow> rows, const JointSolverConte
     const SolverBody& pb = ctx.bodies[r.packet_b];
     const Pose p = pose_of(r, pa, pb);
     const JointImpulses& im = r.impulses;
-    const Real axial = im.spring + im.motor + im.lower - im.upper;
+    const bool along_axis = r.type == JointType::Hinge || r.type == JointType::Slider;
+    const Real axial =
+        im.spring + im.motor + im.lower - im.upper + (along_axis ? im.friction.x() : Real(0));
     const Vec3 axis_a = p.frame_a * Vec3::UnitX();
     Vec3 force = -im.point;
     Vec3 torque = Vec3::Zero();
     switch (r.type) {
       case JointType::Ball:
+        torque = im.friction;
         break;
       case JointType::Fixed:
         torque = im.angular;
@@ -677,6 +712,7 @@ void store_joint_impulses(std::span<const JointRow> rows, const JointSolverConte
                  axis_a.cross(p.frame_b * Vec3::UnitZ()) * im.angular.y() + axis_a * axial;
         break;
       case JointType::Cone: {
+        torque = im.friction;
         const Vec3 axis_b = p.frame_b * Vec3::UnitX();
         const Vec3 twist = axis_a + axis_b;
         if (twist.squaredNorm() > Real(1e-12)) torque += twist.normalized() * axial;

@@ -30,7 +30,8 @@ struct JointImpulses {
   Real motor = 0;
   Real lower = 0;  // limits: >= 0 each
   Real upper = 0;
-  Real swing = 0;  // the cone's swing limit, >= 0
+  Real swing = 0;                // the cone's swing limit, >= 0
+  Vec3 friction = Vec3::Zero();  // ball, cone: angular; hinge, slider: x along the axis
 };
 
 struct Joint {

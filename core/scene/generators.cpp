@@ -79,8 +79,10 @@ Generator parse_generator(const Ctx& ctx, const Json& j) {
     g.bodies = copies * uint64_t(g.chain.links);
     g.joints = copies * chain_joints(g.chain);
   } else if (type == "ragdoll") {
-    check_keys(ctx, j, {"type", "origin", "orientation", "scale", "hands", "count", "spacing"}, "",
-               "a ragdoll generator");
+    check_keys(
+        ctx, j,
+        {"type", "origin", "orientation", "scale", "hands", "joint_friction", "count", "spacing"},
+        "", "a ragdoll generator");
     g.kind = GeneratorKind::Ragdoll;
     g.ragdoll = parse_ragdoll(ctx, j);
     const uint64_t copies = parse_copies(ctx, j, g, ragdoll_bodies(g.ragdoll));

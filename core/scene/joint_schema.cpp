@@ -122,19 +122,20 @@ SceneJoint parse_joint(const Ctx& ctx, const Json& j, const BodyRefs& refs) {
   SceneJoint out;
   JointDef& d = out.def;
   if (type == "ball") {
-    check_keys(ctx, j, {"type", "name", "bodies", "collide_connected", "break_force", "anchor"}, "",
-               "a ball joint");
+    check_keys(ctx, j,
+               {"type", "name", "bodies", "collide_connected", "break_force", "anchor", "friction"},
+               "", "a ball joint");
     d.type = JointType::Ball;
   } else if (type == "hinge") {
     check_keys(ctx, j,
                {"type", "name", "bodies", "collide_connected", "break_force", "anchor", "axis",
-                "limits", "motor", "spring"},
+                "limits", "motor", "spring", "friction"},
                "", "a hinge joint");
     d.type = JointType::Hinge;
   } else if (type == "slider") {
     check_keys(ctx, j,
                {"type", "name", "bodies", "collide_connected", "break_force", "anchor", "axis",
-                "limits", "motor", "spring"},
+                "limits", "motor", "spring", "friction"},
                "", "a slider joint");
     d.type = JointType::Slider;
   } else if (type == "fixed") {
@@ -150,7 +151,7 @@ SceneJoint parse_joint(const Ctx& ctx, const Json& j, const BodyRefs& refs) {
   } else if (type == "cone") {
     check_keys(ctx, j,
                {"type", "name", "bodies", "collide_connected", "break_force", "anchor", "axis",
-                "swing_limit", "twist_limits"},
+                "swing_limit", "twist_limits", "friction"},
                "", "a cone joint");
     d.type = JointType::Cone;
   } else {
@@ -264,6 +265,7 @@ SceneJoint parse_joint(const Ctx& ctx, const Json& j, const BodyRefs& refs) {
     d.collide_connected = to_bool(ctx, *v, "collide_connected");
   }
   if (const Json* v = find(j, "break_force")) d.break_force = positive(ctx, *v, "break_force");
+  if (const Json* v = find(j, "friction")) d.friction = non_negative(ctx, *v, "friction");
 
   if (swapped) {
     // The coordinate of the world relative to the body is minus that of the body relative to

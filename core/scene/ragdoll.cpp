@@ -71,6 +71,10 @@ constexpr std::array<Link, 15> kLinks = {{
 constexpr std::size_t kTorsoAndLimbs = 14;      // the parts and
 constexpr std::size_t kTorsoAndLimbLinks = 13;  // the joints without the hands
 
+// N m at scale 1: a tenth of a forearm's weight moment (1.5 kg at 13 cm): too little to hold a
+// limb up, enough to stop it rocking once it lies.
+constexpr double kJointFriction = 0.2;
+
 }  // namespace
 
 RagdollDef parse_ragdoll(const Ctx& ctx, const Json& j) {
@@ -80,6 +84,9 @@ RagdollDef parse_ragdoll(const Ctx& ctx, const Json& j) {
   }
   if (const auto it = j.find("scale"); it != j.end()) r.scale = positive(ctx, *it, "scale");
   if (const auto it = j.find("hands"); it != j.end()) r.hands = to_bool(ctx, *it, "hands");
+  if (const auto it = j.find("joint_friction"); it != j.end()) {
+    r.joint_friction = non_negative(ctx, *it, "joint_friction");
+  }
   return r;
 }
 
@@ -130,6 +137,8 @@ void expand_ragdoll(const RagdollDef& r, const Vec3& origin, std::vector<SceneBo
     d.axis = (q * Eigen::Vector3d(l.ax, l.ay, l.az)).normalized().cast<Real>();
     d.limits = JointLimits{true, Real(l.lo), Real(l.hi)};
     if (l.type == JointType::Cone) d.swing_limit = Real(l.swing);
+    const double friction = r.joint_friction >= 0 ? double(r.joint_friction) : kJointFriction;
+    d.friction = Real(friction * s * s * s * s);
     joints.push_back(std::move(j));
   }
 }

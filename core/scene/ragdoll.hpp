@@ -16,9 +16,13 @@ struct RagdollDef {
   Quat orientation = Quat::Identity();  // of the whole figure; identity: standing, facing +z
   Real scale = 1;                       // 1: 1.78 m tall
   bool hands = true;
+  // N m at scale 1, on every joint (scaled by scale^4, as the parts' weight moments are): the
+  // damping of muscles and ligaments that lets a fallen body come to rest (Jolt's ragdoll
+  // friction torque). Negative: the default.
+  Real joint_friction = -1;
 };
 
-// Reads the ragdoll's own keys (orientation, scale, hands).
+// Reads the ragdoll's own keys (orientation, scale, hands, joint_friction).
 RagdollDef parse_ragdoll(const Ctx& ctx, const Json& j);
 uint64_t ragdoll_bodies(const RagdollDef& r);
 uint64_t ragdoll_joints(const RagdollDef& r);

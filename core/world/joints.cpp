@@ -141,6 +141,8 @@ JointId World::create_joint(const JointDef& def) {
   check_spring(def.spring);
   if (def.type == JointType::Cone) check_swing(def.swing_limit);
   if (def.type == JointType::Distance) check_lengths(def.min_length, def.max_length);
+  check_arg(std::isfinite(def.friction) && def.friction >= 0, "friction",
+            "must be finite and >= 0, got " + detail::show_value(def.friction));
   check_arg(!std::isnan(def.break_force) && def.break_force > 0, "break_force",
             "must be > 0, got " + detail::show_value(def.break_force));
 
@@ -265,6 +267,15 @@ void World::set_joint_lengths(JointId id, Real min_length, Real max_length) {
   check_lengths(min_length, max_length);
   j.def.min_length = j.min_length = min_length;
   j.def.max_length = j.max_length = max_length;
+  wake_joint_bodies(s, j);
+}
+
+void World::set_joint_friction(JointId id, Real friction) {
+  WorldState& s = *state_;
+  Joint& j = s.joints.joints[joint_index(s, id)];
+  check_arg(std::isfinite(friction) && friction >= 0, "friction",
+            "must be finite and >= 0, got " + detail::show_value(friction));
+  j.def.friction = friction;
   wake_joint_bodies(s, j);
 }
 

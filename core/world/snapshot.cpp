@@ -281,7 +281,7 @@ void write_joints(ByteWriter& w, const detail::JointStore& js) {
          uint8_t(d.spring.enabled) << 4);
     for (Real v : {d.limits.lower, d.limits.upper, d.motor.speed, d.motor.max_force,
                    d.spring.frequency, d.spring.damping_ratio, d.spring.target, d.min_length,
-                   d.max_length, d.swing_limit, d.break_force}) {
+                   d.max_length, d.swing_limit, d.break_force, d.friction}) {
       w.real(v);
     }
     w.vec3(j.anchor_a);
@@ -295,6 +295,7 @@ void write_joints(ByteWriter& w, const detail::JointStore& js) {
     w.vec3(im.point);
     w.vec3(im.angular);
     w.vec3(im.linear);
+    w.vec3(im.friction);
     for (Real v : {im.axial, im.spring, im.motor, im.lower, im.upper, im.swing}) w.real(v);
     w.vec3(j.force);
     w.vec3(j.torque);
@@ -310,7 +311,7 @@ void write_joints(ByteWriter& w, const detail::JointStore& js) {
 // bodies (or the world), not the same one twice, and the joint slots point back at the joints.
 detail::JointStore read_joints(ByteReader& r, std::span<const uint32_t> body_slot_index) {
   detail::JointStore js;
-  constexpr std::size_t kJointBytes = 14 + 58 * sizeof(Real);
+  constexpr std::size_t kJointBytes = 14 + 62 * sizeof(Real);
   js.joints.resize(r.count(kJointBytes, "joint"));
   auto body_slot = [&](uint32_t slot, std::size_t k) {
     if (slot == detail::kWorldSlot) return;
@@ -343,7 +344,7 @@ detail::JointStore read_joints(ByteReader& r, std::span<const uint32_t> body_slo
     d.spring.enabled = flags & 16;
     for (Real* v : {&d.limits.lower, &d.limits.upper, &d.motor.speed, &d.motor.max_force,
                     &d.spring.frequency, &d.spring.damping_ratio, &d.spring.target, &d.min_length,
-                    &d.max_length, &d.swing_limit, &d.break_force}) {
+                    &d.max_length, &d.swing_limit, &d.break_force, &d.friction}) {
       *v = r.real();
     }
     j.anchor_a = r.vec3();
@@ -357,6 +358,7 @@ detail::JointStore read_joints(ByteReader& r, std::span<const uint32_t> body_slo
     im.point = r.vec3();
     im.angular = r.vec3();
     im.linear = r.vec3();
+    im.friction = r.vec3();
     for (Real* v : {&im.axial, &im.spring, &im.motor, &im.lower, &im.upper, &im.swing}) {
       *v = r.real();
     }

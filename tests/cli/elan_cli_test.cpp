@@ -121,6 +121,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"joint_swing_beyond_pi.json", "joint 0: swing_limit: must be in [0, pi]"},
         BadScene{"joint_reversed_twist.json", "joint 0: twist_limits: lo > hi"},
         BadScene{"joint_min_above_max.json", "joint 0: min_length: min_length 3 is above"},
+        BadScene{"joint_negative_friction.json", "joint 0 (\"shoulder\"): friction:"},
         BadScene{"joint_negative_length.json", "joint 0: min_length: must not be negative"},
         BadScene{"joint_zero_break_force.json", "joint 0: break_force: must be positive"},
         BadScene{"joint_duplicate_name.json", "joint 1 (\"j\"): name: duplicate name"},

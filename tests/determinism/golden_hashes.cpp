@@ -37,7 +37,7 @@ constexpr bool kCompareConstants = true;
 const std::map<std::string, uint64_t>& golden() {
   static const std::map<std::string, uint64_t> table = {
       {"chains", 0xceb01cb615b752b8ull},         {"joint_grid", 0x86303a13f5fc1f92ull},
-      {"joints_demo", 0xd19e6051a72e814eull},    {"ragdolls", 0x32382b063d5f9ad4ull},
+      {"joints_demo", 0xd19e6051a72e814eull},    {"ragdolls", 0x2a8cf7fe1712c7b4ull},
       {"jolt_pyramid", 0xab344d7ada962341ull},   {"many_pyramids", 0xe3fb7ffc9f7b0a61ull},
       {"pile10k", 0x5626c14c21beaef7ull},        {"pile1k", 0x35e775c6da6f834eull},
       {"pile4k", 0xc1db09a113ae9053ull},         {"pyramid10", 0x3043830915c9b8b9ull},

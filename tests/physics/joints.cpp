@@ -329,5 +329,43 @@ TEST(Joints, BreakForceBreaksInTheStepItIsExceeded) {
   EXPECT_TRUE(world.joint_removed_events().empty());
 }
 
+// Joint friction: a wheel (a 1 x 0.2 x 1 box) spun at 6 rad/s on a vertical hinge with friction
+// torque tau slows at tau / I to rest and stays; a cube on a cone joint at its centre, spun about
+// a tilted axis, slows the same way about that axis (its inertia is isotropic, and the friction
+// impulse opposes the relative angular velocity).
+TEST(Joints, FrictionStopsTheTurnAtItsTorque) {
+  World world = make_world();
+  const BodyId wheel =
+      add_body(world, test::box_shape(Vec3(Real(0.5), Real(0.1), Real(0.5))), at(Vec3(0, 1, 0)));
+  const BodyId cube =
+      add_body(world, test::box_shape(Vec3::Constant(Real(0.3))), at(Vec3(3, 1, 0)));
+  const Real i_wheel = world.mass(wheel) * 2 / 12;
+  const Real i_cube = world.mass(cube) * Real(0.36) * 2 / 12;
+  JointDef hinge;
+  hinge.type = JointType::Hinge;
+  hinge.body_a = wheel;
+  hinge.anchor = Vec3(0, 1, 0);
+  hinge.axis = Vec3::UnitY();
+  hinge.friction = 2 * i_wheel;  // 2 rad/s^2: at rest after 3 s
+  world.create_joint(hinge);
+  JointDef cone;
+  cone.type = JointType::Cone;
+  cone.body_a = cube;
+  cone.anchor = Vec3(3, 1, 0);
+  cone.axis = Vec3::UnitY();
+  cone.friction = 2 * i_cube;
+  world.create_joint(cone);
+  const Vec3 spin_axis = Vec3(1, 2, 2).normalized();
+  world.set_angular_velocity(wheel, Vec3(0, 6, 0));
+  world.set_angular_velocity(cube, 6 * spin_axis);
+  for (int s = 1; s <= 240; ++s) {
+    world.step(kDt);
+    const Real expected = std::max(Real(0), 6 - 2 * Real(s) * kDt);
+    ASSERT_NEAR(world.angular_velocity(wheel).y(), expected, Real(0.02)) << "step " << s;
+    ASSERT_NEAR(world.angular_velocity(cube).dot(spin_axis), expected, Real(0.02)) << "step " << s;
+  }
+  EXPECT_LT(world.angular_velocity(cube).norm(), Real(1e-3));
+}
+
 }  // namespace joints_test
 }  // namespace elan

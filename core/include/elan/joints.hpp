@@ -75,6 +75,10 @@ struct JointDef {
   Real min_length = -1;
   Real max_length = -1;
   Real swing_limit = Real(3.14159265358979323846);  ///< Cone: rad, in [0, pi]
+  /// N m (slider: N), >= 0: joint friction, a torque (force) up to this much that resists the
+  /// bodies' relative turning (sliding): Ball and Cone about every axis, Hinge about its axis,
+  /// Slider along it (Jolt's max friction torque; Box2D emulates it with a motor of speed 0).
+  Real friction = 0;
   bool collide_connected = false;  ///< false: the two bodies do not collide with each other
   /// N, > 0: the joint is removed in the step in which its constraint force exceeds this.
   Real break_force = std::numeric_limits<Real>::infinity();

@@ -70,7 +70,7 @@ class World {
   /// Creates a joint between steps (see JointDef). Throws elan::Error naming the field: a stale
   /// body, A == B, neither body dynamic, a zero or non-finite axis, limits lower > upper, a
   /// negative motor force, a spring frequency <= 0, lengths out of order, a swing limit outside
-  /// [0, pi], break_force <= 0. Wakes the bodies.
+  /// [0, pi], a negative friction, break_force <= 0. Wakes the bodies.
   JointId create_joint(const JointDef& def);
   /// Removes a joint between steps (no event) and wakes its bodies.
   void destroy_joint(JointId id);
@@ -86,6 +86,7 @@ class World {
   void set_joint_limits(JointId id, const JointLimits& limits);
   void set_joint_swing_limit(JointId id, Real swing_limit);              ///< Cone, rad in [0, pi]
   void set_joint_lengths(JointId id, Real min_length, Real max_length);  ///< Distance, m
+  void set_joint_friction(JointId id, Real friction);                    ///< N m (slider: N), >= 0
   /// Constraint force (N, world) and torque (N m, world) the joint applied to body A over the
   /// last step (the last substep's impulses / substep time); zero before its first step.
   Vec3 joint_force(JointId id) const;
