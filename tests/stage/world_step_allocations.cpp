@@ -135,6 +135,16 @@ TEST(StepAllocations, NoneOnceAPileHasSettled) {
   }
 }
 
+// Joints: the rows, the groups and the island links keep their capacity; the chains swing over a
+// pile, so the joints share the step with contacts that come and go.
+TEST(StepAllocations, NoneOnceJointedScenesAreWarm) {
+  if (test::kSanitized) GTEST_SKIP() << "the optimised build checks the counts";
+  for (int threads : {1, 2}) {
+    EXPECT_EQ(allocations_once_warm("chains.json", threads, 300, 120), 0) << threads << " threads";
+    EXPECT_EQ(allocations_once_warm("ragdolls.json", threads, 200, 60), 0) << threads << " threads";
+  }
+}
+
 // Warm-up includes the end of the first windows of SpikeTrim (64 steps each), which hand back what
 // the first steps left in the collide stage's new-key buffers; the count spans two window ends.
 TEST(StepAllocations, NoneOnceAPyramidIsWarm) {
