@@ -46,6 +46,7 @@ struct JointRow {
   Real spring_target = 0;         // rad, m; distance: rest length
   Real swing_limit = 0;           // rad
   Softness spring;
+  Softness softness;  // the joint's own rows (JointDef::constraint_hertz)
   JointImpulses impulses;
   // The geometry at the current poses (refresh_joints), and the point rows' mass matrix
   // (J M^-1 J^T)^-1 (kg) at the step's start.

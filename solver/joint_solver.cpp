@@ -13,10 +13,9 @@ namespace {
 
 constexpr Real kPi = Real(3.14159265358979323846);
 
-// Joints are stiffer than contacts, as in Box2D v3 (twice the contact stiffness): a chain or a
-// ragdoll sags less, and a joint has no speculative margin to hide a soft response in.
+// Joints are stiffer than contacts by default, as in Box2D v3 (twice the contact stiffness): a
+// chain or a ragdoll sags less, and a joint has no speculative margin to hide a soft response in.
 constexpr Real kJointHertzScale = 2;
-constexpr Real kJointDampingRatio = 2;
 
 // Joint rows prepared per block of the parallel loop.
 constexpr std::size_t kPrepareGrain = 256;
@@ -72,10 +71,9 @@ struct Soft {
   Real bias_rate = 0, mass_scale = 1, impulse_scale = 0;
 };
 
-Soft soft_of(const JointSolverContext& ctx, bool use_bias) {
-  return use_bias
-             ? Soft{ctx.softness.bias_rate, ctx.softness.mass_scale, ctx.softness.impulse_scale}
-             : Soft{};
+Soft soft_of(const JointRow& j, bool use_bias) {
+  return use_bias ? Soft{j.softness.bias_rate, j.softness.mass_scale, j.softness.impulse_scale}
+                  : Soft{};
 }
 
 using Pose = JointPose;
@@ -192,7 +190,7 @@ void solve_axis(const JointSolverContext& ctx, JointRow& j, const Row& row, Real
     apply(row, a, b, j.impulses.motor - old);
   }
   if (j.flags & kJointLimit) {
-    const Soft soft = soft_of(ctx, use_bias);
+    const Soft soft = soft_of(j, use_bias);
     // A limit not yet reached is speculative: it lets the coordinate close the gap in this
     // substep and no further (bias = gap / h, rigid).
     auto limit = [&](Real c, Real sign, Real& accumulated) {
@@ -228,9 +226,8 @@ void solve_angular_friction(JointRow& j, Side& a, Side& b) {
 }
 
 // The anchors coincide: three rows solved as one block.
-void solve_point(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
-                 bool use_bias) {
-  const Soft soft = soft_of(ctx, use_bias);
+void solve_point(JointRow& j, const Pose& p, Side& a, Side& b, bool use_bias) {
+  const Soft soft = soft_of(j, use_bias);
   const Vec3 rate = b.v + b.w.cross(p.r_b) - a.v - a.w.cross(p.r_a);
   const Vec3 impulse = -soft.mass_scale * (j.point_mass * (rate + soft.bias_rate * p.separation)) -
                        soft.impulse_scale * j.impulses.point;
@@ -249,9 +246,8 @@ Vec3 orientation_error(const Pose& p) {
 }
 
 // The relative orientation is locked: three rows, one block.
-void solve_orientation(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
-                       bool use_bias) {
-  const Soft soft = soft_of(ctx, use_bias);
+void solve_orientation(JointRow& j, const Pose& p, Side& a, Side& b, bool use_bias) {
+  const Soft soft = soft_of(j, use_bias);
   const Vec3 rate = a.w - b.w;
   const Vec3 impulse = -soft.mass_scale * (inverse_or_zero(to_mat(a.i + b.i)) *
                                            (rate + soft.bias_rate * orientation_error(p))) -
@@ -263,9 +259,8 @@ void solve_orientation(const JointSolverContext& ctx, JointRow& j, const Pose& p
 
 // The hinge's axes stay aligned: A's axis a keeps a . b1 = a . b2 = 0 with B's two normals;
 // rate_k = (a x b_k) . (w_a - w_b). Two rows, one block.
-void solve_hinge_axes(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
-                      bool use_bias) {
-  const Soft soft = soft_of(ctx, use_bias);
+void solve_hinge_axes(JointRow& j, const Pose& p, Side& a, Side& b, bool use_bias) {
+  const Soft soft = soft_of(j, use_bias);
   const Vec3 axis = p.frame_a * Vec3::UnitX();
   const Vec3 b1 = p.frame_b * Vec3::UnitY(), b2 = p.frame_b * Vec3::UnitZ();
   const Vec3 u1 = axis.cross(b1), u2 = axis.cross(b2);
@@ -288,9 +283,8 @@ void solve_hinge_axes(const JointSolverContext& ctx, JointRow& j, const Pose& p,
 }
 
 // The slider's anchor stays on B's axis: two rows along B's normals, one block.
-void solve_slider_line(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side& a, Side& b,
-                       bool use_bias) {
-  const Soft soft = soft_of(ctx, use_bias);
+void solve_slider_line(JointRow& j, const Pose& p, Side& a, Side& b, bool use_bias) {
+  const Soft soft = soft_of(j, use_bias);
   const Vec3 d = -p.separation;  // A's anchor minus B's
   const Vec3 r_b = p.r_b + d;    // B's centre to A's anchor
   const LinearRow row1 = linear_row(a, b, p.frame_b * Vec3::UnitY(), p.r_a, r_b);
@@ -327,9 +321,9 @@ void solve_swing(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side
   if (c > 0) {
     bias = c * ctx.inv_h;
   } else if (use_bias) {
-    bias = ctx.softness.bias_rate * c;
-    mass_scale = ctx.softness.mass_scale;
-    impulse_scale = ctx.softness.impulse_scale;
+    bias = j.softness.bias_rate * c;
+    mass_scale = j.softness.mass_scale;
+    impulse_scale = j.softness.impulse_scale;
   }
   const Real rate = -rate_of(row, a, b);
   const Real impulse = -row.mass * mass_scale * (rate + bias) - impulse_scale * j.impulses.swing;
@@ -356,7 +350,7 @@ void solve_distance(const JointSolverContext& ctx, JointRow& j, const Pose& p, S
   const DistanceGeometry g = distance_geometry(p, a, b);
   const bool rigid = j.lower == j.upper && !(j.flags & kJointSpring);
   if (rigid) {
-    const Soft soft = soft_of(ctx, use_bias);
+    const Soft soft = soft_of(j, use_bias);
     const Real c = g.length - j.lower;
     const Real impulse =
         -soft.mass_scale * g.row.mass * (rate_of(g.row, a, b) + soft.bias_rate * c) -
@@ -389,7 +383,7 @@ void apply_point(const JointSolverContext& ctx, const JointRow& j, const Vec3& i
 void solve_ball(const JointSolverContext& ctx, JointRow& j, bool use_bias) {
   SolverBody& pa = ctx.bodies[j.packet_a];
   SolverBody& pb = ctx.bodies[j.packet_b];
-  const Soft soft = soft_of(ctx, use_bias);
+  const Soft soft = soft_of(j, use_bias);
   const Pose& p = j.pose;
   const Vec3 rate = pb.v + pb.w.cross(p.r_b) - pa.v - pa.w.cross(p.r_a);
   const Vec3 impulse = -soft.mass_scale * (j.point_mass * (rate + soft.bias_rate * p.separation)) -
@@ -438,8 +432,6 @@ JointSolverContext make_joint_context(const SolveSettings& settings, SolverState
   ctx.written_end = state.half_start[kHalves];
   ctx.h = settings.dt / Real(settings.substeps);
   ctx.inv_h = 1 / ctx.h;
-  const Real contact_hertz = std::min(settings.contact_hertz, Real(0.25) * ctx.inv_h);
-  ctx.softness = make_softness(kJointHertzScale * contact_hertz, kJointDampingRatio, ctx.h);
   return ctx;
 }
 
@@ -447,6 +439,7 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
                     std::span<const uint32_t> slot_index, const SolveSettings& settings,
                     SolverState& st) {
   const Real h = settings.dt / Real(settings.substeps);
+  const Real default_hertz = kJointHertzScale * std::min(settings.contact_hertz, Real(0.25) / h);
   auto group_of = [&](uint32_t packet) -> int {
     if (packet == 0 || packet >= st.half_start[kHalves]) return -1;  // not written
     return packet < st.half_start[1] ? 0 : 1;
@@ -520,6 +513,8 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
       r.flags |= kJointSpring;
       r.spring_target = d.spring.target;
     }
+    r.softness = make_softness(d.constraint_hertz > 0 ? d.constraint_hertz : default_hertz,
+                               d.constraint_damping_ratio, h);
     if (r.flags & kJointSpring)
       r.spring = make_softness(d.spring.frequency, d.spring.damping_ratio, h);
     if (r.type == JointType::Cone && d.swing_limit < kPi) {
@@ -634,7 +629,7 @@ void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool 
       switch (j.type) {
         case JointType::Ball:
           if (j.flags & kJointFriction) solve_angular_friction(j, a, b);
-          solve_point(ctx, j, p, a, b, use_bias);
+          solve_point(j, p, a, b, use_bias);
           break;
         case JointType::Hinge: {
           const Quat rel = relative_frame(p.frame_a, p.frame_b);
@@ -642,8 +637,8 @@ void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool 
             const AngularRow row = angular_row(a, b, p.frame_a * Vec3::UnitX());
             solve_axis(ctx, j, row, twist_angle(rel), a, b, use_bias);
           }
-          solve_hinge_axes(ctx, j, p, a, b, use_bias);
-          solve_point(ctx, j, p, a, b, use_bias);
+          solve_hinge_axes(j, p, a, b, use_bias);
+          solve_point(j, p, a, b, use_bias);
           break;
         }
         case JointType::Slider: {
@@ -653,13 +648,13 @@ void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool 
             const LinearRow row = linear_row(a, b, axis, p.r_a, p.r_b + d);
             solve_axis(ctx, j, row, axis.dot(d), a, b, use_bias);
           }
-          solve_orientation(ctx, j, p, a, b, use_bias);
-          solve_slider_line(ctx, j, p, a, b, use_bias);
+          solve_orientation(j, p, a, b, use_bias);
+          solve_slider_line(j, p, a, b, use_bias);
           break;
         }
         case JointType::Fixed:
-          solve_orientation(ctx, j, p, a, b, use_bias);
-          solve_point(ctx, j, p, a, b, use_bias);
+          solve_orientation(j, p, a, b, use_bias);
+          solve_point(j, p, a, b, use_bias);
           break;
         case JointType::Distance:
           solve_distance(ctx, j, p, a, b, use_bias);
@@ -675,7 +670,7 @@ void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool 
                          use_bias);
             }
           }
-          solve_point(ctx, j, p, a, b, use_bias);
+          solve_point(j, p, a, b, use_bias);
           break;
         }
       }

@@ -41,7 +41,6 @@ struct JointSolverContext {
   std::span<const SolverBodyMass> masses;
   uint32_t written_end = 1;  // packets [1, written_end) are written
   Real h = 0, inv_h = 0;
-  Softness softness;  // the joints' own stiffness (position rows and limits)
 };
 JointSolverContext make_joint_context(const SolveSettings& settings, SolverState& state);
 

@@ -123,36 +123,43 @@ SceneJoint parse_joint(const Ctx& ctx, const Json& j, const BodyRefs& refs) {
   JointDef& d = out.def;
   if (type == "ball") {
     check_keys(ctx, j,
-               {"type", "name", "bodies", "collide_connected", "break_force", "anchor", "friction"},
+               {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
+                "constraint_damping_ratio", "anchor", "friction"},
                "", "a ball joint");
     d.type = JointType::Ball;
   } else if (type == "hinge") {
-    check_keys(ctx, j,
-               {"type", "name", "bodies", "collide_connected", "break_force", "anchor", "axis",
-                "limits", "motor", "spring", "friction"},
-               "", "a hinge joint");
+    check_keys(
+        ctx, j,
+        {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
+         "constraint_damping_ratio", "anchor", "axis", "limits", "motor", "spring", "friction"},
+        "", "a hinge joint");
     d.type = JointType::Hinge;
   } else if (type == "slider") {
-    check_keys(ctx, j,
-               {"type", "name", "bodies", "collide_connected", "break_force", "anchor", "axis",
-                "limits", "motor", "spring", "friction"},
-               "", "a slider joint");
+    check_keys(
+        ctx, j,
+        {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
+         "constraint_damping_ratio", "anchor", "axis", "limits", "motor", "spring", "friction"},
+        "", "a slider joint");
     d.type = JointType::Slider;
   } else if (type == "fixed") {
-    check_keys(ctx, j, {"type", "name", "bodies", "collide_connected", "break_force", "anchor"}, "",
-               "a fixed joint");
+    check_keys(ctx, j,
+               {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
+                "constraint_damping_ratio", "anchor"},
+               "", "a fixed joint");
     d.type = JointType::Fixed;
   } else if (type == "distance") {
     check_keys(ctx, j,
-               {"type", "name", "bodies", "collide_connected", "break_force", "anchors",
-                "min_length", "max_length", "spring", "rest_length"},
+               {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
+                "constraint_damping_ratio", "anchors", "min_length", "max_length", "spring",
+                "rest_length"},
                "", "a distance joint");
     d.type = JointType::Distance;
   } else if (type == "cone") {
-    check_keys(ctx, j,
-               {"type", "name", "bodies", "collide_connected", "break_force", "anchor", "axis",
-                "swing_limit", "twist_limits", "friction"},
-               "", "a cone joint");
+    check_keys(
+        ctx, j,
+        {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
+         "constraint_damping_ratio", "anchor", "axis", "swing_limit", "twist_limits", "friction"},
+        "", "a cone joint");
     d.type = JointType::Cone;
   } else {
     fail(ctx, "type",
@@ -266,6 +273,12 @@ SceneJoint parse_joint(const Ctx& ctx, const Json& j, const BodyRefs& refs) {
   }
   if (const Json* v = find(j, "break_force")) d.break_force = positive(ctx, *v, "break_force");
   if (const Json* v = find(j, "friction")) d.friction = non_negative(ctx, *v, "friction");
+  if (const Json* v = find(j, "constraint_hertz")) {
+    d.constraint_hertz = non_negative(ctx, *v, "constraint_hertz");
+  }
+  if (const Json* v = find(j, "constraint_damping_ratio")) {
+    d.constraint_damping_ratio = non_negative(ctx, *v, "constraint_damping_ratio");
+  }
 
   if (swapped) {
     // The coordinate of the world relative to the body is minus that of the body relative to

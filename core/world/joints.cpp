@@ -143,6 +143,11 @@ JointId World::create_joint(const JointDef& def) {
   if (def.type == JointType::Distance) check_lengths(def.min_length, def.max_length);
   check_arg(std::isfinite(def.friction) && def.friction >= 0, "friction",
             "must be finite and >= 0, got " + detail::show_value(def.friction));
+  check_arg(std::isfinite(def.constraint_hertz) && def.constraint_hertz >= 0, "constraint_hertz",
+            "must be finite and >= 0, got " + detail::show_value(def.constraint_hertz));
+  check_arg(std::isfinite(def.constraint_damping_ratio) && def.constraint_damping_ratio >= 0,
+            "constraint_damping_ratio",
+            "must be finite and >= 0, got " + detail::show_value(def.constraint_damping_ratio));
   check_arg(!std::isnan(def.break_force) && def.break_force > 0, "break_force",
             "must be > 0, got " + detail::show_value(def.break_force));
 

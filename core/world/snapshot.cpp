@@ -279,9 +279,10 @@ void write_joints(ByteWriter& w, const detail::JointStore& js) {
     w.u8(uint8_t(d.has_anchor) | uint8_t(d.collide_connected) << 1 |
          uint8_t(d.limits.enabled) << 2 | uint8_t(d.motor.enabled) << 3 |
          uint8_t(d.spring.enabled) << 4);
-    for (Real v : {d.limits.lower, d.limits.upper, d.motor.speed, d.motor.max_force,
-                   d.spring.frequency, d.spring.damping_ratio, d.spring.target, d.min_length,
-                   d.max_length, d.swing_limit, d.break_force, d.friction}) {
+    for (Real v :
+         {d.limits.lower, d.limits.upper, d.motor.speed, d.motor.max_force, d.spring.frequency,
+          d.spring.damping_ratio, d.spring.target, d.min_length, d.max_length, d.swing_limit,
+          d.break_force, d.friction, d.constraint_hertz, d.constraint_damping_ratio}) {
       w.real(v);
     }
     w.vec3(j.anchor_a);
@@ -311,7 +312,7 @@ void write_joints(ByteWriter& w, const detail::JointStore& js) {
 // bodies (or the world), not the same one twice, and the joint slots point back at the joints.
 detail::JointStore read_joints(ByteReader& r, std::span<const uint32_t> body_slot_index) {
   detail::JointStore js;
-  constexpr std::size_t kJointBytes = 14 + 62 * sizeof(Real);
+  constexpr std::size_t kJointBytes = 14 + 64 * sizeof(Real);
   js.joints.resize(r.count(kJointBytes, "joint"));
   auto body_slot = [&](uint32_t slot, std::size_t k) {
     if (slot == detail::kWorldSlot) return;
@@ -342,9 +343,10 @@ detail::JointStore read_joints(ByteReader& r, std::span<const uint32_t> body_slo
     d.limits.enabled = flags & 4;
     d.motor.enabled = flags & 8;
     d.spring.enabled = flags & 16;
-    for (Real* v : {&d.limits.lower, &d.limits.upper, &d.motor.speed, &d.motor.max_force,
-                    &d.spring.frequency, &d.spring.damping_ratio, &d.spring.target, &d.min_length,
-                    &d.max_length, &d.swing_limit, &d.break_force, &d.friction}) {
+    for (Real* v :
+         {&d.limits.lower, &d.limits.upper, &d.motor.speed, &d.motor.max_force, &d.spring.frequency,
+          &d.spring.damping_ratio, &d.spring.target, &d.min_length, &d.max_length, &d.swing_limit,
+          &d.break_force, &d.friction, &d.constraint_hertz, &d.constraint_damping_ratio}) {
       *v = r.real();
     }
     j.anchor_a = r.vec3();

@@ -107,7 +107,7 @@ TEST(SnapshotFormat, OtherVersionAndRealSizeAreRefusedByName) {
 
 // The joint section's bytes (it follows the contacts).
 std::size_t joint_bytes(const detail::WorldState& s) {
-  return 4 + s.joints.size() * (14 + 62 * sizeof(Real)) + 4 + 8 * s.joints.slot_index.size() + 4 +
+  return 4 + s.joints.size() * (14 + 64 * sizeof(Real)) + 4 + 8 * s.joints.slot_index.size() + 4 +
          4 * s.joints.free_slots.size();
 }
 

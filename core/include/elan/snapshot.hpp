@@ -54,7 +54,8 @@ inline constexpr uint32_t kSnapshotVersion = 8;
 ///       (UINT32_MAX: the world), u32 joint slot, 3R anchor, 3R anchor b, 3R axis, u8 flags
 ///       (has_anchor 1, collide_connected 2, limits 4, motor 8, spring 16), R limits lower,
 ///       upper, motor speed, max force, spring frequency, damping ratio, target, min length,
-///       max length, swing limit, break force, friction, 3R anchor a and 3R anchor b in the bodies'
+///       max length, swing limit, break force, friction, constraint hertz and damping ratio,
+///       3R anchor a and 3R anchor b in the bodies'
 ///       frames, 4R frame a, 4R frame b, R min, max and rest length as resolved, impulses
 ///       (3R point, 3R angular, 3R linear, 3R friction, R axial, spring, motor, lower, upper,
 ///       swing), 3R force, 3R torque | u32 joint slots m, m x u32 index, m x u32 generation | u32
