@@ -48,8 +48,8 @@ struct JointRow {
   Softness spring;
   Softness softness;  // the joint's own rows (JointDef::constraint_hertz)
   JointImpulses impulses;
-  // The geometry at the current poses (refresh_joints), and the point rows' mass matrix
-  // (J M^-1 J^T)^-1 (kg) at the step's start.
+  // At the current poses (refresh_joints): the geometry, and the point rows' mass matrix
+  // (J M^-1 J^T)^-1, kg.
   JointPose pose;
   SymMat3 point_mass;
 };

@@ -119,8 +119,15 @@ bool has_point_rows(JointType type) {
   return type != JointType::Slider && type != JointType::Distance;
 }
 
-void refresh_row(JointRow& j, std::span<const SolverBody> packets) {
+// The geometry at the current poses, and the point rows' mass matrix there. Kept fresh every
+// substep: a mass matrix from the step's start, on a body turning fast about a distant anchor,
+// points its correction the wrong way and the joint blows up (the soak test found it).
+void refresh_row(JointRow& j, std::span<const SolverBody> packets,
+                 std::span<const SolverBodyMass> masses) {
   j.pose = pose_of(j, packets[j.packet_a], packets[j.packet_b]);
+  if (has_point_rows(j.type)) {
+    j.point_mass = point_mass_of(j.pose, masses[j.packet_a], masses[j.packet_b]);
+  }
 }
 
 // A row that turns A about `axis` (unit, world) against B: rate = axis . (w_a - w_b).
@@ -392,6 +399,43 @@ void solve_ball(const JointSolverContext& ctx, JointRow& j, bool use_bias) {
   apply_point(ctx, j, impulse);
 }
 
+// The impulse along the joint's coordinate: spring, motor, limits and, for hinges and sliders,
+// friction (N s, N m s).
+Real axial_impulse(const JointRow& j) {
+  const JointImpulses& im = j.impulses;
+  const bool along_axis = j.type == JointType::Hinge || j.type == JointType::Slider;
+  return im.spring + im.motor + im.lower - im.upper + (along_axis ? im.friction.x() : Real(0));
+}
+
+// The angular impulse the joint's rotational rows apply to A (B gets its opposite), world, at
+// pose p: what the warm start applies again and what the joint's torque reports.
+Vec3 angular_impulse(const JointRow& j, const Pose& p) {
+  const JointImpulses& im = j.impulses;
+  const Vec3 axis_a = p.frame_a * Vec3::UnitX();
+  switch (j.type) {
+    case JointType::Ball:
+      return im.friction;
+    case JointType::Fixed:
+    case JointType::Slider:
+      return im.angular;
+    case JointType::Hinge:
+      return axis_a.cross(p.frame_b * Vec3::UnitY()) * im.angular.x() +
+             axis_a.cross(p.frame_b * Vec3::UnitZ()) * im.angular.y() + axis_a * axial_impulse(j);
+    case JointType::Cone: {
+      Vec3 torque = im.friction;
+      const Vec3 axis_b = p.frame_b * Vec3::UnitX();
+      const Vec3 twist = axis_a + axis_b;
+      if (twist.squaredNorm() > Real(1e-12)) torque += twist.normalized() * axial_impulse(j);
+      const Vec3 n = axis_b.cross(axis_a);
+      if (n.norm() > Real(1e-6)) torque -= n.normalized() * im.swing;
+      return torque;
+    }
+    case JointType::Distance:
+      break;
+  }
+  return Vec3::Zero();
+}
+
 template <class F>
 void for_joint(const JointSolverContext& ctx, JointRow& j, F&& f) {
   SolverBody& pa = ctx.bodies[j.packet_a];
@@ -534,13 +578,7 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
     } else {
       r.impulses.friction.setZero();
     }
-    refresh_row(r, st.packets);
-    // perf: the point rows' mass matrix is the step's start one in every substep (as Box2D v3
-    // prepares its joints' masses once a step): the arms turn little in a step, and a mass off by
-    // that much changes how fast a pass converges, not what it converges to.
-    if (has_point_rows(r.type)) {
-      r.point_mass = point_mass_of(r.pose, st.masses[r.packet_a], st.masses[r.packet_b]);
-    }
+    refresh_row(r, st.packets, st.masses);
   };
   uint32_t next[kGroups];
   for (uint32_t g = 0; g < kGroups; ++g) next[g] = st.joint_group_start[g];
@@ -555,7 +593,7 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
 }
 
 void refresh_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
-  for (JointRow& j : rows) refresh_row(j, ctx.bodies);
+  for (JointRow& j : rows) refresh_row(j, ctx.bodies, ctx.masses);
 }
 
 void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
@@ -573,46 +611,17 @@ void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) 
         b.v += b.m * P;
         b.w += b.i * p.r_b.cross(P);
       }
-      const bool along_axis = j.type == JointType::Hinge || j.type == JointType::Slider;
-      const Real axial =
-          im.spring + im.motor + im.lower - im.upper + (along_axis ? im.friction.x() : Real(0));
-      const Vec3 axis_a = p.frame_a * Vec3::UnitX();
-      Vec3 torque = Vec3::Zero();
-      switch (j.type) {
-        case JointType::Fixed:
-          torque = im.angular;
-          break;
-        case JointType::Hinge:
-          torque = axis_a.cross(p.frame_b * Vec3::UnitY()) * im.angular.x() +
-                   axis_a.cross(p.frame_b * Vec3::UnitZ()) * im.angular.y() + axis_a * axial;
-          break;
-        case JointType::Cone: {
-          torque = im.friction;
-          const Vec3 axis_b = p.frame_b * Vec3::UnitX();
-          const Vec3 twist = axis_a + axis_b;
-          if (twist.squaredNorm() > Real(1e-12)) torque += twist.normalized() * axial;
-          const Vec3 n = axis_b.cross(axis_a);
-          if (n.norm() > Real(1e-6)) torque -= n.normalized() * im.swing;
-          break;
-        }
-        case JointType::Slider: {
-          torque = im.angular;
-          const Vec3 d = -p.separation;
-          const Vec3 r_b = p.r_b + d;
-          apply(linear_row(a, b, p.frame_b * Vec3::UnitY(), p.r_a, r_b), a, b, im.linear.x());
-          apply(linear_row(a, b, p.frame_b * Vec3::UnitZ(), p.r_a, r_b), a, b, im.linear.y());
-          apply(linear_row(a, b, p.frame_b * Vec3::UnitX(), p.r_a, r_b), a, b, axial);
-          break;
-        }
-        case JointType::Distance: {
-          const DistanceGeometry g = distance_geometry(p, a, b);
-          apply(g.row, a, b, im.axial + axial);
-          break;
-        }
-        case JointType::Ball:
-          torque = im.friction;
-          break;
+      const Real axial = axial_impulse(j);
+      if (j.type == JointType::Slider) {
+        const Vec3 d = -p.separation;
+        const Vec3 r_b = p.r_b + d;
+        apply(linear_row(a, b, p.frame_b * Vec3::UnitY(), p.r_a, r_b), a, b, im.linear.x());
+        apply(linear_row(a, b, p.frame_b * Vec3::UnitZ(), p.r_a, r_b), a, b, im.linear.y());
+        apply(linear_row(a, b, p.frame_b * Vec3::UnitX(), p.r_a, r_b), a, b, axial);
+      } else if (j.type == JointType::Distance) {
+        apply(distance_geometry(p, a, b).row, a, b, im.axial + axial);
       }
+      const Vec3 torque = angular_impulse(j, p);
       a.w += a.i * torque;
       b.w -= b.i * torque;
     });
@@ -682,50 +691,34 @@ void store_joint_impulses(std::span<const JointRow> rows, const JointSolverConte
                           JointStore& store, std::vector<uint32_t>& broken) {
   for (const JointRow& r : rows) {
     Joint& j = store.joints[r.joint];
+    const JointImpulses& im = r.impulses;
+    const bool finite =
+        im.point.allFinite() && im.angular.allFinite() && im.linear.allFinite() &&
+        im.friction.allFinite() &&
+        std::isfinite(im.axial + im.spring + im.motor + im.lower + im.upper + im.swing);
+    if (!finite) {
+      // A body of the joint went non-finite and is quarantined by finalize_bodies: the joint
+      // starts again from rest rather than warm starting its neighbours with NaN.
+      j.impulses = JointImpulses{};
+      j.force = j.torque = Vec3::Zero();
+      continue;
+    }
     j.impulses = r.impulses;
     // The force and torque on A at the end of the step, from the last substep's impulses and the
     // final geometry.
     const SolverBody& pa = ctx.bodies[r.packet_a];
     const SolverBody& pb = ctx.bodies[r.packet_b];
     const Pose p = pose_of(r, pa, pb);
-    const JointImpulses& im = r.impulses;
-    const bool along_axis = r.type == JointType::Hinge || r.type == JointType::Slider;
-    const Real axial =
-        im.spring + im.motor + im.lower - im.upper + (along_axis ? im.friction.x() : Real(0));
-    const Vec3 axis_a = p.frame_a * Vec3::UnitX();
+    const Real axial = axial_impulse(r);
     Vec3 force = -im.point;
-    Vec3 torque = Vec3::Zero();
-    switch (r.type) {
-      case JointType::Ball:
-        torque = im.friction;
-        break;
-      case JointType::Fixed:
-        torque = im.angular;
-        break;
-      case JointType::Hinge:
-        torque = axis_a.cross(p.frame_b * Vec3::UnitY()) * im.angular.x() +
-                 axis_a.cross(p.frame_b * Vec3::UnitZ()) * im.angular.y() + axis_a * axial;
-        break;
-      case JointType::Cone: {
-        torque = im.friction;
-        const Vec3 axis_b = p.frame_b * Vec3::UnitX();
-        const Vec3 twist = axis_a + axis_b;
-        if (twist.squaredNorm() > Real(1e-12)) torque += twist.normalized() * axial;
-        const Vec3 n = axis_b.cross(axis_a);
-        if (n.norm() > Real(1e-6)) torque -= n.normalized() * im.swing;
-        break;
-      }
-      case JointType::Slider:
-        torque = im.angular;
-        force = p.frame_b * Vec3(axial, im.linear.x(), im.linear.y());
-        break;
-      case JointType::Distance: {
-        const Real length = p.separation.norm();
-        const Vec3 e = length > Real(1e-9) ? Vec3(p.separation / length) : Vec3(Vec3::UnitY());
-        force = -e * (im.axial + axial);
-        break;
-      }
+    if (r.type == JointType::Slider) {
+      force = p.frame_b * Vec3(axial, im.linear.x(), im.linear.y());
+    } else if (r.type == JointType::Distance) {
+      const Real length = p.separation.norm();
+      const Vec3 e = length > Real(1e-9) ? Vec3(p.separation / length) : Vec3(Vec3::UnitY());
+      force = -e * (im.axial + axial);
     }
+    const Vec3 torque = angular_impulse(r, p);
     j.force = force * ctx.inv_h;
     j.torque = torque * ctx.inv_h;
     if (j.force.norm() > j.def.break_force) broken.push_back(r.joint);

@@ -45,7 +45,7 @@ struct JointSolverContext {
 JointSolverContext make_joint_context(const SolveSettings& settings, SolverState& state);
 
 // The passes over rows [begin, end) of SolverState::joint_rows. refresh_joints re-reads the
-// packets' pose changes after the positions moved (the relax pass, before
+// packets' pose changes and inverse inertias after the positions moved (the relax pass, before
 // any other pass over the rows), as refresh_contacts does for the contacts.
 void refresh_joints(const JointSolverContext& ctx, std::span<JointRow> rows);
 void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows);
@@ -53,7 +53,7 @@ void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool 
 
 // After the solve: copies each row's impulses back into the store, and sets each joint's force
 // and torque on A (the last substep's impulses over the substep time). Appends the dense indices
-// of joints whose force exceeds their break_force to `broken`, ascending.
+// of joints whose force exceeds their break_force to `broken`, in row order (group by group).
 void store_joint_impulses(std::span<const JointRow> rows, const JointSolverContext& ctx,
                           JointStore& joints, std::vector<uint32_t>& broken);
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace elan::detail::scene_file {
 namespace {
@@ -116,56 +117,57 @@ const Json* find(const Json& j, const char* key) {
 
 }  // namespace
 
+namespace {
+
+// A joint type of the file: its name, its JointType and the keys it takes (those every joint
+// takes first).
+struct JointKind {
+  const char* name;
+  JointType type;
+  std::vector<const char*> keys;
+};
+
+const std::vector<JointKind>& joint_kinds() {
+  static const std::vector<JointKind> kinds = [] {
+    const std::vector<const char*> common = {"type",
+                                             "name",
+                                             "bodies",
+                                             "collide_connected",
+                                             "break_force",
+                                             "constraint_hertz",
+                                             "constraint_damping_ratio"};
+    std::vector<JointKind> out = {
+        {"ball", JointType::Ball, {"anchor", "friction"}},
+        {"hinge", JointType::Hinge, {"anchor", "axis", "limits", "motor", "spring", "friction"}},
+        {"slider", JointType::Slider, {"anchor", "axis", "limits", "motor", "spring", "friction"}},
+        {"fixed", JointType::Fixed, {"anchor"}},
+        {"distance",
+         JointType::Distance,
+         {"anchors", "min_length", "max_length", "spring", "rest_length"}},
+        {"cone", JointType::Cone, {"anchor", "axis", "swing_limit", "twist_limits", "friction"}},
+    };
+    for (JointKind& k : out) k.keys.insert(k.keys.begin(), common.begin(), common.end());
+    return out;
+  }();
+  return kinds;
+}
+
+}  // namespace
+
 SceneJoint parse_joint(const Ctx& ctx, const Json& j, const BodyRefs& refs) {
   object_of(ctx, j, "");
   const std::string type = to_string(ctx, require(ctx, j, "type", "type"), "type");
   SceneJoint out;
   JointDef& d = out.def;
-  if (type == "ball") {
-    check_keys(ctx, j,
-               {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
-                "constraint_damping_ratio", "anchor", "friction"},
-               "", "a ball joint");
-    d.type = JointType::Ball;
-  } else if (type == "hinge") {
-    check_keys(
-        ctx, j,
-        {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
-         "constraint_damping_ratio", "anchor", "axis", "limits", "motor", "spring", "friction"},
-        "", "a hinge joint");
-    d.type = JointType::Hinge;
-  } else if (type == "slider") {
-    check_keys(
-        ctx, j,
-        {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
-         "constraint_damping_ratio", "anchor", "axis", "limits", "motor", "spring", "friction"},
-        "", "a slider joint");
-    d.type = JointType::Slider;
-  } else if (type == "fixed") {
-    check_keys(ctx, j,
-               {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
-                "constraint_damping_ratio", "anchor"},
-               "", "a fixed joint");
-    d.type = JointType::Fixed;
-  } else if (type == "distance") {
-    check_keys(ctx, j,
-               {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
-                "constraint_damping_ratio", "anchors", "min_length", "max_length", "spring",
-                "rest_length"},
-               "", "a distance joint");
-    d.type = JointType::Distance;
-  } else if (type == "cone") {
-    check_keys(
-        ctx, j,
-        {"type", "name", "bodies", "collide_connected", "break_force", "constraint_hertz",
-         "constraint_damping_ratio", "anchor", "axis", "swing_limit", "twist_limits", "friction"},
-        "", "a cone joint");
-    d.type = JointType::Cone;
-  } else {
+  const JointKind* kind = nullptr;
+  for (const JointKind& k : joint_kinds()) kind = type == k.name ? &k : kind;
+  if (!kind) {
     fail(ctx, "type",
          "unknown joint type \"" + type +
              "\" (allowed: ball, hinge, slider, fixed, distance, cone)");
   }
+  check_keys(ctx, j, kind->keys, "", std::string("a ") + kind->name + " joint");
+  d.type = kind->type;
   if (const Json* v = find(j, "name")) out.name = to_string(ctx, *v, "name");
 
   const Json& bodies = require(ctx, j, "bodies", "bodies");

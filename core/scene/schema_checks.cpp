@@ -34,7 +34,7 @@ std::string show(double v) {
   return os.str();
 }
 
-void check_keys(const Ctx& ctx, const Json& obj, std::initializer_list<const char*> allowed,
+void check_keys(const Ctx& ctx, const Json& obj, std::span<const char* const> allowed,
                 const std::string& field_prefix, const std::string& what) {
   for (const auto& item : obj.items()) {
     bool known = false;

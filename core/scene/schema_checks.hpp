@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <span>
 #include <string>
 
 #include "core/scene/json_reader.hpp"
@@ -34,8 +35,13 @@ std::string show(const Json& j);
 std::string show(double v);
 
 // Each key of `obj` is one of `allowed`, or fail naming it (`field_prefix` + key) and `what`.
-void check_keys(const Ctx& ctx, const Json& obj, std::initializer_list<const char*> allowed,
+void check_keys(const Ctx& ctx, const Json& obj, std::span<const char* const> allowed,
                 const std::string& field_prefix, const std::string& what);
+inline void check_keys(const Ctx& ctx, const Json& obj, std::initializer_list<const char*> allowed,
+                       const std::string& field_prefix, const std::string& what) {
+  check_keys(ctx, obj, std::span<const char* const>(allowed.begin(), allowed.size()), field_prefix,
+             what);
+}
 // obj[key], or fail "missing" naming `field`.
 const Json& require(const Ctx& ctx, const Json& obj, const std::string& key,
                     const std::string& field);

@@ -366,6 +366,8 @@ void remove_joints_of(WorldState& w, uint32_t slot) {
 
 void remove_broken_joints(WorldState& w) {
   JointStore& js = w.joints;
+  // The rows list them group by group; events and removals go by joint index.
+  std::sort(w.broken_joints.begin(), w.broken_joints.end());
   for (const uint32_t k : w.broken_joints) {
     const Joint& j = js.joints[k];
     w.api.joint_events.push_back({JointId{j.slot, js.slot_generation[j.slot]},

@@ -111,7 +111,7 @@ TEST(JointSettling, RagdollHeapSettlesWithinItsLimits) {
   load_into(scene, world, "heap");
   ASSERT_EQ(world.joint_count(), 12u * 15u);
   const std::vector<Frames> frames = frames_at_creation(world);
-  const int steps = test::kSanitized ? 360 : 600;
+  const int steps = 600;
   for (int s = 0; s < steps; ++s) {
     world.step(scene.timestep);
     ASSERT_TRUE(test::all_finite(world)) << "step " << s;
