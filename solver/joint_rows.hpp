@@ -47,6 +47,9 @@ struct JointRow {
   Real swing_limit = 0;           // rad
   Softness spring;
   Softness softness;  // the joint's own rows (JointDef::constraint_hertz)
+  // Each side's inverse inertia k when it is k E (a sphere, a cube; 0 for a side the solve does
+  // not move), else -1: the point mass's refresh takes a shortcut for those.
+  Real isotropic_a = -1, isotropic_b = -1;
   JointImpulses impulses;
   // At the current poses (refresh_joints): the geometry, and the point rows' mass matrix
   // (J M^-1 J^T)^-1, kg.

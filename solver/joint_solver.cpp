@@ -101,8 +101,20 @@ SymMat3 arm_term(const Vec3& r, const SymMat3& i) {
   return {c0.x(), c1.y(), c2.z(), c1.x(), c2.x(), c2.y()};
 }
 
-SymMat3 point_mass_of(const Pose& p, const SolverBodyMass& a, const SolverBodyMass& b) {
-  const SymMat3 ta = arm_term(p.r_a, a.inv_inertia), tb = arm_term(p.r_b, b.inv_inertia);
+// perf: the same for an isotropic inverse inertia k E (a sphere, a cube; 0 for the world and
+// kinematic bodies), the joint grid's: k [r]x [r]x^T = k (|r|^2 E - r r^T).
+SymMat3 arm_term(const Vec3& r, Real k) {
+  const Real r2 = r.squaredNorm();
+  return {k * (r2 - r.x() * r.x()), k * (r2 - r.y() * r.y()), k * (r2 - r.z() * r.z()),
+          -k * r.x() * r.y(),       -k * r.x() * r.z(),       -k * r.y() * r.z()};
+}
+
+SymMat3 point_mass_of(const JointRow& j, const SolverBodyMass& a, const SolverBodyMass& b) {
+  const Pose& p = j.pose;
+  const SymMat3 ta =
+      j.isotropic_a >= 0 ? arm_term(p.r_a, j.isotropic_a) : arm_term(p.r_a, a.inv_inertia);
+  const SymMat3 tb =
+      j.isotropic_b >= 0 ? arm_term(p.r_b, j.isotropic_b) : arm_term(p.r_b, b.inv_inertia);
   const Real m = a.inv_mass + b.inv_mass;
   const Real xx = m + ta.xx + tb.xx, yy = m + ta.yy + tb.yy, zz = m + ta.zz + tb.zz;
   const Real xy = ta.xy + tb.xy, xz = ta.xz + tb.xz, yz = ta.yz + tb.yz;
@@ -126,7 +138,7 @@ void refresh_row(JointRow& j, std::span<const SolverBody> packets,
                  std::span<const SolverBodyMass> masses) {
   j.pose = pose_of(j, packets[j.packet_a], packets[j.packet_b]);
   if (has_point_rows(j.type)) {
-    j.point_mass = point_mass_of(j.pose, masses[j.packet_a], masses[j.packet_b]);
+    j.point_mass = point_mass_of(j, masses[j.packet_a], masses[j.packet_b]);
   }
 }
 
@@ -514,6 +526,14 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
     Vec3 c_a = Vec3::Zero(), c_b = Vec3::Zero();
     Quat q_a = Quat::Identity(), q_b = Quat::Identity();
     r.packet_a = r.packet_b = 0;
+    // A side's inverse inertia when it is the same about every axis (then its world form is that
+    // too), or -1. Read from the body's principal moments, exactly.
+    auto isotropic = [&](uint32_t slot, uint32_t packet) -> Real {
+      if (packet == 0 || packet >= st.half_start[kHalves]) return 0;  // no inertia in the solve
+      const uint32_t i = slot_index[slot];
+      const Real k = bodies.inv_ix[i];
+      return k == bodies.inv_iy[i] && k == bodies.inv_iz[i] ? k : Real(-1);
+    };
     if (j.slot_a != kWorldSlot) {
       const uint32_t i = slot_index[j.slot_a];
       c_a = bodies.position(i);
@@ -526,6 +546,8 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
       q_b = bodies.orientation(i);
       r.packet_b = st.packet_of[i];
     }
+    r.isotropic_a = j.slot_a == kWorldSlot ? 0 : isotropic(j.slot_a, r.packet_a);
+    r.isotropic_b = j.slot_b == kWorldSlot ? 0 : isotropic(j.slot_b, r.packet_b);
     r.type = j.def.type;
     r.r_a = q_a * j.anchor_a;
     r.r_b = q_b * j.anchor_b;
