@@ -146,7 +146,7 @@ TEST(JointSettling, JointGridHangsFromItsPins) {
   for (std::size_t i = 0; i < world.body_count(); ++i) mass += double(world.mass(world.body_at(i)));
   const double start = double(world.kinetic_energy()) + potential(world);
   double peak = 0;
-  const int steps = test::kSanitized ? 600 : 1200;
+  const int steps = 1200;
   for (int s = 0; s < steps; ++s) {
     world.step(scene.timestep);
     ASSERT_TRUE(test::all_finite(world)) << "step " << s;
