@@ -23,8 +23,8 @@ enum JointRowFlags : uint8_t {
 // (refresh_joints), and every pass until then reads it.
 struct JointPose {
   Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();                  // m, world arms
-  Quat frame_a = Quat::Identity(), frame_b = Quat::Identity();  // joint frames, world
   Vec3 separation = Vec3::Zero();                               // m: B's anchor minus A's
+  Quat frame_a = Quat::Identity(), frame_b = Quat::Identity();  // joint frames, world
 };
 
 // One joint prepared for the step: its packets, its frames at the step's start, its settings and
@@ -32,10 +32,17 @@ struct JointPose {
 // bundled across lanes: a scene has far fewer joints than contacts, and the rows of a kind differ
 // in shape.
 struct JointRow {
+  // perf: what a ball joint's passes read comes first, in the row's first two cache lines (a
+  // joint grid streams 20,000 rows a pass); the frames, settings and other impulses follow.
   uint32_t joint = 0;  // dense index in the JointStore
   uint32_t packet_a = 0, packet_b = 0;
   JointType type = JointType::Ball;
   uint8_t flags = 0;
+  Softness softness;                  // the joint's own rows (JointDef::constraint_hertz)
+  SymMat3 point_mass;                 // (J M^-1 J^T)^-1 of the point rows at the current poses, kg
+  Vec3 point_impulse = Vec3::Zero();  // N s: JointImpulses::point while the row is solved
+  // At the current poses (refresh_joints).
+  JointPose pose;
   Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();  // m, world: anchors minus centres at the start
   Quat frame_a = Quat::Identity(), frame_b = Quat::Identity();  // joint frames at the start
   Vec3 delta_center = Vec3::Zero();  // m: B's centre minus A's at the start
@@ -46,15 +53,10 @@ struct JointRow {
   Real spring_target = 0;         // rad, m; distance: rest length
   Real swing_limit = 0;           // rad
   Softness spring;
-  Softness softness;  // the joint's own rows (JointDef::constraint_hertz)
   // Each side's inverse inertia k when it is k E (a sphere, a cube; 0 for a side the solve does
   // not move), else -1: the point mass's refresh takes a shortcut for those.
   Real isotropic_a = -1, isotropic_b = -1;
-  JointImpulses impulses;
-  // At the current poses (refresh_joints): the geometry, and the point rows' mass matrix
-  // (J M^-1 J^T)^-1, kg.
-  JointPose pose;
-  SymMat3 point_mass;
+  JointImpulses impulses;  // all but `point`, which is point_impulse while the row is solved
 };
 
 // A joint as the islands see it: two dense body indices (UINT32_MAX for the world).

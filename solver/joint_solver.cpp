@@ -249,8 +249,8 @@ void solve_point(JointRow& j, const Pose& p, Side& a, Side& b, bool use_bias) {
   const Soft soft = soft_of(j, use_bias);
   const Vec3 rate = b.v + b.w.cross(p.r_b) - a.v - a.w.cross(p.r_a);
   const Vec3 impulse = -soft.mass_scale * (j.point_mass * (rate + soft.bias_rate * p.separation)) -
-                       soft.impulse_scale * j.impulses.point;
-  j.impulses.point += impulse;
+                       soft.impulse_scale * j.point_impulse;
+  j.point_impulse += impulse;
   a.v -= a.m * impulse;
   a.w -= a.i * p.r_a.cross(impulse);
   b.v += b.m * impulse;
@@ -406,8 +406,8 @@ void solve_ball(const JointSolverContext& ctx, JointRow& j, bool use_bias) {
   const Pose& p = j.pose;
   const Vec3 rate = pb.v + pb.w.cross(p.r_b) - pa.v - pa.w.cross(p.r_a);
   const Vec3 impulse = -soft.mass_scale * (j.point_mass * (rate + soft.bias_rate * p.separation)) -
-                       soft.impulse_scale * j.impulses.point;
-  j.impulses.point += impulse;
+                       soft.impulse_scale * j.point_impulse;
+  j.point_impulse += impulse;
   apply_point(ctx, j, impulse);
 }
 
@@ -588,6 +588,7 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
       r.swing_limit = d.swing_limit;
     }
     r.impulses = j.impulses;
+    r.point_impulse = j.impulses.point;
     // A part switched off since the last step has nothing to warm start.
     if (!(r.flags & kJointSpring)) r.impulses.spring = 0;
     if (!(r.flags & kJointMotor)) r.impulses.motor = 0;
@@ -621,13 +622,13 @@ void refresh_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
 void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows) {
   for (JointRow& j : rows) {
     if (j.type == JointType::Ball && !(j.flags & kJointFriction)) {
-      apply_point(ctx, j, j.impulses.point);
+      apply_point(ctx, j, j.point_impulse);
       continue;
     }
     for_joint(ctx, j, [&](const Pose& p, Side& a, Side& b) {
       const JointImpulses& im = j.impulses;
       if (j.type != JointType::Slider && j.type != JointType::Distance) {
-        const Vec3 P = im.point;
+        const Vec3 P = j.point_impulse;
         a.v -= a.m * P;
         a.w -= a.i * p.r_a.cross(P);
         b.v += b.m * P;
@@ -715,7 +716,7 @@ void store_joint_impulses(std::span<const JointRow> rows, const JointSolverConte
     Joint& j = store.joints[r.joint];
     const JointImpulses& im = r.impulses;
     const bool finite =
-        im.point.allFinite() && im.angular.allFinite() && im.linear.allFinite() &&
+        r.point_impulse.allFinite() && im.angular.allFinite() && im.linear.allFinite() &&
         im.friction.allFinite() &&
         std::isfinite(im.axial + im.spring + im.motor + im.lower + im.upper + im.swing);
     if (!finite) {
@@ -726,13 +727,14 @@ void store_joint_impulses(std::span<const JointRow> rows, const JointSolverConte
       continue;
     }
     j.impulses = r.impulses;
+    j.impulses.point = r.point_impulse;
     // The force and torque on A at the end of the step, from the last substep's impulses and the
     // final geometry.
     const SolverBody& pa = ctx.bodies[r.packet_a];
     const SolverBody& pb = ctx.bodies[r.packet_b];
     const Pose p = pose_of(r, pa, pb);
     const Real axial = axial_impulse(r);
-    Vec3 force = -im.point;
+    Vec3 force = -r.point_impulse;
     if (r.type == JointType::Slider) {
       force = p.frame_b * Vec3(axial, im.linear.x(), im.linear.y());
     } else if (r.type == JointType::Distance) {
