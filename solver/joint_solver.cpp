@@ -17,7 +17,7 @@ constexpr Real kPi = Real(3.14159265358979323846);
 // chain or a ragdoll sags less, and a joint has no speculative margin to hide a soft response in.
 constexpr Real kJointHertzScale = 2;
 
-// Joint rows prepared per block of the parallel loop.
+// Joint rows prepared (and stored back) per block of the parallel loops.
 constexpr std::size_t kPrepareGrain = 256;
 
 Real wrap_angle(Real a) {
@@ -711,8 +711,11 @@ void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool 
 }
 
 void store_joint_impulses(std::span<const JointRow> rows, const JointSolverContext& ctx,
-                          JointStore& store, std::vector<uint32_t>& broken) {
-  for (const JointRow& r : rows) {
+                          JointStore& store, std::vector<uint8_t>& broke,
+                          std::vector<uint32_t>& broken) {
+  broke.assign(rows.size(), 0);
+  auto store_row = [&](std::size_t row) {
+    const JointRow& r = rows[row];
     Joint& j = store.joints[r.joint];
     const JointImpulses& im = r.impulses;
     const bool finite =
@@ -724,15 +727,13 @@ void store_joint_impulses(std::span<const JointRow> rows, const JointSolverConte
       // starts again from rest rather than warm starting its neighbours with NaN.
       j.impulses = JointImpulses{};
       j.force = j.torque = Vec3::Zero();
-      continue;
+      return;
     }
     j.impulses = r.impulses;
     j.impulses.point = r.point_impulse;
     // The force and torque on A at the end of the step, from the last substep's impulses and the
-    // final geometry.
-    const SolverBody& pa = ctx.bodies[r.packet_a];
-    const SolverBody& pb = ctx.bodies[r.packet_b];
-    const Pose p = pose_of(r, pa, pb);
+    // final geometry (refreshed after the last position change).
+    const Pose& p = r.pose;
     const Real axial = axial_impulse(r);
     Vec3 force = -r.point_impulse;
     if (r.type == JointType::Slider) {
@@ -745,7 +746,15 @@ void store_joint_impulses(std::span<const JointRow> rows, const JointSolverConte
     const Vec3 torque = angular_impulse(r, p);
     j.force = force * ctx.inv_h;
     j.torque = torque * ctx.inv_h;
-    if (j.force.norm() > j.def.break_force) broken.push_back(r.joint);
+    broke[row] = j.force.norm() > j.def.break_force;
+  };
+  // determinism: each row writes its own joint and flag (rule 1); the broken joints are listed
+  // serially in row order.
+  for_blocks(rows.size(), kPrepareGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t row = begin; row < end; ++row) store_row(row);
+  });
+  for (std::size_t row = 0; row < rows.size(); ++row) {
+    if (broke[row]) broken.push_back(rows[row].joint);
   }
 }
 

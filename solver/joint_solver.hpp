@@ -51,11 +51,13 @@ void refresh_joints(const JointSolverContext& ctx, std::span<JointRow> rows);
 void warm_start_joints(const JointSolverContext& ctx, std::span<JointRow> rows);
 void solve_joints(const JointSolverContext& ctx, std::span<JointRow> rows, bool use_bias);
 
-// After the solve: copies each row's impulses back into the store, and sets each joint's force
+// After the solve, in parallel blocks of rows (`broke`: a flag per row, scratch): copies each
+// row's impulses back into the store, and sets each joint's force
 // and torque on A (the last substep's impulses over the substep time). Appends the dense indices
 // of joints whose force exceeds their break_force to `broken`, in row order (group by group).
 void store_joint_impulses(std::span<const JointRow> rows, const JointSolverContext& ctx,
-                          JointStore& joints, std::vector<uint32_t>& broken);
+                          JointStore& joints, std::vector<uint8_t>& broke,
+                          std::vector<uint32_t>& broken);
 
 // The joint's coordinate (JointDef: hinge angle, cone twist, slider position, distance) for
 // bodies at poses (c_a, q_a) and (c_b, q_b): centres of mass and principal frames (for the

@@ -99,6 +99,7 @@ struct SolverState {
   std::vector<JointRow> joint_rows;
   uint32_t joint_group_start[kGroups + 1] = {};
   std::vector<uint8_t> joint_group;
+  std::vector<uint8_t> joint_broke;  // per row: broke in the step (store_joint_impulses)
   ColorScratch color_scratch[kGroups];
   IslandScratch island_scratch;
   StageExecutor executor;

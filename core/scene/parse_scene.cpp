@@ -20,6 +20,43 @@ namespace elan {
 
 using namespace detail::scene_file;
 
+namespace {
+
+// root[key], an empty array when absent; fails unless an array.
+const Json& array_or_empty(const Ctx& ctx, const Json& root, const char* key,
+                           const std::string& expected) {
+  static const Json kEmpty = Json::array();
+  const auto it = root.find(key);
+  const Json& list = it == root.end() ? kEmpty : *it;
+  if (!list.is_array()) fail(ctx, key, "expected " + expected + ", got " + show(list));
+  return list;
+}
+
+// The context of item i of a list (a body, a joint), named as `where` names it, with the item's
+// name when it has one.
+Ctx item_ctx(const std::string& file_name, const Json& item, std::size_t i,
+             std::string (*where)(std::size_t, const std::string&)) {
+  Ctx c{file_name, where(i, ""), ""};
+  if (item.is_object()) {
+    const auto name = item.find("name");
+    if (name != item.end() && name->is_string()) c.where = where(i, name->get<std::string>());
+  }
+  return c;
+}
+
+// Records item i's `name` (if any) in `names`; fails if another `what` has it.
+void claim_name(const Ctx& ctx, std::map<std::string, std::size_t>& names, const std::string& name,
+                std::size_t i, const char* what) {
+  if (name.empty()) return;
+  const auto [it, inserted] = names.emplace(name, i);
+  if (!inserted) {
+    fail(ctx, "name",
+         "duplicate name \"" + name + "\" (also " + what + " " + std::to_string(it->second) + ")");
+  }
+}
+
+}  // namespace
+
 Scene parse_scene(const std::string& text, const std::string& file_name) {
   const Json root = parse_json(text, file_name);
   const Ctx ctx{file_name, "", ""};
@@ -52,16 +89,9 @@ Scene parse_scene(const std::string& text, const std::string& file_name) {
     scene.world.allow_sleep = to_bool(ctx, *it, "allow_sleep");
   }
 
-  static const Json kEmpty = Json::array();
-  const auto bodies_it = root.find("bodies");
-  const Json& bodies = bodies_it == root.end() ? kEmpty : *bodies_it;
-  if (!bodies.is_array()) fail(ctx, "bodies", "expected an array of bodies, got " + show(bodies));
-  const auto gens_it = root.find("generators");
-  const Json& gens = gens_it == root.end() ? kEmpty : *gens_it;
-  if (!gens.is_array()) fail(ctx, "generators", "expected an array, got " + show(gens));
-  const auto joints_it = root.find("joints");
-  const Json& joints = joints_it == root.end() ? kEmpty : *joints_it;
-  if (!joints.is_array()) fail(ctx, "joints", "expected an array of joints, got " + show(joints));
+  const Json& bodies = array_or_empty(ctx, root, "bodies", "an array of bodies");
+  const Json& gens = array_or_empty(ctx, root, "generators", "an array");
+  const Json& joints = array_or_empty(ctx, root, "joints", "an array of joints");
   if (bodies.size() > kMaxBodies) {
     fail(ctx, "bodies", "too many bodies: at most " + std::to_string(kMaxBodies) + " are allowed");
   }
@@ -70,21 +100,9 @@ Scene parse_scene(const std::string& text, const std::string& file_name) {
   std::map<std::string, std::size_t> names;
   scene.bodies.reserve(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    Ctx body_ctx{file_name, body_where(i, ""), ""};
-    if (bodies[i].is_object()) {
-      const auto name = bodies[i].find("name");
-      if (name != bodies[i].end() && name->is_string()) {
-        body_ctx.where = body_where(i, name->get<std::string>());
-      }
-    }
+    const Ctx body_ctx = item_ctx(file_name, bodies[i], i, body_where);
     SceneBody b = parse_body(body_ctx, bodies[i]);
-    if (!b.name.empty()) {
-      const auto [it, inserted] = names.emplace(b.name, i);
-      if (!inserted) {
-        fail(body_ctx, "name",
-             "duplicate name \"" + b.name + "\" (also body " + std::to_string(it->second) + ")");
-      }
-    }
+    claim_name(body_ctx, names, b.name, i, "body");
     scene.bodies.push_back(std::move(b));
   }
 
@@ -129,21 +147,9 @@ Scene parse_scene(const std::string& text, const std::string& file_name) {
   std::map<std::string, std::size_t> joint_names;
   scene.joints.reserve(total_joints);
   for (std::size_t i = 0; i < joints.size(); ++i) {
-    Ctx joint_ctx{file_name, joint_where(i, ""), ""};
-    if (joints[i].is_object()) {
-      const auto name = joints[i].find("name");
-      if (name != joints[i].end() && name->is_string()) {
-        joint_ctx.where = joint_where(i, name->get<std::string>());
-      }
-    }
+    const Ctx joint_ctx = item_ctx(file_name, joints[i], i, joint_where);
     SceneJoint sj = parse_joint(joint_ctx, joints[i], refs);
-    if (!sj.name.empty()) {
-      const auto [it, inserted] = joint_names.emplace(sj.name, i);
-      if (!inserted) {
-        fail(joint_ctx, "name",
-             "duplicate name \"" + sj.name + "\" (also joint " + std::to_string(it->second) + ")");
-      }
-    }
+    claim_name(joint_ctx, joint_names, sj.name, i, "joint");
     scene.joints.push_back(std::move(sj));
   }
   for (SceneJoint& j : generated) scene.joints.push_back(std::move(j));

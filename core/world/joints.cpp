@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/base/id_slots.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/range_checks.hpp"
 #include "core/world/events.hpp"
@@ -28,8 +29,7 @@ constexpr Real kPi = Real(3.14159265358979323846);
 
 std::size_t joint_index(const WorldState& s, JointId id) {
   const JointStore& js = s.joints;
-  if (id.slot >= js.slot_index.size() || js.slot_generation[id.slot] != id.generation ||
-      js.slot_index[id.slot] == UINT32_MAX) {
+  if (!detail::slot_live(js.slot_index, js.slot_generation, id.slot, id.generation)) {
     throw Error("joint", "invalid or removed joint id");
   }
   return js.slot_index[id.slot];
@@ -184,17 +184,9 @@ JointId World::create_joint(const JointDef& def) {
     j.rest_length = def.spring.enabled && def.spring.target >= 0 ? def.spring.target : load;
   }
 
-  uint32_t slot;
-  if (!js.free_slots.empty()) {
-    slot = js.free_slots.back();
-    js.free_slots.pop_back();
-  } else {
-    slot = uint32_t(js.slot_index.size());
-    js.slot_index.push_back(UINT32_MAX);
-    js.slot_generation.push_back(0);
-  }
+  const uint32_t slot = detail::take_slot(js.slot_index, js.slot_generation, js.free_slots,
+                                          uint32_t(js.joints.size()));
   j.slot = slot;
-  js.slot_index[slot] = uint32_t(js.joints.size());
   js.joints.push_back(j);
   ++js.version;
   wake_joint_bodies(s, j);
@@ -210,8 +202,7 @@ void World::destroy_joint(JointId id) {
 
 bool World::is_valid(JointId id) const {
   const JointStore& js = state_->joints;
-  return id.slot < js.slot_index.size() && js.slot_generation[id.slot] == id.generation &&
-         js.slot_index[id.slot] != UINT32_MAX;
+  return detail::slot_live(js.slot_index, js.slot_generation, id.slot, id.generation);
 }
 
 std::size_t World::joint_count() const {
@@ -341,9 +332,7 @@ void remove_joint(WorldState& w, uint32_t k) {
     js.slot_index[js.joints[k].slot] = k;
   }
   js.joints.pop_back();
-  js.slot_index[slot] = UINT32_MAX;
-  ++js.slot_generation[slot];
-  js.free_slots.push_back(slot);
+  release_slot(js.slot_index, js.slot_generation, js.free_slots, slot);
   ++js.version;
 }
 

@@ -101,7 +101,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   release_bundles(w.solver);
   if (!w.joints.empty()) {
     store_joint_impulses(w.solver.joint_rows, make_joint_context(solve_settings, w.solver),
-                         w.joints, w.broken_joints);
+                         w.joints, w.solver.joint_broke, w.broken_joints);
   }
   // The body columns still hold the step's start poses: finalize_bodies writes the new ones.
   compute_contact_events(w, bodies);

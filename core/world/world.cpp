@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/base/id_slots.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/range_checks.hpp"
 #include "core/base/state_hash.hpp"
@@ -185,16 +186,8 @@ BodyId World::create_body(const BodyDef& def) {
           ? 0
           : detail::kAwake;
 
-  uint32_t slot;
-  if (!s.free_slots.empty()) {
-    slot = s.free_slots.back();
-    s.free_slots.pop_back();
-  } else {
-    slot = uint32_t(s.slot_index.size());
-    s.slot_index.push_back(UINT32_MAX);
-    s.slot_generation.push_back(0);
-  }
-  s.slot_index[slot] = uint32_t(i);
+  const uint32_t slot =
+      detail::take_slot(s.slot_index, s.slot_generation, s.free_slots, uint32_t(i));
   b.slot[i] = slot;
   ++s.api.mutations;
   return BodyId{slot, s.slot_generation[slot]};
@@ -224,9 +217,7 @@ void World::destroy_body(BodyId id) {
   // sort when the count changes), and its output is canonical, so it needs no fix-up.
   s.bodies.swap_remove(i);
   if (i != last) s.slot_index[s.bodies.slot[i]] = i;
-  s.slot_index[id.slot] = UINT32_MAX;
-  ++s.slot_generation[id.slot];
-  s.free_slots.push_back(id.slot);
+  detail::release_slot(s.slot_index, s.slot_generation, s.free_slots, id.slot);
   ++s.api.mutations;
 }
 
@@ -244,8 +235,7 @@ uint32_t World::step(Real dt) {
 
 bool World::is_valid(BodyId id) const {
   const WorldState& s = *state_;
-  return id.slot < s.slot_index.size() && s.slot_generation[id.slot] == id.generation &&
-         s.slot_index[id.slot] != UINT32_MAX;
+  return detail::slot_live(s.slot_index, s.slot_generation, id.slot, id.generation);
 }
 
 std::size_t World::body_count() const {

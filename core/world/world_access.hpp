@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "core/base/id_slots.hpp"
 #include "core/world/world_state.hpp"
 #include "elan/error.hpp"
 #include "elan/world.hpp"
@@ -30,8 +31,7 @@ inline void check_arg(bool ok, const char* field, const std::string& message) {
 
 // Dense index of a live body; elan::Error "body" for a stale, destroyed or foreign id.
 inline std::size_t index_of(const WorldState& s, BodyId id) {
-  if (id.slot >= s.slot_index.size() || s.slot_generation[id.slot] != id.generation ||
-      s.slot_index[id.slot] == UINT32_MAX) {
+  if (!slot_live(s.slot_index, s.slot_generation, id.slot, id.generation)) {
     throw Error("body", "invalid or destroyed body id");
   }
   return s.slot_index[id.slot];
