@@ -133,7 +133,7 @@ bool has_point_rows(JointType type) {
 
 // The geometry at the current poses, and the point rows' mass matrix there. Kept fresh every
 // substep: a mass matrix from the step's start, on a body turning fast about a distant anchor,
-// points its correction the wrong way and the joint blows up (the soak test found it).
+// points its correction the wrong way and the joint blows up (tests/determinism/soak.cpp).
 void refresh_row(JointRow& j, std::span<const SolverBody> packets,
                  std::span<const SolverBodyMass> masses) {
   j.pose = pose_of(j, packets[j.packet_a], packets[j.packet_b]);
