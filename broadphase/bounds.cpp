@@ -49,7 +49,10 @@ void shape_params(const Shape& s, ShapeParams& p, std::size_t k) {
       p.hy[k] = s.half_height;
       p.cyl_r[k] = s.radius;
       break;
-    case ShapeType::ConvexHull: {
+    case ShapeType::ConvexHull:
+    case ShapeType::Mesh:
+    case ShapeType::Heightfield:
+    case ShapeType::Compound: {
       const Vec3 c = Real(0.5) * (s.local_max + s.local_min);
       const Vec3 h = Real(0.5) * (s.local_max - s.local_min);
       p.hx[k] = h.x();

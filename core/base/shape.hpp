@@ -11,6 +11,10 @@
 
 namespace elan::detail {
 
+struct TriangleMesh;  // core/base/triangle_mesh.hpp
+struct HeightField;   // core/base/heightfield.hpp
+struct Compound;      // core/base/compound.hpp
+
 struct Shape {
   ShapeType type = ShapeType::Sphere;
   // perf: beside the type, in the first cache line: the collide stage reads both of every pair's
@@ -20,7 +24,12 @@ struct Shape {
   Real half_height = 0;                    // m: capsule segment / cylinder, along local Y
   Vec3 half_extents = Vec3::Zero();        // m: box
   std::shared_ptr<const ConvexHull> hull;  // principal frame; null unless ConvexHull
-  Vec3 plane_normal = Vec3::UnitY();       // plane: dot(n, x) <= offset (principal = user frame)
+  // Shared, never copied per body or per rollback frame; each null unless the shape is one. A
+  // mesh's and a heightfield's principal frame is their shape frame (static: no mass).
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::shared_ptr<const HeightField> heightfield;
+  std::shared_ptr<const Compound> compound;  // principal frame, the compound's centre of mass
+  Vec3 plane_normal = Vec3::UnitY();         // plane: dot(n, x) <= offset (principal = user frame)
   Real plane_offset = 0;
 
   // Placement of the principal frame in the user's shape frame:
@@ -39,8 +48,14 @@ struct Shape {
 // degenerate hull.
 Shape make_shape(const ShapeDef& def);
 
-// Support point of the shape (principal frame) in direction d (need not be unit). Planes have no
-// support and are handled by their own routines.
+// Whether the shape is one convex solid (support, GJK and the convex pair routines apply): not a
+// plane, mesh, heightfield or compound.
+inline bool is_convex(const Shape& s) {
+  return s.type <= ShapeType::ConvexHull;
+}
+
+// Support point of the shape (principal frame) in direction d (need not be unit). Planes, meshes,
+// heightfields and compounds have no support and are handled by their own routines.
 Vec3 support(const Shape& shape, const Vec3& d);
 
 }  // namespace elan::detail

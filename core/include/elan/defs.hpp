@@ -2,6 +2,7 @@
 // Creation structs of the public API: shapes, bodies, worlds. All units SI, frames noted.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -15,7 +16,19 @@ class ThreadPool;  // elan/thread_pool.hpp
 
 enum class MotionType : uint8_t { Static, Kinematic, Dynamic };
 
-enum class ShapeType : uint8_t { Sphere, Box, Capsule, Cylinder, ConvexHull, Plane };
+enum class ShapeType : uint8_t {
+  Sphere,
+  Box,
+  Capsule,
+  Cylinder,
+  ConvexHull,
+  Plane,
+  Mesh,         ///< static only: a two-sided triangle surface
+  Heightfield,  ///< static only: a grid of heights, collided from above
+  Compound,     ///< convex children, each at its own pose
+};
+
+struct CompoundChild;
 
 enum class BroadphaseType : uint8_t { SweepAndPrune, AllPairs };
 
@@ -28,6 +41,30 @@ struct ShapeDef {
   std::vector<Vec3> points;                 ///< m, shape frame: convex hull input cloud
   Vec3 normal = Vec3::UnitY();              ///< plane normal (normalised on creation)
   Real offset = 0;                          ///< m: plane is dot(normal, x) <= offset
+
+  /// Mesh: vertices (m, shape frame) and triangles (zero-based vertex indices). Each triangle is
+  /// two-sided; zero-area triangles, repeated or out-of-range indices are refused.
+  std::vector<Vec3> vertices;
+  std::vector<std::array<uint32_t, 3>> triangles;
+
+  /// Heightfield: `heights` row after row, `columns` samples a row (at least 2 rows of 2). The
+  /// sample heights[j * columns + i] is the point (i spacing_x, heights[..], j spacing_z) of the
+  /// shape frame; each cell is two triangles; bodies collide with the surface from above.
+  std::vector<Real> heights;  ///< m
+  uint32_t columns = 0;
+  Real spacing_x = 1;  ///< m, > 0
+  Real spacing_z = 1;  ///< m, > 0
+
+  /// Compound: convex children (not plane, mesh, heightfield or compound), each placed in the
+  /// compound's shape frame. Mass properties are the children's summed.
+  std::vector<CompoundChild> children;
+};
+
+/// One child of a compound shape.
+struct CompoundChild {
+  ShapeDef shape;
+  Vec3 position = Vec3::Zero();         ///< m, the child's shape frame in the compound's frame
+  Quat orientation = Quat::Identity();  ///< normalised on creation
 };
 
 /// A body. `position`/`orientation` place the shape's own frame; velocities are those of the

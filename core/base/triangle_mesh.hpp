@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// A static triangle mesh: vertices, triangles stored in the order of their bounding-volume tree
+// (a leaf is one contiguous range), and each triangle's active edges from its neighbours.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/base/bvh.hpp"
+#include "core/base/mesh_triangle.hpp"
+#include "elan/math.hpp"
+
+namespace elan::detail {
+
+// perf: about 32 bytes a triangle with its tree: 12 of indices, 1 of edge flags, ~6 of shared
+// vertices, ~8 of nodes at 4 triangles a leaf (half as many leaves as triangles... see build).
+struct TriangleMesh {
+  std::vector<Vec3> vertices;                      // m, shape frame
+  std::vector<std::array<uint32_t, 3>> triangles;  // tree order
+  std::vector<uint8_t> active_edges;               // per triangle: bit k, edge v[k] -> v[k + 1]
+  Bvh tree;                                        // leaves index `triangles` directly
+  Vec3 min = Vec3::Zero(), max = Vec3::Zero();     // bounds of the vertices used
+
+  std::size_t size() const { return triangles.size(); }
+  MeshTriangle triangle(uint32_t t) const {
+    MeshTriangle m;
+    for (int k = 0; k < 3; ++k) m.v[k] = vertices[triangles[t][k]];
+    m.index = t;
+    m.active_edges = active_edges[t];
+    m.two_sided = true;
+    return m;
+  }
+};
+
+// Builds the mesh: checks the input, finds each edge's neighbour (an edge shared by more than two
+// triangles is active), builds the tree (leaves of at most 4 triangles) and reorders the
+// triangles into its leaf order. Throws elan::Error with field "shape.triangles" ("triangle 12:
+// index 40 out of range (30 vertices)", "... repeats vertex 3", "... has zero area") or
+// "shape.vertices" (none, or not finite, or past the supported coordinates).
+TriangleMesh build_triangle_mesh(std::span<const Vec3> vertices,
+                                 std::span<const std::array<uint32_t, 3>> triangles);
+
+// Calls f(const MeshTriangle&) for every triangle whose box overlaps [lo, hi] (shape frame), in
+// tree order: the same order every time.
+template <class F>
+void for_each_triangle(const TriangleMesh& mesh, const Vec3& lo, const Vec3& hi, F&& f) {
+  bvh_query(mesh.tree, lo, hi, [&](uint32_t first, uint32_t count) {
+    for (uint32_t t = first; t < first + count; ++t) {
+      const MeshTriangle tri = mesh.triangle(t);
+      Vec3 tlo = tri.v[0].cwiseMin(tri.v[1]).cwiseMin(tri.v[2]);
+      Vec3 thi = tri.v[0].cwiseMax(tri.v[1]).cwiseMax(tri.v[2]);
+      if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) continue;
+      f(tri);
+    }
+  });
+}
+
+// The nearest hit of the ray origin + t dir, t in [0, max_t] (shape frame; dir need not be
+// unit), with either side of a triangle; false when it hits nothing.
+bool ray_cast_mesh(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir, Real max_t,
+                   SurfaceHit& hit);
+
+// The ray against one triangle (Moller-Trumbore), either side; `t` only if it hits in [0, max_t].
+bool ray_triangle(const Vec3& origin, const Vec3& dir, const Vec3& a, const Vec3& b, const Vec3& c,
+                  Real max_t, Real& t);
+
+// Bytes the mesh holds (its vectors' capacities).
+std::size_t mesh_bytes(const TriangleMesh& mesh);
+
+}  // namespace elan::detail
