@@ -44,6 +44,9 @@ double link_length(const ShapeDef& s) {
       return hi - lo;
     }
     case ShapeType::Plane:
+    case ShapeType::Mesh:
+    case ShapeType::Heightfield:
+    case ShapeType::Compound:
       break;
   }
   return 0;

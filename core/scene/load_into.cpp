@@ -17,11 +17,11 @@ using namespace detail::scene_file;
 
 namespace {
 
-// The bits of the fields that matter for the shape's type: equal keys mean identical shapes.
-void shape_key(const ShapeDef& s, std::string& key) {
-  key.clear();
+// The bits of the fields that matter for the shape's type, appended to `key`: equal keys mean
+// identical shapes.
+void append_shape_key(const ShapeDef& s, std::string& key) {
   key.push_back(char(s.type));
-  auto add = [&key](const Real& r) { key.append(reinterpret_cast<const char*>(&r), sizeof r); };
+  auto add = [&key](const auto& v) { key.append(reinterpret_cast<const char*>(&v), sizeof v); };
   auto add3 = [&](const Vec3& v) {
     for (int i = 0; i < 3; ++i) add(v[i]);
   };
@@ -44,7 +44,31 @@ void shape_key(const ShapeDef& s, std::string& key) {
       add3(s.normal);
       add(s.offset);
       break;
+    case ShapeType::Mesh:
+      add(s.vertices.size());
+      for (const Vec3& p : s.vertices) add3(p);
+      for (const auto& t : s.triangles) add(t);
+      break;
+    case ShapeType::Heightfield:
+      add(s.columns);
+      add(s.spacing_x);
+      add(s.spacing_z);
+      for (const Real h : s.heights) add(h);
+      break;
+    case ShapeType::Compound:
+      add(s.children.size());
+      for (const CompoundChild& c : s.children) {
+        append_shape_key(c.shape, key);
+        add3(c.position);
+        for (int i = 0; i < 4; ++i) add(c.orientation.coeffs()[i]);
+      }
+      break;
   }
+}
+
+void shape_key(const ShapeDef& s, std::string& key) {
+  key.clear();
+  append_shape_key(s, key);
 }
 
 }  // namespace

@@ -142,6 +142,10 @@ bool ray_local(const Shape& shape, const Vec3& o, const Vec3& d, Real& t, Vec3& 
       };
       return ray_half_spaces(o, d, face, 1, t, n);
     }
+    case ShapeType::Mesh:  // not yet created: make_shape refuses them
+    case ShapeType::Heightfield:
+    case ShapeType::Compound:
+      break;
   }
   return false;
 }

@@ -50,6 +50,9 @@ Vec3 support_of(const Shape& s, const Vec3& d) {
       return best;
     }
     case ShapeType::Plane:
+    case ShapeType::Mesh:  // not convex: their bounds are the local box (tested elsewhere)
+    case ShapeType::Heightfield:
+    case ShapeType::Compound:
       break;
   }
   return Vec3::Zero();
@@ -92,6 +95,9 @@ Shape random_shape(ShapeType type, std::mt19937& rng) {
       break;
     }
     case ShapeType::Plane:
+    case ShapeType::Mesh:
+    case ShapeType::Heightfield:
+    case ShapeType::Compound:
       break;
   }
   return s;
