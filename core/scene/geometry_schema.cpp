@@ -2,10 +2,13 @@
 // The scene file's mesh, heightfield and compound shapes, validated field by field.
 #include "core/scene/geometry_schema.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/scene/body_schema.hpp"
 #include "core/scene/obj_file.hpp"

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace elan::detail::scene_file {
 
@@ -49,11 +51,12 @@ double terrain_height(const TerrainDef& t, double x, double z) {
                                 0.2 * std::cos(0.6 * k * (x + z)));
 }
 
-// Heights are rounded to float, as a heightfield stores them, and a mesh vertex's x and z are
-// computed as the heightfield computes its samples' (i * spacing in Real), so both shapes are
-// the same surface to the last bit. The mesh splits each cell as the heightfield does (see
-// core/base/heightfield.hpp): along the diagonal from sample (i, j) to (i+1, j+1), the triangle
-// with the corner (i+1, j) first, both wound to face +y.
+// Heights are rounded to float, as a heightfield stores them (which also confines a last-bit
+// difference between two C libraries' sin or cos to the rare sample at a float rounding boundary),
+// and a mesh vertex's x and z are computed as the heightfield computes its samples' (i * spacing in
+// Real), so both shapes are the same surface to the last bit. The mesh splits each cell as the
+// heightfield does (see core/base/heightfield.hpp): along the diagonal from sample (i, j) to (i+1,
+// j+1), the triangle with the corner (i+1, j) first, both wound to face +y.
 SceneBody make_terrain(const TerrainDef& t, const Vec3& origin) {
   SceneBody b;
   b.body.motion = MotionType::Static;
