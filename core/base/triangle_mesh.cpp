@@ -13,10 +13,10 @@
 namespace elan::detail {
 namespace {
 
-// Triangles a leaf of the mesh's tree. perf: 8 rather than 4 halves the nodes (32 bytes per two
-// triangles to 32 per four): the tree is then ~8 bytes a triangle and the whole mesh within ~32
-// (12 of indices, 1 of flags, ~6 of vertices on a grid). A query tests each triangle's box
-// before the triangle itself, so a wider leaf costs box tests only.
+// Triangles a leaf of the mesh's tree, at most. perf: leaves of 4 would make about one 32-byte
+// node per two triangles (16 bytes a triangle, ~35 in all on a grid); up to 8 make about one per
+// three (~10 bytes, ~30 in all). A query tests each triangle's box before the triangle itself,
+// so a wider leaf costs box tests only.
 constexpr int kMeshLeafSize = 8;
 
 // More triangles than this are refused: edge records number them 3 t + k in 32 bits.
