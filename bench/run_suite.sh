@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # The benchmark suite in one command: builds Release (-march=native) into build/bench, runs the
-# calibration kernels, the scenes, the joint scenes, the pile sweep and the Bullet peer in one
-# interleaved run,
+# calibration kernels, the scenes, the joint scenes, the geometry scenes (convex_vs_mesh,
+# heightfield_rain, compounds), the pile sweep and the Bullet peer in one interleaved run,
 # measures peak RSS of elan and Bullet on pile10k in separate processes, and writes CSVs, a
 # Markdown summary and plots to bench/results/<cpu-model>/ (the raw output stays in its raw/,
 # which git ignores). Needs gnuplot for the plots (tools/setup.sh installs gnuplot-nox).
@@ -44,12 +44,12 @@ uptime >"$raw/uptime_start.txt"
 if [ "$mode" = quick ]; then
   args=(--warmup=10 --steps=10 --reps=5 --calib_reps=5 --sweep=1000,2000,4000,8000,16000
         --sweep_warmup=20 --sweep_steps=5 --sweep_reps=1 --allpairs_max=4000
-        --joint_warmup=30 --joint_steps=5)
+        --joint_warmup=30 --joint_steps=5 --geometry_warmup=60 --geometry_steps=5)
   rss_steps=100
 else
   args=(--warmup=120 --steps=60 --reps=5 --calib_reps=7 --sweep=1000,2000,4000,8000,16000,32000
         --sweep_warmup=60 --sweep_steps=10 --sweep_reps=3 --allpairs_max=16000
-        --joint_warmup=120 --joint_steps=30)
+        --joint_warmup=120 --joint_steps=30 --geometry_warmup=120 --geometry_steps=20)
   rss_steps=300
 fi
 echo "${args[*]}" >"$raw/args.txt"

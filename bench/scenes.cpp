@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Whole steps: the standard scenes, the joint scenes and a generated pile sweep at 1 and 2
-// threads, the same scenes in Bullet (the joint scenes also paired with it back to back), heap
-// bytes per body, and the 2-thread ceiling of this machine (an FMA kernel and a streaming kernel)
-// measured in the same run; the target scenes' speedups and the FMA ceiling also from 1- and
-// 2-thread runs paired back to back. bench/run_suite.sh drives it; flags in usage().
+// Whole steps: the standard scenes, the joint scenes, the geometry scenes and a generated pile
+// sweep at 1 and 2 threads, the same scenes in Bullet (the joint and geometry scenes also paired
+// with it back to back), heap bytes per body, and the 2-thread ceiling of this machine (an FMA
+// kernel and a streaming kernel) measured in the same run; the target scenes' speedups and the FMA
+// ceiling also from 1- and 2-thread runs paired back to back. bench/run_suite.sh drives it; flags
+// in usage().
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 #include <tbb/parallel_for.h>
@@ -51,6 +52,12 @@ struct Options {
   // are timed against Bullet's constraints, elan at 1 thread and Bullet paired back to back.
   std::vector<std::string> joint_scenes = {"joint_grid", "ragdolls", "chains"};
   int joint_warmup = -1, joint_steps = -1;
+  // Scenes with meshes, heightfields and compounds (issue 38), with warm-up and timed steps of
+  // their own (-1: --warmup, --steps): their bodies take a second or more to land, and a step of
+  // thousands of bodies on a surface is long. Timed at 1 and 2 threads and against Bullet (its
+  // btBvhTriangleMeshShape, btHeightfieldTerrainShape and btCompoundShape), paired back to back.
+  std::vector<std::string> geometry_scenes = {"convex_vs_mesh", "heightfield_rain", "compounds"};
+  int geometry_warmup = -1, geometry_steps = -1;
   std::vector<int> sweep = {1000, 2000, 4000, 8000, 16000, 32000};
   int allpairs_max = 8000;
   bool bullet = true;
@@ -63,6 +70,7 @@ void usage() {
       "  [--sweep_warmup=N] [--sweep_steps=N] [--sweep_reps=N] [--calib_reps=N]\n"
       "  [--scenes=a,b,...] [--no_sleep=a,b,...] [--sweep=1000,2000,...] [--allpairs_max=N]\n"
       "  [--joint_scenes=a,b,...] [--joint_warmup=N] [--joint_steps=N]\n"
+      "  [--geometry_scenes=a,b,...] [--geometry_warmup=N] [--geometry_steps=N]\n"
       "  [--no_bullet]\n");
 }
 
@@ -110,6 +118,12 @@ Options parse_options(int& argc, char** argv) {
       o.joint_warmup = number();
     else if (key == "--joint_steps")
       o.joint_steps = number();
+    else if (key == "--geometry_scenes")
+      o.geometry_scenes = split(value);
+    else if (key == "--geometry_warmup")
+      o.geometry_warmup = number();
+    else if (key == "--geometry_steps")
+      o.geometry_steps = number();
     else if (key == "--no_bullet")
       o.bullet = false;
     else if (key == "--sweep") {
@@ -125,7 +139,10 @@ Options parse_options(int& argc, char** argv) {
   argc = kept;
   if (o.joint_warmup < 0) o.joint_warmup = o.warmup;
   if (o.joint_steps < 0) o.joint_steps = o.steps;
-  if (o.steps < 1 || o.reps < 1 || o.sweep_steps < 1 || o.warmup < 0 || o.joint_steps < 1) {
+  if (o.geometry_warmup < 0) o.geometry_warmup = o.warmup;
+  if (o.geometry_steps < 0) o.geometry_steps = o.steps;
+  if (o.steps < 1 || o.reps < 1 || o.sweep_steps < 1 || o.warmup < 0 || o.joint_steps < 1 ||
+      o.geometry_steps < 1) {
     usage();
     std::exit(2);
   }
@@ -632,6 +649,18 @@ void register_all(const Options& o, HashBook* book, std::vector<float>* a, std::
   }
   for (const auto& name : o.joint_scenes) {
     const Case c{name, load(name), o.joint_warmup, o.joint_steps};
+    for (int t : {1, 2})
+      add("elan/" + name + "/threads:" + std::to_string(t), bm_elan, o.reps, c, t,
+          elan::BroadphaseType::SweepAndPrune, book);
+#ifdef ELAN_HAVE_BULLET
+    if (o.bullet) {
+      add("bullet/" + name, bm_bullet, o.reps, c);
+      add("paired-bullet/" + name, bm_paired_bullet, o.reps, c, book, std::make_shared<int>(0));
+    }
+#endif
+  }
+  for (const auto& name : o.geometry_scenes) {
+    const Case c{name, load(name), o.geometry_warmup, o.geometry_steps};
     for (int t : {1, 2})
       add("elan/" + name + "/threads:" + std::to_string(t), bm_elan, o.reps, c, t,
           elan::BroadphaseType::SweepAndPrune, book);

@@ -21,6 +21,7 @@
 #endif
 
 #include "core/scene/regular_file.hpp"
+#include "core/scene/self_contained.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/elan.hpp"
 #include "elan/one_line.hpp"
@@ -275,7 +276,8 @@ int run(const RunOptions& o) {
     r.threads = uint32_t(def.threads);
     r.broadphase = uint32_t(def.broadphase);
     r.scene_name = o.scene;
-    r.scene_text = text;
+    // The OBJ files the scene names go into the recording with it, so it replays anywhere.
+    r.scene_text = detail::scene_file::self_contained(text, o.scene);
     r.keyframe_every = o.keyframe_every;
     r.keyframes = std::move(keyframes);
     r.hashes = std::move(hashes);

@@ -7,7 +7,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 
 packages=(build-essential cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libgtest-dev
-          libgmock-dev libbenchmark-dev libbullet-dev clang-format python3 gnuplot-nox)
+          libgmock-dev libbenchmark-dev libbullet-dev libtinyobjloader-dev clang-format python3
+          gnuplot-nox)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

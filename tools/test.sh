@@ -7,8 +7,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 jobs=$(nproc)
 
-packages=(build-essential cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libgtest-dev
-          libgmock-dev libbenchmark-dev python3)
+packages=(build-essential cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libtinyobjloader-dev
+          libgtest-dev libgmock-dev libbenchmark-dev python3)
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then

@@ -6,15 +6,18 @@
 #include "bench/peer/bullet_world.hpp"
 
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <LinearMath/btConvexHullComputer.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -196,6 +199,50 @@ struct DistanceSpring {
   btScalar stiffness, damping, rest;
 };
 
+// A triangle mesh's arrays, in the layout btTriangleIndexVertexArray reads.
+struct MeshArrays {
+  std::vector<int> indices;
+  std::vector<btScalar> vertices;
+  std::unique_ptr<btTriangleIndexVertexArray> array;
+};
+
+// A Bullet shape made from a scene shape: its volume (m^3, 0 for surfaces), its frame in the
+// scene's shape frame, and for a compound the inertia per kg in that frame.
+struct BuiltShape {
+  btCollisionShape* shape = nullptr;
+  double volume = 0;
+  btTransform frame = btTransform::getIdentity();
+  bool has_unit_inertia = false;
+  btVector3 unit_inertia{0, 0, 0};
+};
+
+btTransform pose_of(const Vec3& position, const Quat& q) {
+  btQuaternion rotation(btScalar(q.x()), btScalar(q.y()), btScalar(q.z()), btScalar(q.w()));
+  return btTransform(rotation.normalize(), to_bt(position));
+}
+
+// A compound's identity for sharing: every number of every child, in order, as hex floats.
+std::string compound_key(const ShapeDef& s) {
+  std::string key;
+  char buf[64];
+  const auto add = [&](double v) {
+    std::snprintf(buf, sizeof buf, "%a,", v);
+    key += buf;
+  };
+  for (const CompoundChild& c : s.children) {
+    add(double(int(c.shape.type)));
+    add(c.shape.radius);
+    add(c.shape.half_height);
+    for (int i = 0; i < 3; ++i) add(c.shape.half_extents[i]);
+    for (const Vec3& p : c.shape.points)
+      for (int i = 0; i < 3; ++i) add(p[i]);
+    for (int i = 0; i < 3; ++i) add(c.position[i]);
+    for (int i = 0; i < 4; ++i) add(c.orientation.coeffs()[i]);
+    key += ';';
+  }
+  return key;
+}
+
 }  // namespace
 
 struct BulletWorld::Impl {
@@ -204,10 +251,21 @@ struct BulletWorld::Impl {
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
   btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  // The arrays Bullet's mesh and heightfield shapes read in place; declared before `shapes` so
+  // they outlive them.
+  std::vector<std::unique_ptr<MeshArrays>> meshes;
+  std::vector<std::unique_ptr<std::vector<float>>> heights;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btDefaultMotionState>> motion_states;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
-  std::vector<btVector3> com_ls;  // m, shape frame origin to centre of mass, shape frame
+  // Body i's frame (Bullet's body frame: the centre of mass, principal axes for a compound, the
+  // centre of a heightfield's bounds) in the scene's shape frame.
+  std::vector<btTransform> frames;
+  // Identical compounds share one Bullet shape (the scenes' grids copy one compound many times).
+  std::map<std::string, BuiltShape> compounds;
+
+  BuiltShape build(const ShapeDef& s);
+  BuiltShape build_compound(const ShapeDef& s);
   struct Kinematic {
     btRigidBody* body;
     btVector3 v, w;
@@ -238,57 +296,36 @@ BulletWorld::BulletWorld(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   for (const SceneBody& sb : scene.bodies) {
     const ShapeDef& s = sb.shape;
     const BodyDef& d = sb.body;
-    btCollisionShape* shape = nullptr;
-    double volume = 0;
-    btVector3 com(0, 0, 0);
-    if (s.type == ShapeType::ConvexHull) {
-      Hull h = make_hull(s.points);
-      auto* hull = new btConvexHullShape(&h.points[0].x(), int(h.points.size()), sizeof(btVector3));
-      hull->setMargin(h.margin);
-      m.shapes.emplace_back(hull);
-      shape = hull;
-      volume = h.volume;
-      com = h.com;
-    } else {
+    BuiltShape built;
+    if (s.type == ShapeType::Sphere || s.type == ShapeType::Box || s.type == ShapeType::Capsule ||
+        s.type == ShapeType::Cylinder) {
       const auto key = std::make_tuple(int(s.type), double(s.radius), double(s.half_height),
                                        double(s.half_extents.x()), double(s.half_extents.y()),
                                        double(s.half_extents.z()));
       auto it = shared.find(key);
-      if (it != shared.end() && s.type != ShapeType::Plane) {
-        shape = it->second;
+      if (it != shared.end()) {
+        built.shape = it->second;
+        built.volume = volume_of(s);
       } else {
-        switch (s.type) {
-          case ShapeType::Sphere:
-            shape = new btSphereShape(btScalar(s.radius));
-            break;
-          case ShapeType::Box:
-            shape = new btBoxShape(to_bt(s.half_extents));
-            break;
-          // Bullet's capsule height is the segment length, 2 * half_height; axis Y as elan's.
-          case ShapeType::Capsule:
-            shape = new btCapsuleShape(btScalar(s.radius), btScalar(2 * s.half_height));
-            break;
-          case ShapeType::Cylinder:
-            shape = new btCylinderShape(
-                btVector3(btScalar(s.radius), btScalar(s.half_height), btScalar(s.radius)));
-            break;
-          default:
-            shape = new btStaticPlaneShape(to_bt(s.normal).normalized(), btScalar(s.offset));
-            break;
-        }
-        m.shapes.emplace_back(shape);
-        shared[key] = shape;
+        built = m.build(s);
+        shared[key] = built.shape;
       }
-      volume = volume_of(s);
+    } else if (s.type == ShapeType::Compound) {
+      built = m.build_compound(s);
+    } else {
+      built = m.build(s);
     }
+    btCollisionShape* shape = built.shape;
+    const double volume = built.volume;
     const bool dynamic = d.motion == MotionType::Dynamic;
     const btScalar mass = dynamic ? btScalar(d.mass ? double(*d.mass) : d.density * volume) : 0;
     btVector3 inertia(0, 0, 0);
-    if (dynamic) shape->calculateLocalInertia(mass, inertia);
-    const Quat& q = d.orientation;
-    btQuaternion rotation(btScalar(q.x()), btScalar(q.y()), btScalar(q.z()), btScalar(q.w()));
-    btTransform pose(rotation.normalize(), to_bt(d.position));
-    pose.setOrigin(pose(com));
+    if (dynamic && built.has_unit_inertia) {
+      inertia = built.unit_inertia * mass;
+    } else if (dynamic) {
+      shape->calculateLocalInertia(mass, inertia);
+    }
+    const btTransform pose = pose_of(d.position, d.orientation) * built.frame;
     btDefaultMotionState* motion_state = nullptr;
     if (d.motion == MotionType::Kinematic) {
       motion_state = new btDefaultMotionState(pose);
@@ -304,7 +341,7 @@ BulletWorld::BulletWorld(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     info.m_angularDamping = btScalar(1 - std::exp(-double(d.angular_damping)));
     auto* body = new btRigidBody(info);
     m.bodies.emplace_back(body);
-    m.com_ls.push_back(com);
+    m.frames.push_back(built.frame);
     if (dynamic) {
       body->setLinearVelocity(to_bt(d.linear_velocity));
       body->setAngularVelocity(to_bt(d.angular_velocity));
@@ -325,6 +362,110 @@ BulletWorld::BulletWorld(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     }
   }
   m.add_joints(scene);
+}
+
+BuiltShape BulletWorld::Impl::build(const ShapeDef& s) {
+  BuiltShape b;
+  switch (s.type) {
+    case ShapeType::Sphere:
+      b.shape = new btSphereShape(btScalar(s.radius));
+      break;
+    case ShapeType::Box:
+      b.shape = new btBoxShape(to_bt(s.half_extents));
+      break;
+    // Bullet's capsule height is the segment length, 2 * half_height; axis Y as elan's.
+    case ShapeType::Capsule:
+      b.shape = new btCapsuleShape(btScalar(s.radius), btScalar(2 * s.half_height));
+      break;
+    case ShapeType::Cylinder:
+      b.shape = new btCylinderShape(
+          btVector3(btScalar(s.radius), btScalar(s.half_height), btScalar(s.radius)));
+      break;
+    case ShapeType::ConvexHull: {
+      const Hull h = make_hull(s.points);
+      auto* hull = new btConvexHullShape(&h.points[0].x(), int(h.points.size()), sizeof(btVector3));
+      hull->setMargin(h.margin);
+      b.shape = hull;
+      b.volume = h.volume;
+      b.frame.setOrigin(h.com);
+      shapes.emplace_back(b.shape);
+      return b;
+    }
+    case ShapeType::Plane:
+      b.shape = new btStaticPlaneShape(to_bt(s.normal).normalized(), btScalar(s.offset));
+      break;
+    case ShapeType::Mesh: {
+      // btBvhTriangleMeshShape over the scene's own arrays (Bullet reads them in place).
+      auto arrays = std::make_unique<MeshArrays>();
+      for (const Vec3& v : s.vertices)
+        arrays->vertices.insert(arrays->vertices.end(),
+                                {btScalar(v.x()), btScalar(v.y()), btScalar(v.z())});
+      for (const auto& t : s.triangles)
+        arrays->indices.insert(arrays->indices.end(), {int(t[0]), int(t[1]), int(t[2])});
+      arrays->array = std::make_unique<btTriangleIndexVertexArray>(
+          int(s.triangles.size()), arrays->indices.data(), int(3 * sizeof(int)),
+          int(s.vertices.size()), arrays->vertices.data(), int(3 * sizeof(btScalar)));
+      b.shape = new btBvhTriangleMeshShape(arrays->array.get(), true);
+      meshes.push_back(std::move(arrays));
+      break;
+    }
+    case ShapeType::Heightfield: {
+      // Bullet's heightfield puts its local origin at the centre of its bounds, so the body's
+      // frame is that centre in the scene's shape frame; flipQuadEdges splits each cell along the
+      // diagonal (i, j) - (i+1, j+1), as elan's heightfield does, so both are one surface.
+      auto data = std::make_unique<std::vector<float>>(s.heights.begin(), s.heights.end());
+      const auto [lo, hi] = std::minmax_element(data->begin(), data->end());
+      const int columns = int(s.columns), rows = int(s.heights.size() / s.columns);
+      auto* field = new btHeightfieldTerrainShape(columns, rows, data->data(), btScalar(*lo),
+                                                  btScalar(*hi), 1, true);
+      field->setLocalScaling(btVector3(btScalar(s.spacing_x), 1, btScalar(s.spacing_z)));
+      b.frame.setOrigin(btVector3(btScalar(0.5 * (columns - 1) * double(s.spacing_x)),
+                                  btScalar(0.5 * (double(*lo) + double(*hi))),
+                                  btScalar(0.5 * (rows - 1) * double(s.spacing_z))));
+      b.shape = field;
+      heights.push_back(std::move(data));
+      break;
+    }
+    case ShapeType::Compound:
+      return build_compound(s);
+  }
+  if (s.type <= ShapeType::Cylinder) b.volume = volume_of(s);
+  shapes.emplace_back(b.shape);
+  return b;
+}
+
+// A btCompoundShape of the children at their poses, moved to its principal frame
+// (calculatePrincipalAxisTransform over the children's masses at unit density), so that Bullet's
+// body frame is the centre of mass with the compound's principal inertia, as elan's is.
+BuiltShape BulletWorld::Impl::build_compound(const ShapeDef& s) {
+  const std::string key = compound_key(s);
+  if (const auto it = compounds.find(key); it != compounds.end()) return it->second;
+  auto* compound = new btCompoundShape(true, int(s.children.size()));
+  std::vector<btScalar> masses;
+  double volume = 0;
+  for (const CompoundChild& c : s.children) {
+    const BuiltShape child = build(c.shape);
+    compound->addChildShape(pose_of(c.position, c.orientation) * child.frame, child.shape);
+    masses.push_back(btScalar(child.volume));
+    volume += child.volume;
+  }
+  btTransform principal;
+  btVector3 inertia;
+  compound->calculatePrincipalAxisTransform(masses.data(), principal, inertia);
+  const btTransform to_principal = principal.inverse();
+  for (int k = 0; k < compound->getNumChildShapes(); ++k) {
+    compound->updateChildTransform(k, to_principal * compound->getChildTransform(k), false);
+  }
+  compound->recalculateLocalAabb();
+  shapes.emplace_back(compound);
+  BuiltShape b;
+  b.shape = compound;
+  b.volume = volume;
+  b.frame = principal;
+  b.has_unit_inertia = true;
+  b.unit_inertia = inertia / btScalar(volume);  // the masses were the volumes (density 1)
+  compounds.emplace(key, b);
+  return b;
 }
 
 void BulletWorld::Impl::add_joints(const Scene& scene) {
@@ -525,8 +666,8 @@ std::size_t BulletWorld::body_count() const {
 }
 
 Vec3 BulletWorld::position(std::size_t i) const {
-  const btTransform& t = impl_->bodies[i]->getWorldTransform();
-  const btVector3 p = t.getOrigin() - t.getBasis() * impl_->com_ls[i];
+  const btTransform t = impl_->bodies[i]->getWorldTransform() * impl_->frames[i].inverse();
+  const btVector3& p = t.getOrigin();
   return Vec3(Real(p.x()), Real(p.y()), Real(p.z()));
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/base/convex_hull.hpp"
+#include "core/scene/geometry_schema.hpp"
 
 namespace elan::detail::scene_file {
 
@@ -39,25 +40,37 @@ ShapeDef parse_shape(const Ctx& ctx, const Json& j) {
     s.radius = positive(ctx, get("radius"), field("radius"));
     s.half_height = positive(ctx, get("half_height"), field("half_height"));
   } else if (type == "convex_hull") {
-    check_keys(ctx, j, {"type", "points"}, "shape.", "a convex_hull");
+    check_keys(ctx, j, {"type", "points", "file"}, "shape.", "a convex_hull");
     s.type = ShapeType::ConvexHull;
-    const Json& points = get("points");
-    if (!points.is_array())
-      fail(ctx, field("points"), "expected an array of [x, y, z], got " + show(points));
-    if (points.size() < 4) {
-      fail(ctx, field("points"),
-           "a hull needs at least 4 points, got " + std::to_string(points.size()));
+    // The points inline, or the vertices of an OBJ file (its faces are not needed: the hull of
+    // the points is the shape).
+    const auto file = j.find("file");
+    if (file != j.end() && j.contains("points")) {
+      fail(ctx, field("points"), "give either points or file");
     }
-    s.points.reserve(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      s.points.push_back(to_vec3(ctx, points[i], field("points") + "[" + std::to_string(i) + "]"));
+    const std::string points_field = file != j.end() ? field("file") : field("points");
+    if (file != j.end()) {
+      s.points = hull_points_from_obj(ctx, *file);
+    } else {
+      const Json& points = get("points");
+      if (!points.is_array())
+        fail(ctx, field("points"), "expected an array of [x, y, z], got " + show(points));
+      s.points.reserve(points.size());
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        s.points.push_back(
+            to_vec3(ctx, points[i], field("points") + "[" + std::to_string(i) + "]"));
+      }
+    }
+    if (s.points.size() < 4) {
+      fail(ctx, points_field,
+           "a hull needs at least 4 points, got " + std::to_string(s.points.size()));
     }
     try {
       detail::build_convex_hull(s.points);
     } catch (const Error& e) {
       const std::string what = e.what();
       const std::size_t skip = e.field().empty() ? 0 : e.field().size() + 2;
-      fail(ctx, field("points"), "degenerate hull: " + what.substr(std::min(skip, what.size())));
+      fail(ctx, points_field, "degenerate hull: " + what.substr(std::min(skip, what.size())));
     }
   } else if (type == "plane") {
     check_keys(ctx, j, {"type", "normal", "offset"}, "shape.", "a plane");
@@ -66,10 +79,17 @@ ShapeDef parse_shape(const Ctx& ctx, const Json& j) {
     if (s.normal.squaredNorm() == 0) fail(ctx, field("normal"), "zero normal");
     const auto it = j.find("offset");
     s.offset = it == j.end() ? Real(0) : to_real(ctx, *it, field("offset"));
+  } else if (type == "mesh") {
+    parse_mesh(ctx, j, s);
+  } else if (type == "heightfield") {
+    parse_heightfield(ctx, j, s);
+  } else if (type == "compound") {
+    parse_compound(ctx, j, s);
   } else {
     fail(ctx, "shape.type",
          "unknown shape type \"" + type +
-             "\" (allowed: sphere, box, capsule, cylinder, convex_hull, plane)");
+             "\" (allowed: sphere, box, capsule, cylinder, convex_hull, plane, mesh, heightfield, "
+             "compound)");
   }
   return s;
 }
@@ -97,8 +117,14 @@ SceneBody parse_body(const Ctx& ctx, const Json& j) {
     }
   }
   b.shape = parse_shape(ctx, require(ctx, j, "shape", "shape"));
-  if (b.shape.type == ShapeType::Plane && d.motion != MotionType::Static) {
-    fail(ctx, "motion", "a plane must be static");
+  // A plane, a mesh and a heightfield have no volume to give a mass (a mesh is a surface, and a
+  // heightfield's solid below is not modelled).
+  if (d.motion != MotionType::Static) {
+    if (b.shape.type == ShapeType::Plane) fail(ctx, "motion", "a plane must be static");
+    if (b.shape.type == ShapeType::Mesh) fail(ctx, "motion", "a mesh must be static");
+    if (b.shape.type == ShapeType::Heightfield) {
+      fail(ctx, "motion", "a heightfield must be static");
+    }
   }
   auto opt = [&](const char* key) -> const Json* {
     const auto it = j.find(key);

@@ -95,10 +95,18 @@ Generator parse_generator(const Ctx& ctx, const Json& j) {
     g.joint_grid = parse_joint_grid(ctx, j);
     g.bodies = uint64_t(g.joint_grid.count) * uint64_t(g.joint_grid.count);
     g.joints = joint_grid_joints(g.joint_grid);
+  } else if (type == "terrain") {
+    check_keys(ctx, j,
+               {"type", "shape", "cells", "spacing", "origin", "amplitude", "wavelength",
+                "friction", "restitution"},
+               "", "a terrain generator");
+    g.kind = GeneratorKind::Terrain;
+    g.terrain = parse_terrain(ctx, j);
+    g.bodies = 1;
   } else {
     fail(ctx, "type",
          "unknown generator type \"" + type +
-             "\" (allowed: grid, pyramid, chain, ragdoll, joint_grid)");
+             "\" (allowed: grid, pyramid, chain, ragdoll, joint_grid, terrain)");
   }
   if (const auto it = j.find("origin"); it != j.end()) g.origin = to_vec3(ctx, *it, "origin");
   return g;
@@ -108,6 +116,10 @@ Generator parse_generator(const Ctx& ctx, const Json& j) {
 // as Real can say.
 void expand(const Generator& g, std::vector<SceneBody>& out, std::vector<SceneJoint>& joints) {
   const Vec3& o = g.origin;
+  if (g.kind == GeneratorKind::Terrain) {
+    out.push_back(make_terrain(g.terrain, o));
+    return;
+  }
   if (g.kind == GeneratorKind::JointGrid) {
     expand_joint_grid(g.joint_grid, o, out, joints);
     return;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The scene file's generators: a grid of copies of one body, a pyramid of cubes, and the jointed
-// ones (chains, ragdolls, Box2D's joint grid). Validated first, expanded once the scene's total
-// body count is known to be sane.
+// The scene file's generators: a grid of copies of one body, a pyramid of cubes, a terrain, and
+// the jointed ones (chains, ragdolls, Box2D's joint grid). Validated first, expanded once the
+// scene's total body count is known to be sane.
 #pragma once
 
 #include <cstdint>
@@ -10,11 +10,12 @@
 #include "core/scene/joint_generators.hpp"
 #include "core/scene/ragdoll.hpp"
 #include "core/scene/schema_checks.hpp"
+#include "core/scene/terrain.hpp"
 #include "elan/scene.hpp"
 
 namespace elan::detail::scene_file {
 
-enum class GeneratorKind : uint8_t { Grid, Pyramid, Chain, Ragdoll, JointGrid };
+enum class GeneratorKind : uint8_t { Grid, Pyramid, Chain, Ragdoll, JointGrid, Terrain };
 
 // A validated generator, expanded only once the total body count is known to be sane.
 struct Generator {
@@ -28,6 +29,7 @@ struct Generator {
   ChainDef chain;
   RagdollDef ragdoll;
   JointGridDef joint_grid;
+  TerrainDef terrain;
   uint64_t bodies = 0;
   uint64_t joints = 0;
 };

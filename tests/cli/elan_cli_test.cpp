@@ -127,7 +127,39 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"joint_duplicate_name.json", "joint 1 (\"j\"): name: duplicate name"},
         BadScene{"chain_kinematic_link.json", "generator 0 (chain): link.motion"},
         BadScene{"ragdoll_negative_scale.json", "generator 0 (ragdoll): scale: must be positive"},
-        BadScene{"joint_grid_zero_count.json", "generator 0 (joint_grid): count"}),
+        BadScene{"joint_grid_zero_count.json", "generator 0 (joint_grid): count"},
+        BadScene{"mesh_index_out_of_range.json",
+                 "body 0 (\"m\"): shape.triangles: triangle 1: index 7 is out of range"},
+        BadScene{"mesh_repeated_index.json",
+                 "body 0 (\"m\"): shape.triangles: triangle 2: repeated vertex index"},
+        BadScene{"mesh_zero_area.json", "body 0 (\"m\"): shape.triangles: triangle 1: "},
+        BadScene{"dynamic_mesh.json", "body 0 (\"m\"): motion: a mesh must be static"},
+        BadScene{"heightfield_ragged_row.json",
+                 "body 0 (\"h\"): shape.heights: row 2 has 2 heights, row 0 has 3"},
+        BadScene{"heightfield_too_small.json",
+                 "body 0 (\"h\"): shape.heights: at least 2 rows of 2 heights"},
+        BadScene{"heightfield_zero_spacing.json",
+                 "body 0 (\"h\"): shape.spacing[1]: must be positive"},
+        BadScene{"dynamic_heightfield.json",
+                 "body 0 (\"h\"): motion: a heightfield must be static"},
+        BadScene{
+            "compound_plane_child.json",
+            "body 1 (\"c\"): shape.children[1].shape.type: a compound child cannot be a plane"},
+        BadScene{"compound_mesh_child.json",
+                 "body 1 (\"c\"): shape.children[1].shape.type: a compound child cannot be a mesh"},
+        BadScene{"compound_heightfield_child.json",
+                 "body 1 (\"c\"): shape.children[1].shape.type: a compound child cannot be a "
+                 "heightfield"},
+        BadScene{"compound_compound_child.json",
+                 "body 1 (\"c\"): shape.children[1].shape.type: a compound child cannot be a "
+                 "compound"},
+        BadScene{"compound_empty.json",
+                 "body 1 (\"c\"): shape.children: a compound needs at least one child"},
+        BadScene{"obj_missing.json", "body 0 (\"m\"): shape.file: " ELAN_BAD_SCENES
+                                     "/no_such_mesh.obj: cannot open Wavefront OBJ"},
+        BadScene{"obj_malformed.json",
+                 "body 0 (\"m\"): shape.file: " ELAN_BAD_SCENES "/malformed.obj: malformed OBJ"},
+        BadScene{"terrain_zero_cells.json", "generator 0 (terrain): cells[1]: must be at least 1"}),
     [](const ::testing::TestParamInfo<BadScene>& info) {
       std::string name = info.param.file;
       name = name.substr(0, name.find('.'));

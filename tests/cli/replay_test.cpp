@@ -364,6 +364,39 @@ TEST_F(Replay, InvalidRecordedSettingsAndScenesNameTheRecording) {
   expect_corrupt_recording(run_elan({"replay", path_}, 60), path_, "shape.radius");
 }
 
+// A recording keeps the scene text only: the OBJ files a scene names go into it, so a replay
+// needs none of them (they are deleted here before replaying) and gives the same hashes.
+TEST(ReplayGeometry, ObjFilesAreRecordedWithTheScene) {
+  const std::string ground = temp_path("ground.obj"), wedge = temp_path("wedge.obj");
+  write(ground, "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\nf 1 4 3 2\n");
+  write(wedge,
+        "v -0.2 -0.15 -0.3\nv 0.2 -0.15 -0.3\nv 0 0.2 -0.3\nv -0.2 -0.15 0.3\nv 0.2 -0.15 0.3\n"
+        "v 0 0.2 0.3\nf 1 3 2\nf 4 5 6\nf 1 2 5 4\nf 2 3 6 5\nf 3 1 4 6\n");
+  const auto name = [](const std::string& path) { return path.substr(path.rfind('/') + 1); };
+  const std::string scene = temp_path("scene.json"), rec = temp_path("r.rec");
+  write(scene, R"({"bodies": [
+      {"motion": "static", "shape": {"type": "mesh", "file": ")" +
+                   name(ground) + R"("}},
+      {"shape": {"type": "convex_hull", "file": ")" +
+                   name(wedge) + R"("}, "position": [0, 0.5, 0]},
+      {"shape": {"type": "compound", "children": [
+        {"shape": {"type": "sphere", "radius": 0.2}},
+        {"shape": {"type": "convex_hull", "file": ")" +
+                   name(wedge) + R"("}, "position": [0, 0.4, 0]}]},
+       "position": [1, 1, 0]}]})");
+  const Result r = run_elan({"run", scene, "--steps", "30", "--record", rec});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::remove(ground.c_str());
+  std::remove(wedge.c_str());
+  std::remove(scene.c_str());
+  const Result p = run_elan({"replay", rec, "--threads", "2"});
+  EXPECT_EQ(p.status, 0) << p.err;
+  const Json j = Json::parse(p.out.empty() ? "{}" : p.out);
+  EXPECT_EQ(j["match"], true) << p.out;
+  EXPECT_EQ(j["state_hash"], Json::parse(r.out)["state_hash"]);
+  std::remove(rec.c_str());
+}
+
 }  // namespace
 
 // A jointed scene (chains of ball and hinge joints over a pile) records and replays bit for bit

@@ -36,14 +36,16 @@ constexpr bool kCompareConstants = true;
 // Scene file (without .json) -> state hash after kSteps steps, portable float build.
 const std::map<std::string, uint64_t>& golden() {
   static const std::map<std::string, uint64_t> table = {
-      {"chains", 0x23a8c8efe7b87259ull},         {"joint_grid", 0x8a30cbea3997a9f2ull},
-      {"joints_demo", 0xc03747e7147c076full},    {"ragdolls", 0xf4d2bba1bf913397ull},
-      {"jolt_pyramid", 0xab344d7ada962341ull},   {"many_pyramids", 0xe3fb7ffc9f7b0a61ull},
-      {"pile10k", 0x5626c14c21beaef7ull},        {"pile1k", 0x35e775c6da6f834eull},
-      {"pile4k", 0xc1db09a113ae9053ull},         {"pyramid10", 0x3043830915c9b8b9ull},
-      {"pyramid20", 0x81f2803d6709df6eull},      {"rain", 0x1e950f7aa4c06425ull},
-      {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xb04d6f6367a54153ull},
-      {"tumbler", 0x18aee926573c0210ull},
+      {"chains", 0x23a8c8efe7b87259ull},           {"joint_grid", 0x8a30cbea3997a9f2ull},
+      {"joints_demo", 0xc03747e7147c076full},      {"ragdolls", 0xf4d2bba1bf913397ull},
+      {"jolt_pyramid", 0xab344d7ada962341ull},     {"many_pyramids", 0xe3fb7ffc9f7b0a61ull},
+      {"pile10k", 0x5626c14c21beaef7ull},          {"pile1k", 0x35e775c6da6f834eull},
+      {"pile4k", 0xc1db09a113ae9053ull},           {"pyramid10", 0x3043830915c9b8b9ull},
+      {"pyramid20", 0x81f2803d6709df6eull},        {"rain", 0x1e950f7aa4c06425ull},
+      {"spheres_in_box", 0x1cc6bdae62762ca1ull},   {"tower20", 0xb04d6f6367a54153ull},
+      {"tumbler", 0x18aee926573c0210ull},          {"compounds", 0x7d87a9f18fdcbed0ull},
+      {"convex_vs_mesh", 0xca8d5f5ab7872ad3ull},   {"geometry_demo", 0xd81b450e28deacf6ull},
+      {"heightfield_rain", 0x68466eae2de7b44bull},
   };
   return table;
 }
@@ -92,7 +94,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, GoldenHash,
                          ::testing::Values("chains", "joint_grid", "joints_demo", "ragdolls",
                                            "jolt_pyramid", "many_pyramids", "pile10k", "pile1k",
                                            "pile4k", "pyramid10", "pyramid20", "rain",
-                                           "spheres_in_box", "tower20", "tumbler"));
+                                           "spheres_in_box", "tower20", "tumbler", "compounds",
+                                           "convex_vs_mesh", "geometry_demo", "heightfield_rain"));
 
 // Every scene in scenes/ has a golden hash, so a scene added without one fails here.
 TEST(GoldenHash, EveryStandardSceneHasAConstant) {
