@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // collide(): one pair, dispatched on the shape types to the cheapest exact routine (closed forms,
-// SAT with clipping, or the general GJK/EPA path).
+// SAT with clipping, or the general GJK/EPA path); a mesh, heightfield or compound to the
+// composite walk.
 #include "narrowphase/collide.hpp"
 
 #include <cstring>
 #include <utility>
 
 #include "narrowphase/capsule_polyhedron.hpp"
+#include "narrowphase/composite.hpp"
 #include "narrowphase/general.hpp"
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/minkowski.hpp"
@@ -120,6 +122,11 @@ bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transfo
               Separation* separation) {
   out.point_count = 0;
   report_separation(separation, Separation::Kind::Unknown, 0);
+  // A mesh, heightfield or compound: piece by piece, merged into one manifold (its separation
+  // stays Unknown: no one measure of the pieces lasts).
+  if (is_composite(a) || is_composite(b)) {
+    return collide_composite(a, xa, b, xb, speculative_distance, out);
+  }
   if (PairFn f = pick(a, b)) {
     if (f == collide_sat && cache != nullptr) {
       return collide_sat_cached(a, xa, b, xb, speculative_distance, out, *cache, separation);
@@ -155,6 +162,7 @@ bool edge_pair_separates(const Shape& a, const Transform& xa, const Shape& b, co
 }
 
 bool exact_test_is_closed_form(const Shape& a, const Shape& b) {
+  if (is_composite(a) || is_composite(b)) return false;
   PairFn f = pick(a, b);
   if (f == nullptr) f = pick(b, a);
   return f == collide_sphere_sphere || f == collide_sphere_capsule ||

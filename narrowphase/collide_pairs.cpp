@@ -11,6 +11,7 @@
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
 #include "narrowphase/collide.hpp"
+#include "narrowphase/composite.hpp"
 
 namespace elan::detail {
 
@@ -68,10 +69,11 @@ constexpr Real kCacheCosHalfAngle = Real(0.99984770);  // cos(1 degree): 2 degre
 // sphere touches the ground under its centre). Carried with the body, a cached point would
 // drift off the line of centres by r * angle, and the normal force there would turn the sphere
 // further the way it already turned (torque lambda r sin(angle)): a pump that kept spheres and
-// capsules in a deep pile rocking. Their exact tests are the cheap closed forms anyway.
+// capsules in a deep pile rocking. Their exact tests are the cheap closed forms anyway. A compound
+// rolls on a round part.
 bool rolls(const Shape& s) {
   return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ||
-         s.type == ShapeType::Cylinder;
+         s.type == ShapeType::Cylinder || has_round_part(s);
 }
 
 // `relative`: B's centre of mass minus A's, in A's frame, now.

@@ -102,9 +102,10 @@ EpaResult flat_result(const Simplex& s, int count, const Vec3& normal) {
   return r;
 }
 
-}  // namespace
-
-EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& simplex) {
+// EPA over any support of the Minkowski difference: minkowski(d) is the SimplexVertex of A's
+// support along d and B's along -d.
+template <class Support>
+EpaResult run_epa(const Support& minkowski, const Simplex& simplex) {
   Polytope p;
   Real scale = 0;
   for (int i = 0; i < simplex.count; ++i) scale = std::max(scale, simplex.v[i].w.norm());
@@ -113,12 +114,12 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
   Simplex base = simplex;
   if (base.count == 0) {
     base.count = 1, base.lambda[0] = 1;
-    base.v[0] = support_minkowski(a, b, Vec3::UnitY());
+    base.v[0] = minkowski(Vec3::UnitY());
   }
   for (int i = 0; i < std::min(base.count, 4); ++i) p.vert[p.vertex_count++] = base.v[i];
   static const Vec3 kAxes[6] = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
                                 -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
-  for (const Vec3& d : kAxes) scale = std::max(scale, support_minkowski(a, b, d).w.norm());
+  for (const Vec3& d : kAxes) scale = std::max(scale, minkowski(d).w.norm());
   const Real tol_dim = Real(1e3) * kEpaEps * std::max(scale, std::numeric_limits<Real>::min());
   while (p.vertex_count < 4) {
     const Vec3 o = p.vert[0].w;
@@ -154,7 +155,7 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
     Real best_off = tol_dim;
     SimplexVertex cand[6];
     for (int i = 0; i < dir_count; ++i) {
-      cand[i] = support_minkowski(a, b, dirs[i]);
+      cand[i] = minkowski(dirs[i]);
       const Real off = offset(cand[i].w);
       if (off > best_off) best_off = off, best = i;
     }
@@ -180,7 +181,7 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
     }
     if (best < 0) break;
     const Face& f = p.face[best];
-    const SimplexVertex w = support_minkowski(a, b, f.n);
+    const SimplexVertex w = minkowski(f.n);
     const Real gap = w.w.dot(f.n) - f.d;
     if (gap <= kEpaRelTol * std::abs(f.d) + 16 * kEpaEps * scale) break;
     if (p.vertex_count == kMaxVertices) break;
@@ -233,6 +234,17 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
   r.point_a = l[0] * p.vert[f.v[0]].a + l[1] * p.vert[f.v[1]].a + l[2] * p.vert[f.v[2]].a;
   r.point_b = l[0] * p.vert[f.v[0]].b + l[1] * p.vert[f.v[1]].b + l[2] * p.vert[f.v[2]].b;
   return r;
+}
+
+}  // namespace
+
+EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& simplex) {
+  return run_epa([&](const Vec3& d) { return support_minkowski(a, b, d); }, simplex);
+}
+
+EpaResult epa_triangle(const PlacedShape& a, const Vec3 (&triangle)[3], const Simplex& simplex) {
+  return run_epa([&](const Vec3& d) { return support_minkowski_triangle(a, triangle, d); },
+                 simplex);
 }
 
 EpaResult epa_penetration(const Shape& a, const Transform& xa, const Shape& b,

@@ -265,6 +265,15 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
   return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s);
 }
 
+GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
+                       const Vec3& initial_direction, Simplex& s) {
+  Vec3 d = initial_direction;
+  if (!(d.squaredNorm() > 0) || !d.allFinite()) {
+    d = (triangle[0] + triangle[1] + triangle[2]) / 3 - a.position;
+  }
+  return run_gjk([&](const Vec3& x) { return support_minkowski_triangle(a, triangle, x); }, d, s);
+}
+
 GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Simplex& s) {
   const Vec3 end = core[core.size() - 1] - core[0];
   auto support_core = [&](const Vec3& d) {

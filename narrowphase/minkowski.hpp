@@ -50,6 +50,23 @@ inline SimplexVertex support_minkowski(const PlacedShape& a, const PlacedShape& 
   return s;
 }
 
+// Support of a triangle (three points, as placed): the corner farthest along d; ties go to the
+// lower corner.
+inline Vec3 support_triangle(const Vec3 (&t)[3], const Vec3& d) {
+  const Real h0 = t[0].dot(d), h1 = t[1].dot(d), h2 = t[2].dot(d);
+  if (h0 >= h1 && h0 >= h2) return t[0];
+  return h1 >= h2 ? t[1] : t[2];
+}
+
+inline SimplexVertex support_minkowski_triangle(const PlacedShape& a, const Vec3 (&t)[3],
+                                                const Vec3& d) {
+  SimplexVertex s;
+  s.a = support_world(a, d);
+  s.b = support_triangle(t, -d);
+  s.w = s.a - s.b;
+  return s;
+}
+
 // GJK on two placed shapes; leaves the terminating simplex in `out_simplex`.
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                      Simplex& out_simplex);
@@ -62,5 +79,12 @@ GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Sim
 
 // EPA on the placed shapes from GJK's terminating simplex (origin in or on it).
 EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& simplex);
+
+// GJK and EPA of a placed shape A against a triangle (B: its corners, in A's placement frame).
+// perf: the same routines as the shape pairs, instantiated on the triangle's support, so a mesh
+// needs no hull per triangle.
+GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
+                       const Vec3& initial_direction, Simplex& s);
+EpaResult epa_triangle(const PlacedShape& a, const Vec3 (&triangle)[3], const Simplex& simplex);
 
 }  // namespace elan::detail

@@ -1,10 +1,16 @@
 // SPDX-License-Identifier: MIT
 // Time of impact by conservative advancement (Mirtich 1996, "Impulse-based dynamic simulation of
-// rigid body systems", 4.3): step time forward by distance / (bound on the approach speed).
+// rigid body systems", 4.3): step time forward by distance / (bound on the approach speed);
+// against a mesh, heightfield or compound, the earliest over its triangles and parts.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "core/base/compound.hpp"
+#include "core/base/heightfield.hpp"
+#include "core/base/triangle_mesh.hpp"
 #include "narrowphase/collide.hpp"
+#include "narrowphase/composite.hpp"
 #include "narrowphase/minkowski.hpp"
 
 namespace elan::detail {
@@ -25,22 +31,19 @@ Real rotation_angle(const Quat& q0, const Quat& q1) {
   return 2 * std::acos(c);
 }
 
-}  // namespace
+Transform compose(const Transform& outer, const Transform& inner) {
+  return {outer.rotation * inner.position + outer.position, outer.rotation * inner.rotation};
+}
 
-Real time_of_impact(const Shape& a, const Transform& xa0, const Transform& xa1, const Shape& b,
-                    const Transform& xb0, const Transform& xb1, Real target) {
-  // Stop within this of the target distance; a floor relative to size keeps target 0 finite.
-  const Real tolerance =
-      std::max(Real(0.25) * target, Real(1e-4) * std::max(a.bounding_radius, b.bounding_radius));
-  const Vec3 delta = (xa1.position - xa0.position) - (xb1.position - xb0.position);
-  // A point at distance <= bounding_radius from the centre moves at most |omega| r by rotation.
-  const Real spin = rotation_angle(xa0.rotation, xa1.rotation) * a.bounding_radius +
-                    rotation_angle(xb0.rotation, xb1.rotation) * b.bounding_radius;
+// Conservative advancement from t = 0 on the distance at time t (distance(t, dir), dir the last
+// normal as GJK's warm start): `delta` is the relative linear motion over the unit interval,
+// `spin` the bound on the rotational speed of any surface point. Returns 1 if they do not meet.
+template <class Distance>
+Real advance(const Distance& distance, const Vec3& delta, Real spin, Real target, Real tolerance,
+             Vec3 dir) {
   Real t = 0;
-  Vec3 dir = xb0.position - xa0.position;
   for (int iter = 0; iter < kMaxIterations; ++iter) {
-    const Transform xa = pose_at(xa0, xa1, t), xb = pose_at(xb0, xb1, t);
-    const GjkResult g = gjk_distance(a, xa, b, xb, true, &dir);
+    const GjkResult g = distance(t, dir);
     if (g.overlap || g.distance <= target + tolerance) return t;
     const Vec3 n = (g.point_b - g.point_a) / g.distance;
     // Along the fixed axis n the gap closes no faster than the relative velocity's component
@@ -52,6 +55,111 @@ Real time_of_impact(const Shape& a, const Transform& xa0, const Transform& xa1, 
     dir = n;
   }
   return t;
+}
+
+// Two convex shapes.
+Real convex_time_of_impact(const Shape& a, const Transform& xa0, const Transform& xa1,
+                           const Shape& b, const Transform& xb0, const Transform& xb1,
+                           Real target) {
+  // Stop within this of the target distance; a floor relative to size keeps target 0 finite.
+  const Real tolerance =
+      std::max(Real(0.25) * target, Real(1e-4) * std::max(a.bounding_radius, b.bounding_radius));
+  const Vec3 delta = (xa1.position - xa0.position) - (xb1.position - xb0.position);
+  // A point at distance <= bounding_radius from the centre moves at most |omega| r by rotation.
+  const Real spin = rotation_angle(xa0.rotation, xa1.rotation) * a.bounding_radius +
+                    rotation_angle(xb0.rotation, xb1.rotation) * b.bounding_radius;
+  const auto distance = [&](Real t, const Vec3& dir) {
+    const Transform xa = pose_at(xa0, xa1, t), xb = pose_at(xb0, xb1, t);
+    return gjk_distance(a, xa, b, xb, true, &dir);
+  };
+  return advance(distance, delta, spin, target, tolerance, Vec3(xb0.position - xa0.position));
+}
+
+Transform relative_to(const Transform& frame, const Transform& x) {
+  const Quat to_frame = frame.rotation.conjugate();
+  return {to_frame * (x.position - frame.position), to_frame * x.rotation};
+}
+
+// Convex A against the triangles of surface B (mesh or heightfield) under A's swept box, in B's
+// frame: the earliest impact, or 1.
+Real surface_time_of_impact(const Shape& a, const Transform& xa0, const Transform& xa1,
+                            const Shape& b, const Transform& xb0, const Transform& xb1,
+                            Real target) {
+  const Transform p0 = relative_to(xb0, xa0), p1 = relative_to(xb1, xa1);
+  const Real tolerance = std::max(Real(0.25) * target, Real(1e-4) * a.bounding_radius);
+  const Vec3 delta = p1.position - p0.position;
+  // B's own turn moves A's points in B's frame by at most its angle times their distance from
+  // B's origin, which is no more than A's centre's farthest distance plus A's radius.
+  const Real reach = std::max(p0.position.norm(), p1.position.norm()) + a.bounding_radius;
+  const Real spin = rotation_angle(p0.rotation, p1.rotation) * a.bounding_radius +
+                    rotation_angle(xb0.rotation, xb1.rotation) * reach;
+  const Vec3 grow = Vec3::Constant(a.bounding_radius + target);
+  const Vec3 lo = p0.position.cwiseMin(p1.position) - grow;
+  const Vec3 hi = p0.position.cwiseMax(p1.position) + grow;
+  Real best = 1;
+  const auto visit = [&](const MeshTriangle& tri) {
+    // A one-sided triangle stops only what comes from its front.
+    const Vec3 n = tri.normal();
+    if (!tri.two_sided && n.dot(p0.position - tri.v[0]) < 0) return;
+    const auto distance = [&](Real t, const Vec3& dir) {
+      const Transform x = pose_at(p0, p1, t);
+      const Vec3 v[3] = {tri.v[0] - x.position, tri.v[1] - x.position, tri.v[2] - x.position};
+      Simplex s;
+      return gjk_triangle(place(a, {Vec3::Zero(), x.rotation}, true), v, dir, s);
+    };
+    const Vec3 towards = (tri.v[0] + tri.v[1] + tri.v[2]) / 3 - p0.position;
+    best = std::min(best, advance(distance, delta, spin, target, tolerance, towards));
+  };
+  if (b.type == ShapeType::Mesh) {
+    for_each_triangle(*b.mesh, lo, hi, visit);
+  } else {
+    for_each_triangle(*b.heightfield, lo, hi, visit);
+  }
+  return best;
+}
+
+// Convex A against B of any kind but a plane.
+Real piece_time_of_impact(const Shape& a, const Transform& xa0, const Transform& xa1,
+                          const Shape& b, const Transform& xb0, const Transform& xb1, Real target) {
+  if (is_surface(b)) return surface_time_of_impact(a, xa0, xa1, b, xb0, xb1, target);
+  if (b.type != ShapeType::Compound) {
+    return convex_time_of_impact(a, xa0, xa1, b, xb0, xb1, target);
+  }
+  Real best = 1;
+  // determinism: every part in the compound's order; the minimum does not depend on it anyway.
+  for (const CompoundPart& part : b.compound->parts) {
+    const Transform p0 = compose(xb0, part.pose), p1 = compose(xb1, part.pose);
+    best = std::min(best, convex_time_of_impact(a, xa0, xa1, part.shape, p0, p1, target));
+  }
+  return best;
+}
+
+}  // namespace
+
+Real time_of_impact(const Shape& a, const Transform& xa0, const Transform& xa1, const Shape& b,
+                    const Transform& xb0, const Transform& xb1, Real target) {
+  if (is_convex(a) && is_convex(b)) {
+    return convex_time_of_impact(a, xa0, xa1, b, xb0, xb1, target);
+  }
+  // Two static shapes, or a half-space (whose contact exists wherever the body ends): no impact.
+  if ((is_surface(a) && is_surface(b)) || a.type == ShapeType::Plane ||
+      b.type == ShapeType::Plane) {
+    return 1;
+  }
+  // Time of impact is symmetric: the surface or the compound goes second.
+  if (is_surface(a) || (a.type == ShapeType::Compound && is_convex(b))) {
+    return time_of_impact(b, xb0, xb1, a, xa0, xa1, target);
+  }
+  if (a.type != ShapeType::Compound) {
+    return piece_time_of_impact(a, xa0, xa1, b, xb0, xb1, target);
+  }
+  // A compound: each part's path is the line between its poses at the ends.
+  Real best = 1;
+  for (const CompoundPart& part : a.compound->parts) {
+    const Transform p0 = compose(xa0, part.pose), p1 = compose(xa1, part.pose);
+    best = std::min(best, piece_time_of_impact(part.shape, p0, p1, b, xb0, xb1, target));
+  }
+  return best;
 }
 
 }  // namespace elan::detail

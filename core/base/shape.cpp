@@ -12,7 +12,10 @@
 #include <numbers>
 #include <string>
 
+#include "core/base/compound.hpp"
+#include "core/base/heightfield.hpp"
 #include "core/base/range_checks.hpp"
+#include "core/base/triangle_mesh.hpp"
 #include "elan/error.hpp"
 
 namespace elan::detail {
@@ -147,6 +150,162 @@ void make_hull(Shape& s, const ShapeDef& def) {
   s.hull = std::move(principal);
 }
 
+// Largest distance from the origin of a corner of the box [lo, hi] (in double, then rounded up
+// so that the radius bounds every corner).
+Real corner_radius(const Vec3& lo, const Vec3& hi) {
+  double r2 = 0;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3d c((k & 1 ? hi : lo).x(), (k & 2 ? hi : lo).y(), (k & 4 ? hi : lo).z());
+    r2 = std::max(r2, c.squaredNorm());
+  }
+  const Real r = Real(std::sqrt(r2));
+  return double(r) < std::sqrt(r2) ? std::nextafter(r, std::numeric_limits<Real>::infinity()) : r;
+}
+
+void make_mesh(Shape& s, const ShapeDef& def) {
+  auto mesh = std::make_shared<TriangleMesh>(build_triangle_mesh(def.vertices, def.triangles));
+  s.local_min = mesh->min;
+  s.local_max = mesh->max;
+  s.bounding_radius = corner_radius(s.local_min, s.local_max);
+  s.mesh = std::move(mesh);
+}
+
+void make_heightfield(Shape& s, const ShapeDef& def) {
+  auto field = std::make_shared<HeightField>(
+      build_heightfield(def.heights, def.columns, def.spacing_x, def.spacing_z));
+  s.local_min = Vec3(0, field->min_height, 0);
+  s.local_max = Vec3(Real(double(field->columns - 1) * field->spacing_x), field->max_height,
+                     Real(double(field->rows - 1) * field->spacing_z));
+  s.bounding_radius = corner_radius(s.local_min, s.local_max);
+  s.heightfield = std::move(field);
+}
+
+// The bounds in the compound's principal frame of a child placed at `pose`: exact for spheres,
+// capsules and hulls (their extreme points transformed), the transformed corners of the local
+// box otherwise.
+Aabb part_box(const Shape& c, const Transform& pose) {
+  Aabb b;
+  b.min = Vec3::Constant(std::numeric_limits<Real>::max());
+  b.max = -b.min;
+  const auto add = [&](const Vec3& p, Real r) {
+    const Vec3 q = pose.apply(p);
+    b.min = b.min.cwiseMin(q - Vec3::Constant(r));
+    b.max = b.max.cwiseMax(q + Vec3::Constant(r));
+  };
+  switch (c.type) {
+    case ShapeType::Sphere:
+      add(Vec3::Zero(), c.radius);
+      break;
+    case ShapeType::Capsule:
+      add(Vec3(0, c.half_height, 0), c.radius);
+      add(Vec3(0, -c.half_height, 0), c.radius);
+      break;
+    case ShapeType::ConvexHull:
+      for (const Vec3& v : c.hull->vertices) add(v, 0);
+      break;
+    default:
+      for (int k = 0; k < 8; ++k) {
+        add(Vec3((k & 1 ? c.local_max : c.local_min).x(), (k & 2 ? c.local_max : c.local_min).y(),
+                 (k & 4 ? c.local_max : c.local_min).z()),
+            0);
+      }
+      break;
+  }
+  return b;
+}
+
+// An error of a child's own definition, its field prefixed with the child's place.
+Error child_error(std::size_t k, const Error& e) {
+  const std::string what = e.what();
+  const std::string message = e.field().empty() ? what : what.substr(e.field().size() + 2);
+  return Error("shape.children[" + std::to_string(k) + "]." + e.field(), message);
+}
+
+// Exact mass properties of the union of the children (assumed not to overlap): volumes add, the
+// centre of mass is the volume-weighted mean, and each child's inertia, rotated into the compound
+// frame (R I R^T), moves to the common centre by the parallel-axis theorem
+// I += V (|d|^2 Id - d d^T); all in double. The principal axes of the sum give the frame.
+void make_compound(Shape& s, const ShapeDef& def) {
+  const std::size_t n = def.children.size();
+  if (n == 0) throw Error("shape.children", "must have at least one child");
+  if (n > std::size_t(UINT32_MAX)) throw Error("shape.children", "too many children");
+  std::vector<Shape> shapes(n);
+  std::vector<Vec3d> centre(n);  // child principal frame in the compound's shape frame
+  std::vector<Eigen::Quaterniond> rot(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const CompoundChild& c = def.children[k];
+    const std::string at = "shape.children[" + std::to_string(k) + "]";
+    const ShapeType t = c.shape.type;
+    if (t == ShapeType::Plane || t == ShapeType::Mesh || t == ShapeType::Heightfield ||
+        t == ShapeType::Compound) {
+      throw Error(at + ".shape.type",
+                  "a compound's child must be convex (not a plane, mesh, heightfield or compound)");
+    }
+    if (!c.position.allFinite()) throw Error(at + ".position", "must be finite");
+    check_coordinates(c.position, limits::kMaxPosition, (at + ".position").c_str(), "m");
+    if (!c.orientation.coeffs().allFinite()) throw Error(at + ".orientation", "must be finite");
+    if (!(c.orientation.norm() > Real(1e-12))) throw Error(at + ".orientation", "zero quaternion");
+    try {
+      shapes[k] = make_shape(c.shape);
+    } catch (const Error& e) {
+      throw child_error(k, e);
+    }
+    const Eigen::Quaterniond q = c.orientation.cast<double>().normalized();
+    centre[k] = c.position.cast<double>() + q * shapes[k].frame_position.cast<double>();
+    rot[k] = (q * shapes[k].frame_rotation.cast<double>()).normalized();
+  }
+  double volume = 0;
+  Vec3d com = Vec3d::Zero();
+  for (std::size_t k = 0; k < n; ++k) {
+    volume += double(shapes[k].volume);
+    com += double(shapes[k].volume) * centre[k];
+  }
+  com /= volume;
+  Mat3d inertia = Mat3d::Zero();
+  for (std::size_t k = 0; k < n; ++k) {
+    const double v = shapes[k].volume;
+    const Mat3d r = rot[k].toRotationMatrix();
+    const Vec3d d = centre[k] - com;
+    inertia += r * (v * shapes[k].unit_inertia.cast<double>()).asDiagonal() * r.transpose();
+    inertia += v * (d.squaredNorm() * Mat3d::Identity() - d * d.transpose());
+  }
+  Vec3d moments;
+  const Mat3d axes = principal_axes(inertia, moments);
+  s.volume = Real(volume);
+  s.unit_inertia = (moments / volume).cast<Real>();
+  s.frame_position = com.cast<Real>();
+  s.frame_rotation = Quat(axes.cast<Real>()).normalized();
+
+  // The parts in the compound's principal frame: x_principal = A^T (x_shape - com).
+  const Eigen::Quaterniond to_principal(axes.transpose());
+  std::vector<CompoundPart> parts(n);
+  std::vector<Aabb> boxes(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    CompoundPart& p = parts[k];
+    p.pose.position = (axes.transpose() * (centre[k] - com)).cast<Real>();
+    p.pose.rotation = (to_principal * rot[k]).normalized().cast<Real>();
+    p.box = part_box(shapes[k], p.pose);
+    p.shape = std::move(shapes[k]);
+    boxes[k] = p.box;
+  }
+  auto compound = std::make_shared<Compound>();
+  std::vector<uint32_t> order(n);
+  for (uint32_t k = 0; k < n; ++k) order[k] = k;
+  if (n >= kCompoundTreeMin) compound->tree = build_bvh(boxes, 2, order);
+  compound->parts.reserve(n);
+  compound->child_of = order;
+  for (uint32_t k = 0; k < n; ++k) compound->parts.push_back(std::move(parts[order[k]]));
+  s.local_min = Vec3::Constant(std::numeric_limits<Real>::max());
+  s.local_max = -s.local_min;
+  for (const CompoundPart& p : compound->parts) {
+    s.local_min = s.local_min.cwiseMin(p.box.min);
+    s.local_max = s.local_max.cwiseMax(p.box.max);
+    s.bounding_radius =
+        std::max(s.bounding_radius, p.pose.position.norm() + p.shape.bounding_radius);
+  }
+  s.compound = std::move(compound);
+}
+
 // Unit direction of d, or `fallback` when d = 0. A d so short (or long) that its squared norm
 // under- or overflows is first rescaled by its largest component, off the common path.
 Vec3 direction_or(const Vec3& d, const Vec3& fallback) {
@@ -235,6 +394,15 @@ Shape make_shape(const ShapeDef& def) {
       s.plane_offset = def.offset;
       break;
     }
+    case ShapeType::Mesh:
+      make_mesh(s, def);
+      break;
+    case ShapeType::Heightfield:
+      make_heightfield(s, def);
+      break;
+    case ShapeType::Compound:
+      make_compound(s, def);
+      break;
     default:
       throw Error("shape.type", "unknown shape type");
   }

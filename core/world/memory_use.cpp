@@ -3,9 +3,13 @@
 #include "core/world/memory_use.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <vector>
 
+#include "core/base/compound.hpp"
 #include "core/base/heap_bytes.hpp"
+#include "core/base/heightfield.hpp"
+#include "core/base/triangle_mesh.hpp"
 
 namespace elan::detail {
 
@@ -31,13 +35,37 @@ MemoryUse memory_use(const WorldState& w) {
 
   // Shapes may share a hull (copies of one shape): count each once.
   std::vector<const ConvexHull*> hulls;
+  // Meshes, heightfields and compounds likewise, and a compound's hull children with the hulls.
+  std::vector<const void*> surfaces;
+  m.shapes = heap_bytes(w.shapes);
   for (const Shape& s : w.shapes) {
     if (s.hull) hulls.push_back(s.hull.get());
+    if (s.mesh) surfaces.push_back(s.mesh.get());
+    if (s.heightfield) surfaces.push_back(s.heightfield.get());
+    if (s.compound) {
+      surfaces.push_back(s.compound.get());
+      for (const CompoundPart& p : s.compound->parts) {
+        if (p.shape.hull) hulls.push_back(p.shape.hull.get());
+      }
+    }
   }
   std::sort(hulls.begin(), hulls.end());
   hulls.erase(std::unique(hulls.begin(), hulls.end()), hulls.end());
-  m.shapes = heap_bytes(w.shapes);
   for (const ConvexHull* h : hulls) m.shapes += hull_bytes(*h);
+  // Each shared surface once: the first shape holding it counts it.
+  std::sort(surfaces.begin(), surfaces.end(), std::less<const void*>());
+  for (const Shape& s : w.shapes) {
+    const void* p = s.mesh          ? static_cast<const void*>(s.mesh.get())
+                    : s.heightfield ? static_cast<const void*>(s.heightfield.get())
+                                    : static_cast<const void*>(s.compound.get());
+    if (!p) continue;
+    const auto it = std::lower_bound(surfaces.begin(), surfaces.end(), p, std::less<const void*>());
+    if (it == surfaces.end() || *it != p) continue;
+    surfaces.erase(it);
+    if (s.mesh) m.shapes += mesh_bytes(*s.mesh);
+    if (s.heightfield) m.shapes += heightfield_bytes(*s.heightfield);
+    if (s.compound) m.shapes += compound_bytes(*s.compound);
+  }
 
   m.broadphase = bounds_bytes(w.bounds) + heap_bytes(w.broad_kind) + heap_bytes(w.is_plane) +
                  heap_bytes(w.idle) + w.all_pairs.heap_bytes() + w.sap.heap_bytes();

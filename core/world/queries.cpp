@@ -7,6 +7,9 @@
 #include <cmath>
 #include <limits>
 
+#include "core/base/compound.hpp"
+#include "core/base/heightfield.hpp"
+#include "core/base/triangle_mesh.hpp"
 #include "core/world/events.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/world.hpp"
@@ -79,7 +82,46 @@ bool ray_half_spaces(const Vec3& o, const Vec3& d, const Planes& planes, std::si
   return true;
 }
 
-bool ray_local(const Shape& shape, const Vec3& o, const Vec3& d, Real& t, Vec3& n) {
+bool ray_local(const Shape& shape, const Vec3& o, const Vec3& d, Real max_t, Real& t, Vec3& n);
+bool ray_box(const Vec3& o, const Vec3& d, const Vec3& inv_d, const Real* lo, const Real* hi,
+             Real max_t);
+
+// The nearest child hit of a compound (its principal frame): each part's ray in the part's
+// pose, the normal turned back; parts whose box the ray misses are skipped. Ties keep the first
+// part in the compound's fixed order.
+bool ray_compound(const Compound& c, const Vec3& o, const Vec3& d, Real max_t, Real& t, Vec3& n) {
+  bool found = false;
+  const auto test = [&](uint32_t k, Real limit) {
+    const CompoundPart& p = c.parts[k];
+    Real tk = 0;
+    Vec3 nk = Vec3::UnitY();
+    const Vec3 po = p.pose.apply_inverse(o);
+    const Vec3 pd = p.pose.rotation.conjugate() * d;
+    if (!ray_local(p.shape, po, pd, limit, tk, nk) || !(tk <= limit)) return limit;
+    if (found && !(tk < t)) return limit;
+    found = true;
+    t = tk;
+    n = p.pose.rotation * nk;
+    return tk;
+  };
+  if (c.tree.nodes.empty()) {
+    Real limit = max_t;
+    for (uint32_t k = 0; k < c.parts.size(); ++k) {
+      const Real lo[3] = {c.parts[k].box.min.x(), c.parts[k].box.min.y(), c.parts[k].box.min.z()};
+      const Real hi[3] = {c.parts[k].box.max.x(), c.parts[k].box.max.y(), c.parts[k].box.max.z()};
+      if (!ray_box(o, d, d.cwiseInverse(), lo, hi, limit)) continue;
+      limit = test(k, limit);
+    }
+  } else {
+    bvh_ray(c.tree, o, d, max_t, [&](uint32_t first, uint32_t count, Real limit) {
+      for (uint32_t k = first; k < first + count; ++k) limit = test(k, limit);
+      return limit;
+    });
+  }
+  return found;
+}
+
+bool ray_local(const Shape& shape, const Vec3& o, const Vec3& d, Real max_t, Real& t, Vec3& n) {
   switch (shape.type) {
     case ShapeType::Sphere:
       return ray_sphere(o, d, Vec3::Zero(), shape.radius, t, n);
@@ -142,10 +184,18 @@ bool ray_local(const Shape& shape, const Vec3& o, const Vec3& d, Real& t, Vec3& 
       };
       return ray_half_spaces(o, d, face, 1, t, n);
     }
-    case ShapeType::Mesh:  // not yet created: make_shape refuses them
-    case ShapeType::Heightfield:
+    case ShapeType::Mesh:
+    case ShapeType::Heightfield: {
+      SurfaceHit hit;
+      const bool found = shape.mesh ? ray_cast_mesh(*shape.mesh, o, d, max_t, hit)
+                                    : ray_cast_heightfield(*shape.heightfield, o, d, max_t, hit);
+      if (!found) return false;
+      t = hit.t;
+      n = hit.normal;
+      return true;
+    }
     case ShapeType::Compound:
-      break;
+      return ray_compound(*shape.compound, o, d, max_t, t, n);
   }
   return false;
 }
@@ -213,7 +263,7 @@ bool ray_shape(const Shape& shape, const Transform& pose, const Vec3& origin, co
   const Vec3 d = pose.rotation.conjugate() * dir;
   Real t = 0;
   Vec3 n = Vec3::UnitY();
-  if (!ray_local(shape, o, d, t, n) || !(t <= max_distance)) return false;
+  if (!ray_local(shape, o, d, max_distance, t, n) || !(t <= max_distance)) return false;
   out.distance = t;
   out.normal = (pose.rotation * n).normalized();
   return true;

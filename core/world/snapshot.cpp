@@ -4,10 +4,14 @@
 #include "elan/snapshot.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "core/base/body_store.hpp"
+#include "core/base/compound.hpp"
+#include "core/base/heightfield.hpp"
 #include "core/base/pair_key.hpp"
+#include "core/base/triangle_mesh.hpp"
 #include "core/world/byte_io.hpp"
 #include "core/world/world_access.hpp"
 #include "core/world/world_state.hpp"
@@ -145,6 +149,170 @@ detail::ConvexHull read_hull(ByteReader& r) {
   return h;
 }
 
+// A float (tree boxes, heightfield samples) by its bits.
+void write_f32(ByteWriter& w, float v) {
+  w.u32(std::bit_cast<uint32_t>(v));
+}
+float read_f32(ByteReader& r) {
+  return std::bit_cast<float>(r.u32());
+}
+
+void write_tree(ByteWriter& w, const detail::Bvh& t) {
+  w.u32(uint32_t(t.nodes.size()));
+  for (const detail::BvhNode& n : t.nodes) {
+    for (float f : n.min) write_f32(w, f);
+    w.u32(n.index);
+    for (float f : n.max) write_f32(w, f);
+    w.u32(n.count);
+  }
+}
+
+// Reads a tree over `items` items and checks it is one: depth first (an inner node's first child
+// next, its second where the first's subtree ends), every node reached once, no deeper than the
+// walks' stacks, leaves within the items. A damaged tree is refused, so a walk cannot loop, run
+// past its stack or index past the items.
+detail::Bvh read_tree(ByteReader& r, std::size_t items) {
+  detail::Bvh t;
+  t.nodes.resize(r.count(32, "tree node"));
+  for (detail::BvhNode& n : t.nodes) {
+    for (float& f : n.min) f = read_f32(r);
+    n.index = r.u32();
+    for (float& f : n.max) f = read_f32(r);
+    n.count = r.u32();
+  }
+  if (t.nodes.empty()) return t;
+  // (node, depth) to visit; `next` is where the depth-first layout puts the next node visited.
+  std::vector<std::pair<uint32_t, int>> stack{{0u, 0}};
+  std::size_t next = 0;
+  while (!stack.empty()) {
+    const auto [i, depth] = stack.back();
+    stack.pop_back();
+    if (i != next || i >= t.nodes.size() || depth > detail::kBvhMaxDepth) {
+      r.fail("tree is not a depth-first tree");
+    }
+    ++next;
+    const detail::BvhNode& n = t.nodes[i];
+    if (n.leaf()) {
+      if (uint64_t(n.index) + n.count > items) r.fail("tree leaf out of range");
+      continue;
+    }
+    if (n.index <= i + 1 || n.index >= t.nodes.size()) r.fail("tree child out of range");
+    stack.emplace_back(n.index, depth + 1);
+    stack.emplace_back(i + 1, depth + 1);
+  }
+  if (next != t.nodes.size()) r.fail("tree has unreachable nodes");
+  return t;
+}
+
+void write_shape(ByteWriter& w, const Shape& s);
+Shape read_shape(ByteReader& r, bool in_compound);
+
+void write_mesh(ByteWriter& w, const detail::TriangleMesh& m) {
+  w.u32(uint32_t(m.vertices.size()));
+  for (const Vec3& v : m.vertices) w.vec3(v);
+  w.u32(uint32_t(m.triangles.size()));
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    for (uint32_t v : m.triangles[t]) w.u32(v);
+    w.u8(m.active_edges[t]);
+  }
+  write_tree(w, m.tree);
+  w.vec3(m.min);
+  w.vec3(m.max);
+}
+
+detail::TriangleMesh read_mesh(ByteReader& r) {
+  detail::TriangleMesh m;
+  m.vertices.resize(r.count(3 * sizeof(Real), "mesh vertex"));
+  for (Vec3& v : m.vertices) v = r.vec3();
+  const uint32_t nt = r.count(13, "mesh triangle");
+  m.triangles.resize(nt);
+  m.active_edges.resize(nt);
+  for (uint32_t t = 0; t < nt; ++t) {
+    for (uint32_t& v : m.triangles[t]) {
+      v = r.u32();
+      if (v >= m.vertices.size()) r.fail("mesh triangle vertex out of range");
+    }
+    m.active_edges[t] = r.u8();
+    if (m.active_edges[t] > 7) r.fail("mesh triangle edge flags out of range");
+  }
+  if (nt == 0) r.fail("mesh has no triangles");
+  m.tree = read_tree(r, nt);
+  if (m.tree.nodes.empty()) r.fail("mesh has no tree");
+  m.min = r.vec3();
+  m.max = r.vec3();
+  return m;
+}
+
+void write_heightfield(ByteWriter& w, const detail::HeightField& f) {
+  w.u32(f.columns);
+  w.u32(f.rows);
+  w.real(f.spacing_x);
+  w.real(f.spacing_z);
+  w.real(f.min_height);
+  w.real(f.max_height);
+  w.u32(uint32_t(f.heights.size()));
+  for (float h : f.heights) write_f32(w, h);
+}
+
+detail::HeightField read_heightfield(ByteReader& r) {
+  detail::HeightField f;
+  f.columns = r.u32();
+  f.rows = r.u32();
+  f.spacing_x = r.real();
+  f.spacing_z = r.real();
+  f.min_height = r.real();
+  f.max_height = r.real();
+  f.heights.resize(r.count(4, "heightfield sample"));
+  for (float& h : f.heights) h = read_f32(r);
+  if (f.columns < 2 || f.rows < 2 || uint64_t(f.columns) * f.rows != f.heights.size()) {
+    r.fail("heightfield grid size does not match its samples");
+  }
+  if (!(std::isfinite(f.spacing_x) && f.spacing_x > 0 && std::isfinite(f.spacing_z) &&
+        f.spacing_z > 0)) {
+    r.fail("heightfield spacing is not finite and positive");
+  }
+  return f;
+}
+
+void write_compound(ByteWriter& w, const detail::Compound& c) {
+  w.u32(uint32_t(c.parts.size()));
+  for (std::size_t k = 0; k < c.parts.size(); ++k) {
+    const detail::CompoundPart& p = c.parts[k];
+    write_shape(w, p.shape);
+    w.vec3(p.pose.position);
+    write_quat(w, p.pose.rotation);
+    w.vec3(p.box.min);
+    w.vec3(p.box.max);
+    w.u32(c.child_of[k]);
+  }
+  write_tree(w, c.tree);
+}
+
+detail::Compound read_compound(ByteReader& r) {
+  detail::Compound c;
+  const uint32_t n = r.count(2, "compound part");
+  if (n == 0) r.fail("compound has no parts");
+  c.parts.resize(n);
+  c.child_of.resize(n);
+  std::vector<uint8_t> seen(n, 0);
+  for (uint32_t k = 0; k < n; ++k) {
+    detail::CompoundPart& p = c.parts[k];
+    p.shape = read_shape(r, true);
+    p.pose.position = r.vec3();
+    p.pose.rotation = read_quat(r);
+    p.box.min = r.vec3();
+    p.box.max = r.vec3();
+    c.child_of[k] = r.u32();
+    if (c.child_of[k] >= n || seen[c.child_of[k]]++)
+      r.fail("compound child order is not a permutation");
+  }
+  c.tree = read_tree(r, n);
+  if (c.tree.nodes.empty() != (n < detail::kCompoundTreeMin)) {
+    r.fail("compound tree does not match its part count");
+  }
+  return c;
+}
+
 void write_shape(ByteWriter& w, const Shape& s) {
   w.u8(uint8_t(s.type));
   w.real(s.radius);
@@ -161,12 +329,19 @@ void write_shape(ByteWriter& w, const Shape& s) {
   w.real(s.bounding_radius);
   w.u8(s.hull ? 1 : 0);
   if (s.hull) write_hull(w, *s.hull);
+  // The built surfaces as they are (triangles in tree order, the tree itself), not their
+  // definitions: a rebuild would be slower and need not give the same bits.
+  if (s.type == ShapeType::Mesh) write_mesh(w, *s.mesh);
+  if (s.type == ShapeType::Heightfield) write_heightfield(w, *s.heightfield);
+  if (s.type == ShapeType::Compound) write_compound(w, *s.compound);
 }
 
-Shape read_shape(ByteReader& r) {
+// A compound's part must be convex (one level of nesting, as make_shape builds them).
+Shape read_shape(ByteReader& r, bool in_compound) {
   Shape s;
   const uint8_t type = r.u8();
-  if (type > uint8_t(ShapeType::Plane)) r.fail("unknown shape type " + std::to_string(type));
+  if (type > uint8_t(ShapeType::Compound)) r.fail("unknown shape type " + std::to_string(type));
+  if (in_compound && type > uint8_t(ShapeType::ConvexHull)) r.fail("compound part is not convex");
   s.type = ShapeType(type);
   s.radius = r.real();
   s.half_height = r.real();
@@ -185,6 +360,15 @@ Shape read_shape(ByteReader& r) {
     r.fail("hull data does not match the shape type");
   }
   if (has_hull) s.hull = std::make_shared<const detail::ConvexHull>(read_hull(r));
+  if (s.type == ShapeType::Mesh) {
+    s.mesh = std::make_shared<const detail::TriangleMesh>(read_mesh(r));
+  }
+  if (s.type == ShapeType::Heightfield) {
+    s.heightfield = std::make_shared<const detail::HeightField>(read_heightfield(r));
+  }
+  if (s.type == ShapeType::Compound) {
+    s.compound = std::make_shared<const detail::Compound>(read_compound(r));
+  }
   return s;
 }
 
@@ -476,7 +660,7 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
   d.shapes.resize(r.count(2, "shape"));
   d.shape_destroyed.resize(d.shapes.size());
   for (std::size_t k = 0; k < d.shapes.size(); ++k) {
-    d.shapes[k] = read_shape(r);
+    d.shapes[k] = read_shape(r, false);
     d.shape_destroyed[k] = r.u8();
     if (d.shape_destroyed[k] > 1) r.fail("bad shape destroyed flag");
   }

@@ -152,6 +152,12 @@ BodyId World::create_body(const BodyDef& def) {
   if (shape.type == ShapeType::Plane) {
     check_arg(def.motion == MotionType::Static, "motion", "a plane must be static");
   }
+  if (shape.type == ShapeType::Mesh) {
+    check_arg(def.motion == MotionType::Static, "motion", "a mesh must be static");
+  }
+  if (shape.type == ShapeType::Heightfield) {
+    check_arg(def.motion == MotionType::Static, "motion", "a heightfield must be static");
+  }
 
   // Mass properties, checked before anything is stored.
   Real inv_mass = 0;

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/compound.hpp"
 #include "core/base/shape.hpp"
 #include "elan/error.hpp"
 
@@ -343,6 +344,244 @@ TEST(ShapeValidation, BadSizesThrowNamingTheField) {
   expect_field(plane, "shape.offset");
   expect_field(hull_def({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}), "shape.points");
   expect_field(hull_def(std::vector<Vec3>(6, Vec3(1, 1, 1))), "shape.points");
+}
+
+// --- compounds, meshes, heightfields --------------------------------------------------------
+
+ShapeDef box_def(const Vec3& h) {
+  ShapeDef d = def_of(ShapeType::Box);
+  d.half_extents = h;
+  return d;
+}
+
+CompoundChild child(const ShapeDef& shape, const Vec3& position, const Quat& orientation) {
+  CompoundChild c;
+  c.shape = shape;
+  c.position = position;
+  c.orientation = orientation;
+  return c;
+}
+
+// The inertia tensor per unit density in the shape frame, from the principal frame and moments:
+// V R diag(unit_inertia) R^T.
+Eigen::Matrix3d tensor_of(const Shape& s) {
+  const Eigen::Matrix3d r = s.frame_rotation.toRotationMatrix().cast<double>();
+  return double(s.volume) * r * s.unit_inertia.cast<double>().asDiagonal() * r.transpose();
+}
+
+void expect_matrix(const Eigen::Matrix3d& got, const Eigen::Matrix3d& want, double tol,
+                   const std::string& what) {
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_NEAR(got(i, j), want(i, j), tol) << what << " (" << i << ", " << j << ")";
+    }
+  }
+}
+
+TEST(ShapeMass, CompoundLOfTwoBoxesMatchesTheHandComputedTensor) {
+  // Box A: half extents (1, 0.5, 0.5) at the origin. Box B: the same box turned 90 degrees about
+  // z (so half extents (0.5, 1, 0.5)) at (0.5, 1.5, 0): an L in the xy plane.
+  ShapeDef l = def_of(ShapeType::Compound);
+  const Quat quarter(Eigen::AngleAxis<Real>(Real(kPi / 2), Vec3::UnitZ()));
+  l.children = {child(box_def(Vec3(1, 0.5f, 0.5f)), Vec3::Zero(), Quat::Identity()),
+                child(box_def(Vec3(1, 0.5f, 0.5f)), Vec3(0.5f, 1.5f, 0), quarter)};
+  const Shape s = make_shape(l);
+  // Each volume 8 * 1 * 0.5 * 0.5 = 2; the centre of mass is the mean (0.25, 0.75, 0).
+  expect_rel(s.volume, 4, kExact, "volume");
+  EXPECT_NEAR(s.frame_position.x(), 0.25, 1e-6);
+  EXPECT_NEAR(s.frame_position.y(), 0.75, 1e-6);
+  EXPECT_NEAR(s.frame_position.z(), 0, 1e-6);
+  // Own moments V (b^2 + c^2) / 3: A (1/3, 5/6, 5/6), B (5/6, 1/3, 5/6). Offsets from the centre
+  // d = -+(0.25, 0.75, 0), |d|^2 = 0.625; V (|d|^2 Id - d d^T) per box: xx 2 (0.625 - 0.0625) =
+  // 1.125, yy 2 (0.625 - 0.5625) = 0.125, zz 1.25, xy -2 (0.25 * 0.75) = -0.375.
+  Eigen::Matrix3d want = Eigen::Matrix3d::Zero();
+  want(0, 0) = 1.0 / 3 + 5.0 / 6 + 2 * 1.125;
+  want(1, 1) = 5.0 / 6 + 1.0 / 3 + 2 * 0.125;
+  want(2, 2) = 5.0 / 6 + 5.0 / 6 + 2 * 1.25;
+  want(0, 1) = want(1, 0) = 2 * -0.375;
+  // Float moments of O(4) after a rotation: a few ulps of 4.
+  expect_matrix(tensor_of(s), want, 1e-5, "L inertia");
+  // The parts put back in the shape frame are the boxes where they were given.
+  const Compound& c = *s.compound;
+  ASSERT_EQ(c.parts.size(), 2u);
+  EXPECT_EQ(c.child_of, (std::vector<uint32_t>{0, 1}));
+  const Vec3 b_centre = s.frame_rotation * c.parts[1].pose.position + s.frame_position;
+  EXPECT_LT((b_centre - Vec3(0.5f, 1.5f, 0)).norm(), 1e-5);
+  // Bounds: the union of the two boxes, x in [-1, 1], y in [-0.5, 2.5], in the principal frame;
+  // every corner of both boxes lies inside them.
+  for (const Vec3& corner :
+       {Vec3(-1, -0.5f, -0.5f), Vec3(1, 0.5f, 0.5f), Vec3(0, 2.5f, 0.5f), Vec3(1, 2.5f, -0.5f)}) {
+    const Vec3 p = s.frame_rotation.conjugate() * (corner - s.frame_position);
+    EXPECT_TRUE((p.array() >= s.local_min.array() - 1e-5f).all() &&
+                (p.array() <= s.local_max.array() + 1e-5f).all())
+        << corner.transpose();
+  }
+}
+
+TEST(ShapeMass, CompoundOfOneChildEqualsTheChild) {
+  // A box at the origin: the same shape exactly.
+  ShapeDef one = def_of(ShapeType::Compound);
+  const ShapeDef box = box_def(Vec3(0.3f, 0.7f, 1.1f));
+  one.children = {child(box, Vec3::Zero(), Quat::Identity())};
+  const Shape c = make_shape(one), b = make_shape(box);
+  EXPECT_EQ(c.volume, b.volume);
+  EXPECT_EQ(c.unit_inertia, b.unit_inertia);
+  EXPECT_EQ(c.frame_position, Vec3::Zero());
+  EXPECT_EQ(c.frame_rotation.coeffs(), Quat::Identity().coeffs());
+  EXPECT_EQ(c.local_min, b.local_min);
+  EXPECT_EQ(c.local_max, b.local_max);
+  EXPECT_EQ(c.bounding_radius, b.bounding_radius);
+
+  // An off-centre hull, placed at an offset and turned: the compound's centre is the hull's
+  // centroid placed, its tensor the hull's turned, its principal moments the hull's.
+  const ShapeDef hull = hull_def({Vec3(0.2f, 0, 0), Vec3(1.4f, 0.1f, 0), Vec3(0.3f, 0.9f, 0),
+                                  Vec3(0.4f, 0.2f, 0.7f), Vec3(1.1f, 0.8f, 0.6f)});
+  const Vec3 at(3, -1, 2);
+  const Quat q = Quat(Eigen::AngleAxis<Real>(Real(0.7), Vec3(1, 2, 3).normalized())).normalized();
+  one.children = {child(hull, at, q)};
+  const Shape hc = make_shape(one), h = make_shape(hull);
+  expect_rel(hc.volume, h.volume, kExact, "volume");
+  EXPECT_LT((hc.frame_position - (at + q * h.frame_position)).norm(), 1e-5);
+  const Eigen::Matrix3d qr = q.toRotationMatrix().cast<double>();
+  expect_matrix(tensor_of(hc), qr * tensor_of(h) * qr.transpose(), 1e-6 * tensor_of(h).norm(),
+                "hull tensor");
+  const auto want = sorted(h.unit_inertia), got = sorted(hc.unit_inertia);
+  for (int i = 0; i < 3; ++i) expect_rel(got[i], want[i], 1e-5, "moment");
+  // The part put back in the shape frame is the hull placed: each vertex lands where the child
+  // definition puts it.
+  const CompoundPart& p = hc.compound->parts[0];
+  for (const Vec3& v : h.hull->vertices) {
+    const Vec3 in_child = h.frame_rotation * v + h.frame_position;
+    const Vec3 want_v = at + q * in_child;
+    const Vec3 got_v = hc.frame_rotation * p.pose.apply(v) + hc.frame_position;
+    EXPECT_LT((got_v - want_v).norm(), 1e-5) << v.transpose();
+    const Vec3 local = p.pose.apply(v);
+    EXPECT_TRUE((local.array() >= p.box.min.array()).all() &&
+                (local.array() <= p.box.max.array()).all());
+  }
+  EXPECT_NEAR(hc.bounding_radius, h.bounding_radius, 1e-5);  // the part sits at the centre
+}
+
+TEST(ShapeMass, CompoundOfTwoEqualSpheres) {
+  const double r = 0.5, a = 2;
+  ShapeDef sphere = def_of(ShapeType::Sphere);
+  sphere.radius = Real(r);
+  ShapeDef two = def_of(ShapeType::Compound);
+  two.children = {child(sphere, Vec3(Real(-a), 0, 0), Quat::Identity()),
+                  child(sphere, Vec3(Real(a), 0, 0), Quat::Identity())};
+  const Shape s = make_shape(two);
+  const double v1 = 4.0 / 3.0 * kPi * r * r * r;
+  expect_rel(s.volume, 2 * v1, kExact, "volume");
+  EXPECT_EQ(s.frame_position, Vec3::Zero());
+  // Along the line of centres each sphere's own 2/5 r^2; across it, plus a^2.
+  expect_rel(s.unit_inertia.x(), 0.4 * r * r, kExact, "along");
+  expect_rel(s.unit_inertia.y(), 0.4 * r * r + a * a, kExact, "across y");
+  expect_rel(s.unit_inertia.z(), 0.4 * r * r + a * a, kExact, "across z");
+  EXPECT_NEAR(s.bounding_radius, a + r, 1e-6);
+  EXPECT_NEAR(s.local_min.x(), -(a + r), 1e-6);
+  EXPECT_NEAR(s.local_max.x(), a + r, 1e-6);
+  EXPECT_NEAR(s.local_max.y(), r, 1e-6);
+}
+
+TEST(ShapeMass, CompoundOfManyChildrenHasATreeOverItsParts) {
+  ShapeDef many = def_of(ShapeType::Compound);
+  ShapeDef sphere = def_of(ShapeType::Sphere);
+  sphere.radius = 0.3f;
+  for (int k = 0; k < 20; ++k) {
+    many.children.push_back(
+        child(sphere, Vec3(Real(k % 5), Real(k / 5), Real((k * 7) % 3)), Quat::Identity()));
+  }
+  const Shape s = make_shape(many);
+  const Compound& c = *s.compound;
+  ASSERT_FALSE(c.tree.nodes.empty());
+  std::vector<uint32_t> sorted_children = c.child_of;
+  std::sort(sorted_children.begin(), sorted_children.end());
+  for (uint32_t k = 0; k < 20; ++k) EXPECT_EQ(sorted_children[k], k);
+  // Each part is its child: placed where the definition put it.
+  for (uint32_t k = 0; k < 20; ++k) {
+    const Vec3 world = s.frame_rotation * c.parts[k].pose.position + s.frame_position;
+    EXPECT_LT((world - many.children[c.child_of[k]].position).norm(), 1e-5);
+  }
+  // A box query finds exactly the parts whose boxes overlap it.
+  const Vec3 lo = s.frame_rotation.conjugate() * (Vec3(0.9f, 0.9f, -1) - s.frame_position);
+  const Vec3 hi = s.frame_rotation.conjugate() * (Vec3(2.1f, 2.1f, 3) - s.frame_position);
+  const Vec3 qlo = lo.cwiseMin(hi), qhi = lo.cwiseMax(hi);
+  std::vector<uint32_t> found, expected;
+  for_each_part(c, qlo, qhi, [&](uint32_t k, const CompoundPart&) { found.push_back(k); });
+  for (uint32_t k = 0; k < 20; ++k) {
+    const Aabb& b = c.parts[k].box;
+    if (!((b.min.array() > qhi.array()).any() || (b.max.array() < qlo.array()).any())) {
+      expected.push_back(k);
+    }
+  }
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, expected);
+  EXPECT_FALSE(expected.empty());
+}
+
+TEST(ShapeMass, MeshAndHeightfieldAreStaticSurfacesInTheirOwnFrame) {
+  ShapeDef mesh = def_of(ShapeType::Mesh);
+  mesh.vertices = {Vec3(-1, 0, -2), Vec3(3, 0, -2), Vec3(-1, 1, 4)};
+  mesh.triangles = {{0, 1, 2}};
+  const Shape m = make_shape(mesh);
+  EXPECT_EQ(m.volume, 0);
+  EXPECT_EQ(m.unit_inertia, Vec3::Zero());
+  EXPECT_EQ(m.frame_position, Vec3::Zero());
+  EXPECT_EQ(m.local_min, Vec3(-1, 0, -2));
+  EXPECT_EQ(m.local_max, Vec3(3, 1, 4));
+  EXPECT_NEAR(m.bounding_radius, std::sqrt(9.0 + 1 + 16), 1e-5);
+  ASSERT_TRUE(m.mesh);
+
+  ShapeDef field = def_of(ShapeType::Heightfield);
+  field.heights = {0, 1, -2, 0.5f, 0.25f, 3};
+  field.columns = 3;
+  field.spacing_x = 2;
+  field.spacing_z = 0.5f;
+  const Shape f = make_shape(field);
+  EXPECT_EQ(f.volume, 0);
+  EXPECT_EQ(f.local_min, Vec3(0, -2, 0));
+  EXPECT_EQ(f.local_max, Vec3(4, 3, 0.5f));
+  EXPECT_NEAR(f.bounding_radius, std::sqrt(16 + 9 + 0.25), 1e-5);
+  ASSERT_TRUE(f.heightfield);
+}
+
+TEST(ShapeValidation, CompoundErrorsNameTheChild) {
+  ShapeDef c = def_of(ShapeType::Compound);
+  expect_field(c, "shape.children");
+  ShapeDef sphere = def_of(ShapeType::Sphere);
+  c.children = {child(sphere, Vec3::Zero(), Quat::Identity()),
+                child(sphere, Vec3(1, 0, 0), Quat::Identity()),
+                child(sphere, Vec3(2, 0, 0), Quat::Identity())};
+  for (ShapeType t :
+       {ShapeType::Plane, ShapeType::Mesh, ShapeType::Heightfield, ShapeType::Compound}) {
+    ShapeDef bad = c;
+    bad.children[1].shape.type = t;
+    expect_field(bad, "shape.children[1].shape.type");
+  }
+  ShapeDef bad = c;
+  bad.children[2].shape.radius = -1;
+  expect_field(bad, "shape.children[2].shape.radius");
+  try {
+    make_shape(bad);
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("shape.children[2].shape.radius: must be", 0), 0u)
+        << e.what();
+  }
+  bad = c;
+  bad.children[0].position.y() = std::numeric_limits<Real>::infinity();
+  expect_field(bad, "shape.children[0].position");
+  bad = c;
+  bad.children[0].position.y() = 1e6f;
+  expect_field(bad, "shape.children[0].position");
+  bad = c;
+  bad.children[2].orientation = Quat(0, 0, 0, 0);
+  expect_field(bad, "shape.children[2].orientation");
+  bad = c;
+  bad.children[2].orientation.x() = std::numeric_limits<Real>::quiet_NaN();
+  expect_field(bad, "shape.children[2].orientation");
+  bad = c;
+  bad.children[1].shape = hull_def(std::vector<Vec3>(6, Vec3(1, 1, 1)));
+  expect_field(bad, "shape.children[1].shape.points");
 }
 
 }  // namespace shape_mass_properties_test

@@ -15,7 +15,7 @@
 namespace elan {
 
 /// Format version written by save_snapshot and save_rollback; other versions are refused.
-inline constexpr uint32_t kSnapshotVersion = 8;
+inline constexpr uint32_t kSnapshotVersion = 9;
 
 /// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built
 /// (hull vertices, faces and edges in the principal frame, frames, mass properties), every body

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: MIT
+// The static heightfield: validation, its implied triangles with their active edges, and the ray
+// walked cell by cell over the grid.
+#include "core/base/heightfield.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/base/range_checks.hpp"
+#include "core/base/triangle_mesh.hpp"
+#include "elan/error.hpp"
+
+namespace elan::detail {
+namespace {
+
+// More cells than this are refused: triangle 2 c + 1 is numbered in 32 bits.
+constexpr std::size_t kMaxCells = std::size_t(1) << 31;
+
+void check_spacing(Real s, const char* axis) {
+  if (!std::isfinite(s) || !(s > 0)) {
+    throw Error("shape.spacing",
+                std::string("spacing_") + axis + " must be finite and > 0, got " + show_value(s));
+  }
+  check_range(s, limits::kMinSize, limits::kMaxSize, "shape.spacing", "m");
+}
+
+}  // namespace
+
+HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, Real spacing_x,
+                              Real spacing_z) {
+  const std::size_t n = heights.size();
+  if (columns < 2 || n < 2 * std::size_t(columns)) {
+    throw Error("shape.heights", "must have at least 2 rows of 2 samples, got " +
+                                     std::to_string(n) + " heights in rows of " +
+                                     std::to_string(columns));
+  }
+  if (n % columns != 0) {
+    throw Error("shape.heights", "heights.size() " + std::to_string(n) +
+                                     " is not a multiple of columns " + std::to_string(columns));
+  }
+  const std::size_t rows = n / columns;
+  if (rows > UINT32_MAX || (columns - 1) * (rows - 1) > kMaxCells) {
+    throw Error("shape.heights", "more than " + std::to_string(kMaxCells) + " cells");
+  }
+  check_spacing(spacing_x, "x");
+  check_spacing(spacing_z, "z");
+  // The grid's extent is a position in the shape frame.
+  if (!(double(columns - 1) * spacing_x <= 2 * limits::kMaxPosition) ||
+      !(double(rows - 1) * spacing_z <= 2 * limits::kMaxPosition)) {
+    throw Error("shape.spacing",
+                "the grid spans more than " + show_value(2 * limits::kMaxPosition) + " m");
+  }
+  HeightField f;
+  f.columns = columns;
+  f.rows = uint32_t(rows);
+  f.spacing_x = spacing_x;
+  f.spacing_z = spacing_z;
+  f.heights.resize(n);
+  f.min_height = std::numeric_limits<Real>::max();
+  f.max_height = -f.min_height;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double h = heights[k];
+    if (!std::isfinite(h) || !(std::fabs(h) <= limits::kMaxPosition)) {
+      throw Error("shape.heights",
+                  "height " + std::to_string(k) + " (row " + std::to_string(k / columns) +
+                      ", column " + std::to_string(k % columns) + ") must be finite and in [" +
+                      show_value(-limits::kMaxPosition) + ", " + show_value(limits::kMaxPosition) +
+                      "] m, got " + show_value(h));
+    }
+    f.heights[k] = float(heights[k]);
+    // The stored (float) heights are the surface; the bounds are theirs.
+    f.min_height = std::min(f.min_height, Real(f.heights[k]));
+    f.max_height = std::max(f.max_height, Real(f.heights[k]));
+  }
+  return f;
+}
+
+MeshTriangle HeightField::triangle(uint32_t t) const {
+  const uint32_t c = t / 2, cells_x = columns - 1;
+  const uint32_t i = c % cells_x, j = c / cells_x;
+  const bool upper = (t & 1) != 0;
+  const Vec3 p00 = point(i, j), p10 = point(i + 1, j);
+  const Vec3 p01 = point(i, j + 1), p11 = point(i + 1, j + 1);
+  MeshTriangle m;
+  m.index = t;
+  m.two_sided = false;
+  // Lower (2 c): p00, p11, p10; upper (2 c + 1): p00, p01, p11; both counter-clockwise from +y.
+  // The neighbour of each edge (other: the cell's other triangle; the rest in adjacent cells) as
+  // its far corner, which with the edge spans the neighbour's plane.
+  std::array<Vec3, 3> far;
+  std::array<bool, 3> border{};
+  if (!upper) {
+    m.v[0] = p00, m.v[1] = p11, m.v[2] = p10;
+    far[0] = p01;                  // diagonal: the upper triangle
+    border[1] = i + 2 >= columns;  // side x = i + 1: the upper triangle of cell (i + 1, j)
+    if (!border[1]) far[1] = point(i + 2, j + 1);
+    border[2] = j == 0;  // side z = j: the upper triangle of cell (i, j - 1)
+    if (!border[2]) far[2] = point(i, j - 1);
+  } else {
+    m.v[0] = p00, m.v[1] = p01, m.v[2] = p11;
+    border[0] = i == 0;  // side x = i: the lower triangle of cell (i - 1, j)
+    if (!border[0]) far[0] = point(i - 1, j);
+    border[1] = j + 2 >= rows;  // side z = j + 1: the lower triangle of cell (i, j + 1)
+    if (!border[1]) far[1] = point(i + 1, j + 2);
+    far[2] = p10;  // diagonal: the lower triangle
+  }
+  const Vec3 n1 = m.normal();
+  uint8_t active = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (border[k]) {
+      active |= uint8_t(1u << k);
+      continue;
+    }
+    // The neighbour walks the edge the other way: (v[k + 1], v[k], far) is counter-clockwise.
+    const Vec3& a = m.v[k];
+    const Vec3& b = m.v[(k + 1) % 3];
+    const Vec3 n2 = (a - b).cross(far[k] - b).normalized();
+    if (edge_is_active(n1, n2, b - a)) active |= uint8_t(1u << k);
+  }
+  m.active_edges = active;
+  return m;
+}
+
+bool ray_cast_heightfield(const HeightField& field, const Vec3& origin, const Vec3& dir, Real max_t,
+                          SurfaceHit& hit) {
+  using Vec3d = Eigen::Vector3d;
+  const Vec3d o = origin.cast<double>(), d = dir.cast<double>();
+  const Vec3d lo(0, double(field.min_height), 0);
+  const Vec3d hi(double(field.columns - 1) * field.spacing_x, double(field.max_height),
+                 double(field.rows - 1) * field.spacing_z);
+  // Clip the ray to the field's box (slabs).
+  double t0 = 0, t1 = double(max_t);
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      continue;
+    }
+    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  const auto cell_of = [](double x, double spacing, uint32_t samples) {
+    const double c = std::floor(x / spacing);
+    return c <= 0 ? 0 : c >= double(samples - 2) ? int64_t(samples - 2) : int64_t(c);
+  };
+  const double sx = field.spacing_x, sz = field.spacing_z;
+  const Vec3d p = o + t0 * d;
+  int64_t i = cell_of(p.x(), sx, field.columns), j = cell_of(p.z(), sz, field.rows);
+  const int step_i = d.x() > 0 ? 1 : -1, step_j = d.z() > 0 ? 1 : -1;
+  const auto next_x = [&](int64_t cell) {
+    if (d.x() == 0) return std::numeric_limits<double>::infinity();
+    return (double(cell + (d.x() > 0 ? 1 : 0)) * sx - o.x()) / d.x();
+  };
+  const auto next_z = [&](int64_t cell) {
+    if (d.z() == 0) return std::numeric_limits<double>::infinity();
+    return (double(cell + (d.z() > 0 ? 1 : 0)) * sz - o.z()) / d.z();
+  };
+  bool found = false;
+  Real best = max_t;
+  // A 2D DDA (Amanatides & Woo 1987) over the cells of the ray's xz projection, in order of t;
+  // a cell's hit lies within its t range, so the walk stops at the first cell past the nearest
+  // hit. The count bound guarantees the walk ends whatever the rounding.
+  const int64_t max_cells = int64_t(field.columns) + int64_t(field.rows);
+  for (int64_t walked = 0; walked <= max_cells; ++walked) {
+    const uint32_t c = uint32_t(j) * (field.columns - 1) + uint32_t(i);
+    for (uint32_t t = 2 * c; t <= 2 * c + 1; ++t) {
+      const MeshTriangle tri = field.triangle(t);
+      Real th;
+      if (!ray_triangle(origin, dir, tri.v[0], tri.v[1], tri.v[2], best, th)) continue;
+      if (found && !(th < best)) continue;
+      found = true;
+      best = th;
+      hit.t = th;
+      hit.triangle = t;
+      hit.normal = tri.normal();
+    }
+    const double tx = next_x(i), tz = next_z(j);
+    const double exit = std::min(tx, tz);
+    if (exit > t1 || (found && double(best) < exit)) break;
+    if (tx <= tz) {
+      i += step_i;
+      if (i < 0 || i > int64_t(field.columns) - 2) break;
+    } else {
+      j += step_j;
+      if (j < 0 || j > int64_t(field.rows) - 2) break;
+    }
+  }
+  if (found && hit.normal.dot(dir) > 0) hit.normal = -hit.normal;
+  return found;
+}
+
+std::size_t heightfield_bytes(const HeightField& field) {
+  return sizeof(HeightField) + field.heights.capacity() * sizeof(float);
+}
+
+}  // namespace elan::detail

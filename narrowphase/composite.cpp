@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: MIT
+// Composite pairs: the walk over pieces and the merge into one manifold (see composite.hpp).
+#include "narrowphase/composite.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <span>
+
+#include "core/base/compound.hpp"
+#include "core/base/heightfield.hpp"
+#include "core/base/triangle_mesh.hpp"
+#include "narrowphase/collide.hpp"
+#include "narrowphase/manifold_reduce.hpp"
+#include "narrowphase/triangle_contact.hpp"
+
+namespace elan::detail {
+namespace {
+
+// perf: a fixed stack buffer of candidates (32 bytes each); past it a deeper candidate replaces
+// the shallowest, so the deepest points always survive. A box on a fine mesh meets a few dozen
+// triangles, each giving at most four points.
+constexpr int kMaxCandidates = 128;
+// Candidates whose normal is within this cosine (about 25 degrees) of the manifold's join it:
+// near enough that the one normal the solver pushes along still holds them apart (a box across
+// a gentle fold of a heightfield), far enough from a crease (a floor meeting a wall) that the
+// wall's point does not push along the floor's normal.
+constexpr Real kSameNormalCos = Real(0.9);
+// Candidates closer than this are one point, m: the solver gains nothing from a second one there.
+constexpr Real kSamePoint = Real(1e-3);
+// The feature id of a candidate that came from no triangle.
+constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
+
+struct Candidate {
+  Vec3 point;   // m, world, from A's centre of mass
+  Vec3 normal;  // unit, world, A to B
+  Real separation;
+  uint32_t id;
+};
+
+struct Candidates {
+  Candidate c[kMaxCandidates];
+  int count = 0;
+
+  void push(const Candidate& x) {
+    if (count < kMaxCandidates) {
+      c[count++] = x;
+      return;
+    }
+    // determinism: the first of equally shallow candidates is replaced.
+    int worst = 0;
+    for (int i = 1; i < count; ++i) {
+      if (c[i].separation > c[worst].separation) worst = i;
+    }
+    if (x.separation < c[worst].separation) c[worst] = x;
+  }
+};
+
+// 32 bits from the pieces (parts of A and B, 0 for none), the triangle and the piece's own id:
+// splitmix64's finaliser over the packed words, so that ids of different pieces rarely collide.
+uint32_t feature_id(uint32_t parts, uint32_t triangle, uint32_t local) {
+  uint64_t h = (uint64_t(parts) << 32 | triangle) ^ (uint64_t(local) * 0x9E3779B97F4A7C15ull);
+  h ^= h >> 30;
+  h *= 0xBF58476D1CE4E5B9ull;
+  h ^= h >> 27;
+  h *= 0x94D049BB133111EBull;
+  h ^= h >> 31;
+  return uint32_t(h);
+}
+
+Transform compose(const Transform& outer, const Transform& inner) {
+  return {outer.rotation * inner.position + outer.position, outer.rotation * inner.rotation};
+}
+
+// The box of shape `s` at pose `xs`, in the frame `frame`, grown by `grow`; a plane's is
+// everything.
+void box_in(const Shape& s, const Transform& xs, const Transform& frame, Real grow, Vec3& lo,
+            Vec3& hi) {
+  if (s.type == ShapeType::Plane) {
+    lo = Vec3::Constant(std::numeric_limits<Real>::lowest());
+    hi = Vec3::Constant(std::numeric_limits<Real>::max());
+    return;
+  }
+  const Quat to_frame = frame.rotation.conjugate();
+  const Mat3 r = (to_frame * xs.rotation).toRotationMatrix();
+  const Vec3 centre =
+      r * (Real(0.5) * (s.local_min + s.local_max)) + to_frame * (xs.position - frame.position);
+  const Vec3 half = r.cwiseAbs() * (Real(0.5) * (s.local_max - s.local_min));
+  lo = centre - half - Vec3::Constant(grow);
+  hi = centre + half + Vec3::Constant(grow);
+}
+
+struct Walk {
+  const Transform& xa;  // A's body pose: the candidates' points are from its centre
+  Real speculative;
+  Candidates& out;
+};
+
+// A convex piece p (A's side, or a plane) against a piece q of B's side: convex, plane or surface.
+void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const Transform& xq,
+                    uint32_t parts, Walk& w) {
+  const Vec3 offset = xp.position - w.xa.position;
+  if (is_surface(q)) {
+    if (p.type == ShapeType::Plane) return;
+    // The piece in the surface's frame; the triangles under its box.
+    const Quat to_q = xq.rotation.conjugate();
+    const Transform local{to_q * (xp.position - xq.position), to_q * xp.rotation};
+    Vec3 lo, hi;
+    box_in(p, local, Transform{}, w.speculative, lo, hi);
+    const auto visit = [&](const MeshTriangle& t) {
+      TriangleContact tc;
+      if (!collide_triangle(p, local, t, w.speculative, tc)) return;
+      const Vec3 n = xq.rotation * tc.normal;
+      for (int k = 0; k < tc.count; ++k) {
+        w.out.push({xq.rotation * tc.points[k] + offset, n, tc.separation[k],
+                    feature_id(parts, t.index, tc.feature[k])});
+      }
+    };
+    if (q.type == ShapeType::Mesh) {
+      for_each_triangle(*q.mesh, lo, hi, visit);
+    } else {
+      for_each_triangle(*q.heightfield, lo, hi, visit);
+    }
+    return;
+  }
+  Manifold m;
+  if (!collide(p, xp, q, xq, w.speculative, m)) return;
+  for (int k = 0; k < int(m.point_count); ++k) {
+    const ContactPoint& c = m.points[k];
+    w.out.push({c.anchor_a + offset, m.normal, c.separation,
+                feature_id(parts, kNoTriangle, c.feature_id)});
+  }
+}
+
+// A piece p of A's side against the whole of B's side.
+void collide_piece_with(const Shape& p, const Transform& xp, uint32_t part_a, const Shape& b,
+                        const Transform& xb, Walk& w) {
+  if (b.type != ShapeType::Compound) {
+    collide_pieces(p, xp, b, xb, part_a, w);
+    return;
+  }
+  Vec3 lo, hi;
+  box_in(p, xp, xb, w.speculative, lo, hi);
+  for_each_part(*b.compound, lo, hi, [&](uint32_t k, const CompoundPart& part) {
+    collide_pieces(p, xp, part.shape, compose(xb, part.pose), part_a | ((k + 1) << 16), w);
+  });
+}
+
+// The merge: the deepest candidate's normal (the point the solver must push apart first; its
+// normal is the one that resolves it, and reduce_to_four keeps that point too), the candidates
+// near that normal with their gap re-measured along it (to their own plane: s / cos), then four.
+bool merge(const Candidates& cands, Real speculative, Manifold& out) {
+  if (cands.count == 0) return false;
+  int deepest = 0;
+  for (int i = 1; i < cands.count; ++i) {
+    if (cands.c[i].separation < cands.c[deepest].separation) deepest = i;
+  }
+  const Vec3 normal = cands.c[deepest].normal;
+  Vec3 pos[kMaxCandidates];
+  Real sep[kMaxCandidates];
+  int from[kMaxCandidates];
+  int count = 0;
+  for (int i = 0; i < cands.count; ++i) {
+    const Candidate& c = cands.c[i];
+    const Real cosine = c.normal.dot(normal);
+    if (!(cosine >= kSameNormalCos)) continue;
+    // A candidate along the manifold's own normal keeps its bits (a lone part is its shape).
+    const Real s = c.normal == normal ? c.separation : c.separation / cosine;
+    if (s > speculative) continue;
+    // Neighbouring triangles report a point on their shared edge or corner each (a sphere over
+    // an inactive edge, a box corner over a vertex): one point there is enough, the deepest.
+    int same = -1;
+    for (int j = 0; j < count && same < 0; ++j) {
+      if ((pos[j] - c.point).squaredNorm() <= kSamePoint * kSamePoint) same = j;
+    }
+    if (same >= 0) {
+      if (s < sep[same]) pos[same] = c.point, sep[same] = s, from[same] = i;
+      continue;
+    }
+    pos[count] = c.point;
+    sep[count] = s;
+    from[count] = i;
+    ++count;
+  }
+  int keep[kMaxManifoldPoints];
+  const int kept = reduce_to_four(std::span<const Vec3>(pos, std::size_t(count)),
+                                  std::span<const Real>(sep, std::size_t(count)), normal, keep);
+  out.normal = normal;
+  for (int k = 0; k < kept; ++k) {
+    ContactPoint& p = out.points[k];
+    p.anchor_a = pos[keep[k]];
+    p.separation = sep[keep[k]];
+    p.feature_id = cands.c[from[keep[k]]].id;
+  }
+  out.point_count = uint32_t(kept);
+  return kept > 0;
+}
+
+}  // namespace
+
+bool has_round_part(const Shape& s) {
+  if (s.type != ShapeType::Compound) return false;
+  for (const CompoundPart& p : s.compound->parts) {
+    const ShapeType t = p.shape.type;
+    if (t == ShapeType::Sphere || t == ShapeType::Capsule || t == ShapeType::Cylinder) return true;
+  }
+  return false;
+}
+
+bool collide_composite(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                       Real speculative_distance, Manifold& out) {
+  out.point_count = 0;
+  if (is_surface(a) && is_surface(b)) return false;
+  if (is_surface(a)) {
+    // The surface as B: run the pair the other way, then flip the normal and measure the points
+    // from A's centre, as collide()'s dispatch does.
+    if (!collide_composite(b, xb, a, xa, speculative_distance, out)) return false;
+    out.normal = -out.normal;
+    const Vec3 b_from_a = xb.position - xa.position;
+    for (int k = 0; k < int(out.point_count); ++k) out.points[k].anchor_a += b_from_a;
+    return true;
+  }
+  Candidates cands;
+  Walk w{xa, speculative_distance, cands};
+  if (a.type == ShapeType::Compound) {
+    Vec3 lo, hi;
+    box_in(b, xb, xa, speculative_distance, lo, hi);
+    for_each_part(*a.compound, lo, hi, [&](uint32_t k, const CompoundPart& part) {
+      collide_piece_with(part.shape, compose(xa, part.pose), k + 1, b, xb, w);
+    });
+  } else {
+    collide_piece_with(a, xa, 0, b, xb, w);
+  }
+  return merge(cands, speculative_distance, out);
+}
+
+}  // namespace elan::detail

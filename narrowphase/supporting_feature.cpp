@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+// Supporting features and their clipping (see supporting_feature.hpp).
+#include "narrowphase/supporting_feature.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace elan::detail {
+
+void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const Vec3& origin,
+                        Feature& f) {
+  const Vec3 dl = x.rotation.conjugate() * d;
+  const Vec3 rel = x.position - origin;
+  const auto put = [&](int k, const Vec3& local) { f.points[k] = x.rotation * local + rel; };
+  switch (s.type) {
+    case ShapeType::Box: {
+      int axis = 0;
+      dl.cwiseAbs().maxCoeff(&axis);
+      const Real sign = dl[axis] >= 0 ? Real(1) : Real(-1);
+      const Vec3& h = s.half_extents;
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const Real su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+      for (int k = 0; k < 4; ++k) {
+        Vec3 p;
+        p[axis] = sign * h[axis];
+        p[u] = su[k] * h[u];
+        p[v] = sv[k] * h[v];
+        put(k, p);
+      }
+      f.count = 4;
+      f.id = uint32_t(2 * axis + (sign < 0 ? 1 : 0));
+      return;
+    }
+    case ShapeType::ConvexHull: {
+      const ConvexHull& h = *s.hull;
+      int best = 0;
+      Real bd = std::numeric_limits<Real>::lowest();
+      for (std::size_t i = 0; i < h.faces.size(); ++i) {
+        const Real dd = h.faces[i].normal.dot(dl);
+        if (dd > bd) {
+          bd = dd;
+          best = int(i);
+        }
+      }
+      const HullFace& face = h.faces[best];
+      if (bd < kFaceCos * dl.norm() || face.count > kMaxFeature) break;
+      for (uint32_t k = 0; k < face.count; ++k)
+        put(int(k), h.vertices[h.face_vertices[face.first + k]]);
+      f.count = int(face.count);
+      f.id = uint32_t(best) & 0x7F;
+      return;
+    }
+    case ShapeType::Cylinder: {
+      const Real radial = std::sqrt(dl.x() * dl.x() + dl.z() * dl.z());
+      if (std::abs(dl.y()) >= radial) {
+        const Real y = dl.y() >= 0 ? s.half_height : -s.half_height;
+        for (int k = 0; k < kCapSides; ++k) {
+          const Real t = Real(2 * M_PI) * Real(k) / Real(kCapSides);
+          put(k, Vec3(s.radius * std::cos(t), y, -s.radius * std::sin(t)));
+        }
+        f.count = kCapSides;
+        f.id = dl.y() >= 0 ? 0u : 1u;
+        return;
+      }
+      if (radial > kFaceCos * dl.norm()) {
+        const Real cx = s.radius * dl.x() / radial, cz = s.radius * dl.z() / radial;
+        put(0, Vec3(cx, -s.half_height, cz));
+        put(1, Vec3(cx, s.half_height, cz));
+        f.count = 2;
+        const Real angle = std::atan2(dl.z(), dl.x()) + Real(M_PI);
+        f.id = 2u + (uint32_t(angle * Real(8 / M_PI)) & 15u);
+        return;
+      }
+      break;
+    }
+    case ShapeType::Capsule: {
+      const Real along = dl.y();
+      const Vec3 off = d * s.radius;
+      if (std::abs(along) < (Real(1) - kFaceCos) * dl.norm()) {
+        f.points[0] = x.rotation * Vec3(0, -s.half_height, 0) + rel + off;
+        f.points[1] = x.rotation * Vec3(0, s.half_height, 0) + rel + off;
+        f.count = 2;
+        f.id = 2;
+        return;
+      }
+      f.points[0] =
+          x.rotation * Vec3(0, along >= 0 ? s.half_height : -s.half_height, 0) + rel + off;
+      f.count = 1;
+      f.id = along >= 0 ? 1u : 0u;
+      return;
+    }
+    default:
+      break;
+  }
+  f.points[0] = x.rotation * support(s, dl) + rel;
+  f.count = 1;
+  f.id = 0x7F;
+}
+
+void clip_against(const Feature& ref, const Feature& inc, ClipPolygon& out) {
+  ClipPolygon tmp;
+  ClipPolygon* cur = &out;
+  ClipPolygon* other = &tmp;
+  // Use an even number of swaps so the result lands in `out`.
+  if (ref.count % 2 == 1) std::swap(cur, other);
+  for (int k = 0; k < inc.count; ++k) {
+    cur->points[k] = inc.points[k];
+    cur->out_label[k] = uint8_t(k);
+  }
+  cur->count = inc.count;
+  Vec3 centroid = Vec3::Zero();
+  for (int k = 0; k < ref.count; ++k) centroid += ref.points[k];
+  centroid /= Real(ref.count);
+  const Vec3 nref = (ref.points[1] - ref.points[0]).cross(ref.points[2] - ref.points[0]);
+  for (int k = 0; k < ref.count; ++k) {
+    const Vec3& v0 = ref.points[k];
+    const Vec3& v1 = ref.points[(k + 1) % ref.count];
+    Vec3 side = (v1 - v0).cross(nref);
+    if (side.dot(centroid - v0) > 0) side = -side;
+    clip_polygon(*cur, side, v0, uint8_t(kSidePlaneLabel + k), *other);
+    std::swap(cur, other);
+  }
+}
+
+Real plane_gap(const Feature& ref, const Vec3& n, const Vec3& p, bool ref_is_a) {
+  Vec3 nf = (ref.points[1] - ref.points[0]).cross(ref.points[2] - ref.points[0]);
+  if (nf.dot(n) < 0) nf = -nf;
+  const Real along = nf.dot(n);
+  const Real t = nf.dot(p - ref.points[0]) / along;
+  return ref_is_a ? t : -t;
+}
+
+}  // namespace elan::detail

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+// A convex shape's supporting feature along a direction (face, segment or point) and the clipping
+// of one feature against a polygon's side planes: how the general path and the triangle contacts
+// turn one normal into a manifold (as Jolt's ManifoldBetweenTwoFaces does).
+#pragma once
+
+#include <cstdint>
+
+#include "core/base/shape.hpp"
+#include "narrowphase/clip.hpp"
+
+namespace elan::detail {
+
+// A cylinder cap is approximated by an inscribed regular polygon of this many sides.
+inline constexpr int kCapSides = 8;
+inline constexpr int kMaxFeature = 64;
+// A face is used as the supporting feature only if its normal is this close to the contact
+// normal (cosine); otherwise the support point alone.
+inline constexpr Real kFaceCos = Real(0.7);
+
+struct Feature {
+  int count = 0;  // 1 point, 2 segment, >= 3 polygon
+  Vec3 points[kMaxFeature];
+  uint32_t id = 0;  // which feature of the shape (7 bits)
+};
+
+// Supporting feature of `s` (pose x) in world direction d (unit), points in world relative to
+// `origin`.
+void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const Vec3& origin,
+                        Feature& f);
+
+// Clips `inc` against the side planes of polygon `ref` (both relative to one origin); writes
+// the clipped points to `out`.
+void clip_against(const Feature& ref, const Feature& inc, ClipPolygon& out);
+
+// Separation along n of point p (on the incident side) from the plane of polygon `ref`.
+Real plane_gap(const Feature& ref, const Vec3& n, const Vec3& p, bool ref_is_a);
+
+}  // namespace elan::detail

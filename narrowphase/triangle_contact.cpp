@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: MIT
+// Convex shape against one triangle (see triangle_contact.hpp).
+//
+// Internal edges: Jolt's active edges rather than Box2D's smooth segments or Bullet's
+// btAdjustInternalEdgeContacts. Box2D's ghost vertices are the 2D case of the same idea (a
+// segment knows its neighbours); in 3D it becomes a flag per edge, built once from the
+// neighbours (mesh_triangle.hpp). Bullet corrects each finished contact's normal afterwards from
+// an edge-angle map, and keeps the depth measured along the old normal; deciding on the flag
+// before the points are made lets the separation be measured along the normal the solver gets,
+// so a box resting across a shared edge sits at the face's height.
+#include "narrowphase/triangle_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "narrowphase/manifold_reduce.hpp"
+#include "narrowphase/minkowski.hpp"
+#include "narrowphase/supporting_feature.hpp"
+
+namespace elan::detail {
+namespace {
+
+constexpr Real kEps = std::numeric_limits<Real>::epsilon();
+// The triangle's features: its face, vertex k, or edge k (v[k] to v[k + 1]).
+constexpr uint32_t kRegionFace = 0;
+constexpr uint32_t kRegionVertex = 1;  // + k
+constexpr uint32_t kRegionEdge = 4;    // + k
+// A closest point within this barycentric weight of an edge is on it: witnesses of GJK and EPA
+// sit on the edge to about the float epsilon times the triangle's size, far below this.
+constexpr Real kOnEdgeWeight = Real(1e-4);
+// A vertex contact's normal leans out past an inactive edge when its component along the edge's
+// outward direction is above this (about 0.06 degree): rounding of a face normal stays below.
+constexpr Real kLeanTolerance = Real(1e-3);
+
+// Closest point of the triangle to the origin, and its feature (Ericson, Real-Time Collision
+// Detection 5.1.5, with the query point at the origin).
+Vec3 closest_on_triangle(const Vec3 (&v)[3], uint32_t& region) {
+  const Vec3 &a = v[0], &b = v[1], &c = v[2];
+  const Vec3 ab = b - a, ac = c - a, ap = -a;
+  const Real d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return region = kRegionVertex + 0, a;
+  const Vec3 bp = -b;
+  const Real d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return region = kRegionVertex + 1, b;
+  const Real vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    region = kRegionEdge + 0;
+    return a + ab * (d1 / (d1 - d3));
+  }
+  const Vec3 cp = -c;
+  const Real d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return region = kRegionVertex + 2, c;
+  const Real vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    region = kRegionEdge + 2;  // c to a
+    return a + ac * (d2 / (d2 - d6));
+  }
+  const Real va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    region = kRegionEdge + 1;
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  const Real denom = Real(1) / (va + vb + vc);
+  region = kRegionFace;
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// The feature of the triangle a witness point p on it lies on, from its barycentric weights.
+uint32_t region_of(const Vec3 (&v)[3], const Vec3& p) {
+  const Vec3 e0 = v[1] - v[0], e1 = v[2] - v[0], e2 = p - v[0];
+  const Real d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1);
+  const Real d20 = e2.dot(e0), d21 = e2.dot(e1);
+  const Real den = d00 * d11 - d01 * d01;
+  if (!(den > 0)) return kRegionFace;
+  const Real w1 = (d11 * d20 - d01 * d21) / den;
+  const Real w2 = (d00 * d21 - d01 * d20) / den;
+  const Real w0 = 1 - w1 - w2;
+  const bool z0 = w0 < kOnEdgeWeight, z1 = w1 < kOnEdgeWeight, z2 = w2 < kOnEdgeWeight;
+  if (z1 && z2) return kRegionVertex + 0;
+  if (z0 && z2) return kRegionVertex + 1;
+  if (z0 && z1) return kRegionVertex + 2;
+  if (z2) return kRegionEdge + 0;  // no weight on v2: edge v0 v1
+  if (z0) return kRegionEdge + 1;
+  if (z1) return kRegionEdge + 2;
+  return kRegionFace;
+}
+
+// Whether the normal found at the triangle's feature `region` stands: the feature is an active
+// edge, or a vertex with an active edge whose normal leans out past none of its inactive edges.
+// `out_normal`: from the triangle towards A; `face`: the face normal toward A's side.
+bool keeps_normal(uint32_t region, const MeshTriangle& t, const Vec3 (&v)[3], const Vec3& face,
+                  const Vec3& out_normal) {
+  if (region == kRegionFace || out_normal.dot(face) < -kLeanTolerance) return false;
+  const auto active = [&](uint32_t k) { return ((t.active_edges >> k) & 1u) != 0; };
+  if (region >= kRegionEdge) return active(region - kRegionEdge);
+  const uint32_t k = region - kRegionVertex;
+  const uint32_t edges[2] = {k, (k + 2) % 3};  // the edges leaving and reaching vertex k
+  if (!active(edges[0]) && !active(edges[1])) return false;
+  const Vec3 centroid = (v[0] + v[1] + v[2]) / 3;
+  for (const uint32_t e : edges) {
+    if (active(e)) continue;
+    const Vec3& p = v[e];
+    Vec3 outward = (v[(e + 1) % 3] - p).cross(face);
+    if (outward.dot(centroid - p) > 0) outward = -outward;
+    if (out_normal.dot(outward) > kLeanTolerance * outward.norm()) return false;
+  }
+  return true;
+}
+
+void add(TriangleContact& out, const Vec3& p, Real s, uint32_t id) {
+  out.points[out.count] = p;
+  out.separation[out.count] = s;
+  out.feature[out.count] = id;
+  ++out.count;
+}
+
+// The sphere's closed form: its centre (the origin) against the closest point of the triangle.
+bool sphere_triangle(Real r, const MeshTriangle& t, const Vec3 (&v)[3], const Vec3& face,
+                     Real speculative, TriangleContact& out) {
+  uint32_t region = kRegionFace;
+  const Vec3 q = closest_on_triangle(v, region);
+  const Real dist = q.norm();
+  if (dist - r > speculative) return false;
+  const Real scale = std::max(r, (v[1] - v[0]).norm());
+  if (dist > 16 * kEps * scale && keeps_normal(region, t, v, face, -q / dist)) {
+    const Vec3 n = q / dist;
+    add(out, Real(0.5) * (r * n + q), dist - r, region);
+  } else {
+    const Real height = -face.dot(v[0]);  // the centre above the face's plane
+    const Real s = height - r;
+    if (s > speculative) return false;
+    out.normal = -face;
+    add(out, Real(-0.5) * (r + height) * face, s, region);
+    return true;
+  }
+  out.normal = q / dist;
+  return true;
+}
+
+}  // namespace
+
+bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
+                      Real speculative_distance, TriangleContact& out) {
+  out.count = 0;
+  // Working frame: the surface's axes, origin at A's centre, so coordinates stay small.
+  const Vec3 v[3] = {t.v[0] - xa.position, t.v[1] - xa.position, t.v[2] - xa.position};
+  Vec3 geometric = (v[1] - v[0]).cross(v[2] - v[0]);
+  const Real area2 = geometric.norm();
+  if (!(area2 > 0)) return false;
+  geometric /= area2;
+  const Real centre_height = -geometric.dot(v[0]);
+  // A one-sided triangle collides from the front only: a body whose centre is behind it has
+  // passed through (the continuous stage exists to prevent that) and must not be pushed down.
+  if (!t.two_sided && centre_height < 0) return false;
+  const Vec3 face = centre_height >= 0 ? geometric : Vec3(-geometric);
+  if (a.type == ShapeType::Sphere) {
+    return sphere_triangle(a.radius, t, v, face, speculative_distance, out);
+  }
+
+  const Transform at_origin{Vec3::Zero(), xa.rotation};
+  const PlacedShape core = place(a, at_origin, false);
+  const Real radius = core_radius(a);
+  Simplex simplex;
+  const GjkResult g = gjk_triangle(core, v, Vec3(-face), simplex);
+  Vec3 n, on_a, on_b;  // A to the triangle; closest (or deepest) points
+  Real sep;
+  if (!g.overlap && g.distance > Real(1e-6) * a.bounding_radius) {
+    sep = g.distance - radius;
+    // The distance to the triangle bounds the separation along its face normal from above only
+    // where A is over the face; beyond it the neighbour's triangle reports the contact.
+    if (sep > speculative_distance) return false;
+    n = (g.point_b - g.point_a) / g.distance;
+    on_a = g.point_a + radius * n;
+    on_b = g.point_b;
+  } else {
+    const PlacedShape full = radius > 0 ? place(a, at_origin, true) : core;
+    Simplex full_simplex = simplex;
+    if (radius > 0) gjk_triangle(full, v, Vec3(-face), full_simplex);
+    const EpaResult e = epa_triangle(full, v, full_simplex);
+    n = e.normal;
+    sep = -e.depth;
+    on_a = e.point_a;
+    on_b = e.point_b;
+    if (!e.ok || !n.allFinite() || n.squaredNorm() < Real(0.5)) n = -face, on_b = on_a;
+  }
+  const uint32_t region = region_of(v, on_b);
+  if (!keeps_normal(region, t, v, face, -n)) {
+    // The face's normal; the separation is A's lowest point's height above the face's plane.
+    n = -face;
+    on_a = support_world(place(a, at_origin, true), n);
+    sep = face.dot(on_a - v[0]);
+    if (sep > speculative_distance) return false;
+    on_b = on_a + sep * n;
+  }
+  out.normal = n;
+
+  // The points: A's supporting feature along n against the triangle, the better aligned face the
+  // reference (the triangle on a tie: its plane is the one the normal was measured to).
+  Feature fa, fb;
+  supporting_feature(a, at_origin, n, Vec3::Zero(), fa);
+  fb.count = 3;
+  for (int k = 0; k < 3; ++k) fb.points[k] = v[k];
+  fb.id = 0;
+  const Real triangle_align = std::abs(geometric.dot(n));
+  Real a_align = -1;
+  if (fa.count >= 3) {
+    const Vec3 fn = (fa.points[1] - fa.points[0]).cross(fa.points[2] - fa.points[0]);
+    a_align = std::abs(fn.dot(n)) / fn.norm();
+  }
+  const Feature* ref = nullptr;
+  if (a_align > triangle_align && a_align >= kFaceCos) {
+    ref = &fa;
+  } else if (triangle_align >= kFaceCos) {
+    ref = &fb;
+  }
+  Vec3 points[kMaxClipVertices];
+  Real seps[kMaxClipVertices];
+  uint32_t ids[kMaxClipVertices];
+  int count = 0;
+  const uint32_t base = (region << 22) | ((fa.id & 0x7F) << 14);
+  if (ref != nullptr) {
+    const bool ref_is_a = ref == &fa;
+    ClipPolygon clipped;
+    clip_against(*ref, ref_is_a ? fb : fa, clipped);
+    for (int k = 0; k < clipped.count; ++k) {
+      const Vec3& p = clipped.points[k];
+      const Real s = plane_gap(*ref, n, p, ref_is_a);
+      if (s > speculative_distance) continue;
+      points[count] = ref_is_a ? Vec3(p - Real(0.5) * s * n) : Vec3(p + Real(0.5) * s * n);
+      seps[count] = s;
+      ids[count] = base | (ref_is_a ? 1u << 21 : 0u) | clip_vertex_id(clipped, k);
+      ++count;
+    }
+  }
+  if (count == 0) {
+    points[0] = Real(0.5) * (on_a + on_b);
+    seps[0] = sep;
+    ids[0] = base | 0x3FFFu;
+    count = 1;
+  }
+  int keep[kMaxManifoldPoints];
+  const int kept = reduce_to_four(std::span<const Vec3>(points, std::size_t(count)),
+                                  std::span<const Real>(seps, std::size_t(count)), n, keep);
+  for (int k = 0; k < kept; ++k) add(out, points[keep[k]], seps[keep[k]], ids[keep[k]]);
+  return out.count > 0;
+}
+
+}  // namespace elan::detail

@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: MIT
+// Composite pairs (meshes, heightfields, compounds) through collide() and time_of_impact(): one
+// merged manifold, no ghost normal across an internal edge, the same manifold as a lone part,
+// stable feature ids, and impacts against a wall one triangle thick.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "core/base/compound.hpp"
+#include "core/base/heightfield.hpp"
+#include "core/base/triangle_mesh.hpp"
+#include "narrowphase/collide.hpp"
+#include "narrowphase_test_shapes.hpp"
+
+namespace elan::detail {
+namespace narrowphase_composite_test {
+
+using test::at;
+using test::axis_angle;
+using test::box;
+using test::sphere;
+
+// GJK's and EPA's tolerances (about 1e-5 relative in float) on sizes of about 1 m.
+constexpr Real kTol = sizeof(Real) == 4 ? Real(1e-4) : Real(1e-8);
+constexpr Real kSpec = Real(0.02);
+
+Shape mesh_shape(const std::vector<Vec3>& v, const std::vector<std::array<uint32_t, 3>>& t) {
+  Shape s;
+  s.type = ShapeType::Mesh;
+  auto m = std::make_shared<TriangleMesh>(build_triangle_mesh(v, t));
+  s.local_min = m->min;
+  s.local_max = m->max;
+  for (const Vec3& p : v) s.bounding_radius = std::max(s.bounding_radius, p.norm());
+  s.mesh = std::move(m);
+  return s;
+}
+
+// A flat square [-n, n]^2 at y = 0 of 2 n x 2 n cells, each cut into two triangles.
+Shape floor_mesh(int n) {
+  std::vector<Vec3> v;
+  std::vector<std::array<uint32_t, 3>> t;
+  const int side = 2 * n + 1;
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) v.emplace_back(Real(i - n), 0, Real(j - n));
+  }
+  for (int j = 0; j + 1 < side; ++j) {
+    for (int i = 0; i + 1 < side; ++i) {
+      const uint32_t a = uint32_t(j * side + i), b = a + 1, c = a + uint32_t(side), d = c + 1;
+      t.push_back({a, c, d});  // counter-clockwise seen from +y
+      t.push_back({a, d, b});
+    }
+  }
+  return mesh_shape(v, t);
+}
+
+// One part per (shape, pose); poses in the compound's principal frame.
+Shape compound_of(const std::vector<std::pair<Shape, Transform>>& parts) {
+  auto c = std::make_shared<Compound>();
+  Shape s;
+  s.type = ShapeType::Compound;
+  s.local_min = Vec3::Constant(1e30f);
+  s.local_max = -s.local_min;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    CompoundPart p;
+    p.shape = parts[k].first;
+    p.pose = parts[k].second;
+    const Mat3 r = p.pose.rotation.toRotationMatrix();
+    const Vec3 centre = r * (Real(0.5) * (p.shape.local_min + p.shape.local_max)) + p.pose.position;
+    const Vec3 half = r.cwiseAbs() * (Real(0.5) * (p.shape.local_max - p.shape.local_min));
+    p.box.min = centre - half;
+    p.box.max = centre + half;
+    s.local_min = s.local_min.cwiseMin(p.box.min);
+    s.local_max = s.local_max.cwiseMax(p.box.max);
+    s.bounding_radius =
+        std::max(s.bounding_radius, p.pose.position.norm() + p.shape.bounding_radius);
+    c->parts.push_back(p);
+    c->child_of.push_back(uint32_t(k));
+  }
+  s.compound = std::move(c);
+  return s;
+}
+
+Shape ground_plane() {
+  ShapeDef d;
+  d.type = ShapeType::Plane;
+  return make_shape(d);
+}
+
+TEST(Composite, BoxAcrossInternalEdgesGetsTheFaceNormalAndHeight) {
+  const Shape floor = floor_mesh(3);
+  const Shape b = box(Real(0.7), Real(0.3), Real(0.45));
+  // Over many shared edges, turned and shifted: one manifold, the face normal, every point 1 cm
+  // deep at the face's height (y = 0 midway: -0.005).
+  for (const Real turn : {Real(0), Real(0.3), Real(0.785398), Real(1.2)}) {
+    for (const Real shift : {Real(0), Real(0.02), Real(0.5), Real(0.77)}) {
+      const Transform xa = at(shift, Real(0.29), -shift, axis_angle(turn, Vec3::UnitY()));
+      Manifold m;
+      ASSERT_TRUE(collide(b, xa, floor, at(0, 0, 0), kSpec, m));
+      EXPECT_EQ(m.point_count, 4u);
+      EXPECT_NEAR(m.normal.x(), 0, kTol);
+      EXPECT_NEAR(m.normal.y(), -1, kTol);
+      EXPECT_NEAR(m.normal.z(), 0, kTol);
+      for (int k = 0; k < int(m.point_count); ++k) {
+        EXPECT_NEAR(m.points[k].separation, Real(-0.01), kTol);
+        EXPECT_NEAR(xa.position.y() + m.points[k].anchor_a.y(), Real(-0.005), kTol);
+      }
+    }
+  }
+}
+
+TEST(Composite, SurfaceAsAFlipsTheNormal) {
+  const Shape floor = floor_mesh(1);
+  const Transform xs = at(Real(0.2), Real(0.49), Real(0.1));
+  Manifold m;
+  ASSERT_TRUE(collide(floor, at(0, 0, 0), sphere(Real(0.5)), xs, kSpec, m));
+  ASSERT_EQ(m.point_count, 1u);
+  EXPECT_NEAR(m.normal.y(), 1, kTol);
+  EXPECT_NEAR(m.points[0].separation, Real(-0.01), kTol);
+  // Measured from A (the mesh's origin): the midpoint between the surfaces.
+  EXPECT_NEAR(m.points[0].anchor_a.y(), Real(-0.005), kTol);
+  EXPECT_NEAR(m.points[0].anchor_a.x(), Real(0.2), kTol);
+}
+
+TEST(Composite, StaticPairsGiveNothing) {
+  const Shape floor = floor_mesh(1);
+  Manifold m;
+  EXPECT_FALSE(collide(floor, at(0, 0, 0), floor, at(0, Real(0.001), 0), kSpec, m));
+  EXPECT_FALSE(collide(ground_plane(), at(0, 0, 0), floor, at(0, 0, 0), kSpec, m));
+  EXPECT_FALSE(collide(floor, at(0, 0, 0), ground_plane(), at(0, 0, 0), kSpec, m));
+  EXPECT_FALSE(exact_test_is_closed_form(sphere(1), floor));
+}
+
+TEST(Composite, CompoundOfOneBoxMatchesTheBoxAlone) {
+  const Shape b = box(Real(0.5), Real(0.3), Real(0.4));
+  const Shape c = compound_of({{b, Transform{}}});
+  const Transform xa = at(Real(1.5), Real(0.28), Real(-2), axis_angle(Real(0.2), Vec3(1, 2, 3)));
+  const Transform xg = at(0, 0, 0);
+  Manifold alone, part;
+  ASSERT_TRUE(collide(b, xa, ground_plane(), xg, kSpec, alone));
+  ASSERT_TRUE(collide(c, xa, ground_plane(), xg, kSpec, part));
+  ASSERT_EQ(alone.point_count, part.point_count);
+  EXPECT_EQ(std::memcmp(alone.normal.data(), part.normal.data(), sizeof(Vec3)), 0);
+  for (int k = 0; k < int(alone.point_count); ++k) {
+    EXPECT_EQ(
+        std::memcmp(alone.points[k].anchor_a.data(), part.points[k].anchor_a.data(), sizeof(Vec3)),
+        0);
+    EXPECT_EQ(alone.points[k].separation, part.points[k].separation);
+  }
+  EXPECT_FALSE(exact_test_is_closed_form(c, ground_plane()));
+}
+
+TEST(Composite, CompoundPartsMergeIntoOneManifold) {
+  // A dumbbell: two boxes 2 m apart on a bar; resting level, its manifold spans both ends.
+  const Shape end = box(Real(0.2), Real(0.2), Real(0.2));
+  const Shape c = compound_of({{end, at(-1, 0, 0)}, {end, at(1, 0, 0)}});
+  Manifold m;
+  ASSERT_TRUE(collide(c, at(0, Real(0.19), 0), ground_plane(), at(0, 0, 0), kSpec, m));
+  ASSERT_EQ(m.point_count, 4u);
+  Real lo = 1e9f, hi = -1e9f;
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(m.points[k].separation, Real(-0.01), kTol);
+    lo = std::min(lo, m.points[k].anchor_a.x());
+    hi = std::max(hi, m.points[k].anchor_a.x());
+  }
+  EXPECT_NEAR(lo, Real(-1.2), kTol);
+  EXPECT_NEAR(hi, Real(1.2), kTol);
+  // The same against a mesh floor.
+  ASSERT_TRUE(collide(c, at(0, Real(0.19), 0), floor_mesh(2), at(0, 0, 0), kSpec, m));
+  EXPECT_EQ(m.point_count, 4u);
+  EXPECT_NEAR(m.normal.y(), -1, kTol);
+}
+
+TEST(Composite, FeatureIdsStayWhileSlidingOnOneTriangle) {
+  const Shape floor = floor_mesh(3);
+  const Shape b = box(Real(0.1), Real(0.1), Real(0.1));
+  // Inside the triangle (a, d, b) of the cell [0, 1]^2: x > z.
+  Manifold m0, m1;
+  ASSERT_TRUE(collide(b, at(Real(0.6), Real(0.095), Real(0.3)), floor, at(0, 0, 0), kSpec, m0));
+  ASSERT_TRUE(collide(b, at(Real(0.601), Real(0.095), Real(0.3)), floor, at(0, 0, 0), kSpec, m1));
+  ASSERT_EQ(m0.point_count, m1.point_count);
+  std::vector<uint32_t> a, c;
+  for (int k = 0; k < int(m0.point_count); ++k) a.push_back(m0.points[k].feature_id);
+  for (int k = 0; k < int(m1.point_count); ++k) c.push_back(m1.points[k].feature_id);
+  std::sort(a.begin(), a.end());
+  std::sort(c.begin(), c.end());
+  EXPECT_EQ(a, c);
+  EXPECT_EQ(std::adjacent_find(a.begin(), a.end()), a.end());
+}
+
+TEST(Composite, HeightfieldFromAboveOnly) {
+  auto field = std::make_shared<HeightField>();
+  const std::vector<Real> heights(16, Real(0));
+  *field = build_heightfield(heights, 4, 1, 1);
+  Shape s;
+  s.type = ShapeType::Heightfield;
+  s.local_min = Vec3(0, 0, 0);
+  s.local_max = Vec3(3, 0, 3);
+  s.bounding_radius = Real(5);
+  s.heightfield = field;
+  Manifold m;
+  ASSERT_TRUE(
+      collide(sphere(Real(0.5)), at(Real(1.3), Real(0.49), Real(1.6)), s, at(0, 0, 0), kSpec, m));
+  EXPECT_NEAR(m.normal.y(), -1, kTol);
+  EXPECT_NEAR(m.points[0].separation, Real(-0.01), kTol);
+  // From below: the front is up, so nothing.
+  EXPECT_FALSE(
+      collide(sphere(Real(0.5)), at(Real(1.3), Real(-0.3), Real(1.6)), s, at(0, 0, 0), kSpec, m));
+}
+
+// A vertical wall one triangle thick: two triangles making the quad x = 0, y in [0, 2],
+// z in [-1, 1].
+Shape wall() {
+  return mesh_shape({Vec3(0, 0, -1), Vec3(0, 0, 1), Vec3(0, 2, 1), Vec3(0, 2, -1)},
+                    {{{0, 1, 2}}, {{0, 2, 3}}});
+}
+
+TEST(Composite, TimeOfImpactAgainstAWallOneTriangleThick) {
+  // A 5 cm sphere at 150 m/s over a 60 Hz step: 2.5 m, from 1.2 m before the wall to 1.3 m past.
+  const Shape ball = sphere(Real(0.05));
+  const Real target = Real(0.005);
+  const Real t = time_of_impact(ball, at(Real(-1.2), 1, Real(0.3)), at(Real(1.3), 1, Real(0.3)),
+                                wall(), at(0, 0, 0), at(0, 0, 0), target);
+  // Contact (gap 0) at t = (1.2 - 0.05) / 2.5; it stops between target and target plus its
+  // tolerance (max(target / 4, 1e-4 r)) before that.
+  const Real touch = (Real(1.2) - Real(0.05)) / Real(2.5);
+  EXPECT_LE(t, touch - target / Real(2.5) + kTol);
+  EXPECT_GE(t, touch - (target + target / 4) / Real(2.5) - kTol);
+  // Beside the wall (z = 1.2): no impact.
+  EXPECT_EQ(time_of_impact(ball, at(Real(-1.2), 1, Real(1.2)), at(Real(1.3), 1, Real(1.2)), wall(),
+                           at(0, 0, 0), at(0, 0, 0), target),
+            1);
+  // A small box, turning as it goes.
+  const Shape small = box(Real(0.05), Real(0.05), Real(0.05));
+  const Real tb = time_of_impact(small, at(Real(-1.2), 1, 0),
+                                 at(Real(1.3), 1, 0, axis_angle(Real(0.5), Vec3::UnitZ())), wall(),
+                                 at(0, 0, 0), at(0, 0, 0), target);
+  EXPECT_GT(tb, 0);
+  EXPECT_LT(tb, touch);
+  // A compound of two small spheres: its first part decides.
+  const Shape pair = compound_of({{ball, at(Real(0.2), 0, 0)}, {ball, at(Real(-0.2), 0, 0)}});
+  const Real tc = time_of_impact(pair, at(Real(-1.2), 1, 0), at(Real(1.3), 1, 0), wall(),
+                                 at(0, 0, 0), at(0, 0, 0), target);
+  EXPECT_NEAR(tc, touch - Real(0.2) / Real(2.5), Real(0.01) / Real(2.5));
+}
+
+}  // namespace narrowphase_composite_test
+}  // namespace elan::detail

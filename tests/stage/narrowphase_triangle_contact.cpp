@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: MIT
+// Convex shapes against one triangle: normals and separations against closed forms, active and
+// inactive edges (no ghost collisions), one-sided triangles, feature ids under a small slide.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "narrowphase/triangle_contact.hpp"
+#include "narrowphase_test_shapes.hpp"
+
+namespace elan::detail {
+namespace narrowphase_triangle_contact_test {
+
+using test::at;
+using test::axis_angle;
+using test::box;
+using test::box_hull;
+using test::capsule;
+using test::cylinder;
+using test::sphere;
+
+// GJK's relative tolerance (1e-5 in float) on distances of about 1 m, and EPA's (1e-5 of the
+// depth plus rounding of the polytope's size, about 1e-6 m): 1e-4 m covers both. The closed forms
+// (sphere) are exact to rounding.
+constexpr Real kTol = sizeof(Real) == 4 ? Real(1e-4) : Real(1e-8);
+constexpr Real kSpec = Real(0.02);
+
+// The triangle (-5, 0, -5), (-5, 0, 15), (15, 0, -5): its front faces +y; edge 0 lies on
+// x = -5, edge 2 on z = -5, edge 1 (the hypotenuse, x + z = 10) is far from the tests.
+MeshTriangle big_triangle(uint8_t active = 7, bool two_sided = true) {
+  MeshTriangle t;
+  t.v[0] = Vec3(-5, 0, -5);
+  t.v[1] = Vec3(-5, 0, 15);
+  t.v[2] = Vec3(15, 0, -5);
+  t.active_edges = active;
+  t.two_sided = two_sided;
+  t.index = 3;
+  return t;
+}
+
+void expect_vec(const Vec3& got, const Vec3& want, Real tol) {
+  EXPECT_NEAR(got.x(), want.x(), tol);
+  EXPECT_NEAR(got.y(), want.y(), tol);
+  EXPECT_NEAR(got.z(), want.z(), tol);
+}
+
+// Every point of a face contact: separation s and height (from A's centre) of the midpoint.
+void expect_face_points(const TriangleContact& c, const Transform& xa, Real s, int count) {
+  ASSERT_EQ(c.count, count);
+  expect_vec(c.normal, -Vec3::UnitY(), kTol);
+  for (int k = 0; k < c.count; ++k) {
+    EXPECT_NEAR(c.separation[k], s, kTol);
+    // Midway between A's surface (at height s) and the plane y = 0.
+    EXPECT_NEAR(xa.position.y() + c.points[k].y(), Real(0.5) * s, kTol);
+  }
+}
+
+TEST(TriangleContact, SphereRestingOnTheFace) {
+  TriangleContact c;
+  const Transform xa = at(1, Real(0.49), 1);
+  ASSERT_TRUE(collide_triangle(sphere(Real(0.5)), xa, big_triangle(), kSpec, c));
+  expect_face_points(c, xa, Real(-0.01), 1);
+  // From below (two-sided): the normal turns with the side the centre is on.
+  const Transform below = at(1, Real(-0.49), 1);
+  ASSERT_TRUE(collide_triangle(sphere(Real(0.5)), below, big_triangle(), kSpec, c));
+  expect_vec(c.normal, Vec3::UnitY(), kTol);
+  EXPECT_NEAR(c.separation[0], Real(-0.01), kTol);
+}
+
+TEST(TriangleContact, SphereApartWithinAndBeyondTheSpeculativeDistance) {
+  TriangleContact c;
+  ASSERT_TRUE(collide_triangle(sphere(Real(0.5)), at(0, Real(0.515), 0), big_triangle(), kSpec, c));
+  EXPECT_NEAR(c.separation[0], Real(0.015), kTol);
+  EXPECT_FALSE(collide_triangle(sphere(Real(0.5)), at(0, Real(0.53), 0), big_triangle(), kSpec, c));
+}
+
+TEST(TriangleContact, SphereBesideAnActiveEdgeTakesTheEdgeNormal) {
+  // Centre 0.3 m beyond edge 0 (x = -5) and 0.1 m up: the closest point is (-5, 0, 0).
+  TriangleContact c;
+  const Transform xa = at(Real(-5.3), Real(0.1), 0);
+  ASSERT_TRUE(collide_triangle(sphere(Real(0.5)), xa, big_triangle(), kSpec, c));
+  const Vec3 d(Real(0.3), Real(-0.1), 0);
+  expect_vec(c.normal, d.normalized(), kTol);
+  EXPECT_NEAR(c.separation[0], d.norm() - Real(0.5), kTol);
+}
+
+TEST(TriangleContact, SphereBesideAnInactiveEdgeTakesTheFaceNormal) {
+  // Edge 0 inactive: the surface goes on past it, so the sphere is 0.1 m above that plane.
+  TriangleContact c;
+  const Transform xa = at(Real(-5.3), Real(0.1), 0);
+  ASSERT_TRUE(collide_triangle(sphere(Real(0.5)), xa, big_triangle(0b110), kSpec, c));
+  expect_vec(c.normal, -Vec3::UnitY(), kTol);
+  EXPECT_NEAR(c.separation[0], Real(0.1) - Real(0.5), kTol);
+}
+
+TEST(TriangleContact, SphereBesideAVertex) {
+  // Beyond vertex 0 in x and z: its closest point is (-5, 0, -5).
+  const Transform xa = at(Real(-5.2), Real(0.2), Real(-5.3));
+  const Vec3 d = Vec3(-5, 0, -5) - xa.position;
+  TriangleContact c;
+  // Both edges at the vertex active: the vertex's normal.
+  ASSERT_TRUE(collide_triangle(sphere(Real(0.5)), xa, big_triangle(), kSpec, c));
+  expect_vec(c.normal, d.normalized(), kTol);
+  EXPECT_NEAR(c.separation[0], d.norm() - Real(0.5), kTol);
+  // Both inactive (edges 0 and 2): the face's.
+  ASSERT_TRUE(collide_triangle(sphere(Real(0.5)), xa, big_triangle(0b010), kSpec, c));
+  expect_vec(c.normal, -Vec3::UnitY(), kTol);
+  EXPECT_NEAR(c.separation[0], Real(0.2) - Real(0.5), kTol);
+  // Edge 0 (x = -5) active, edge 2 (z = -5) inactive: the vertex's normal leans out past z = -5
+  // (the surface goes on there), so the face's again.
+  ASSERT_TRUE(collide_triangle(sphere(Real(0.5)), xa, big_triangle(0b011), kSpec, c));
+  expect_vec(c.normal, -Vec3::UnitY(), kTol);
+}
+
+TEST(TriangleContact, CapsuleLyingAlongTheFaceGivesTwoPoints) {
+  const Shape s = capsule(Real(0.2), Real(0.5));
+  const Transform xa = at(1, Real(0.19), 0, axis_angle(Real(std::numbers::pi / 2), Vec3::UnitZ()));
+  TriangleContact c;
+  ASSERT_TRUE(collide_triangle(s, xa, big_triangle(), kSpec, c));
+  expect_face_points(c, xa, Real(-0.01), 2);
+  // The two points are the segment's ends, 1 m apart along x.
+  EXPECT_NEAR(std::abs(c.points[0].x() - c.points[1].x()), 1, kTol);
+  // Upright: one point under the lower end.
+  const Transform up = at(1, Real(0.69), 0);
+  ASSERT_TRUE(collide_triangle(s, up, big_triangle(), kSpec, c));
+  expect_face_points(c, up, Real(-0.01), 1);
+}
+
+TEST(TriangleContact, BoxHullAndCylinderRestingOnTheFace) {
+  TriangleContact c;
+  const Transform xa = at(0, Real(0.49), 0, axis_angle(Real(0.3), Vec3::UnitY()));
+  ASSERT_TRUE(collide_triangle(box(Real(0.5), Real(0.5), Real(0.5)), xa, big_triangle(), kSpec, c));
+  expect_face_points(c, xa, Real(-0.01), 4);
+  ASSERT_TRUE(
+      collide_triangle(box_hull(Real(0.5), Real(0.5), Real(0.5)), xa, big_triangle(), kSpec, c));
+  expect_face_points(c, xa, Real(-0.01), 4);
+  // A cylinder standing on its cap: the cap's polygon, reduced to four.
+  ASSERT_TRUE(collide_triangle(cylinder(Real(0.3), Real(0.5)), xa, big_triangle(), kSpec, c));
+  expect_face_points(c, xa, Real(-0.01), 4);
+  // Apart within the speculative distance, and beyond it.
+  ASSERT_TRUE(collide_triangle(box(Real(0.5), Real(0.5), Real(0.5)), at(0, Real(0.51), 0),
+                               big_triangle(), kSpec, c));
+  expect_face_points(c, at(0, Real(0.51), 0), Real(0.01), 4);
+  EXPECT_FALSE(collide_triangle(box(Real(0.5), Real(0.5), Real(0.5)), at(0, Real(0.53), 0),
+                                big_triangle(), kSpec, c));
+}
+
+TEST(TriangleContact, BoxBesideAnEdge) {
+  // A box 0.1 m beyond edge 0 (x = -5), reaching 0.3 m below the plane: apart from the triangle.
+  const Shape b = box(Real(0.5), Real(0.5), Real(0.5));
+  const Transform xa = at(Real(-5.6), Real(0.2), 0);
+  TriangleContact c;
+  // Active (a boundary): the edge pushes the box sideways, 0.1 m away.
+  ASSERT_TRUE(collide_triangle(b, xa, big_triangle(), Real(0.2), c));
+  expect_vec(c.normal, Vec3::UnitX(), kTol);
+  for (int k = 0; k < c.count; ++k) EXPECT_NEAR(c.separation[k], Real(0.1), kTol);
+  // Inactive: the surface goes on past the edge, and the box is 0.3 m into it.
+  ASSERT_TRUE(collide_triangle(b, xa, big_triangle(0b110), Real(0.2), c));
+  expect_vec(c.normal, -Vec3::UnitY(), kTol);
+  for (int k = 0; k < c.count; ++k) EXPECT_NEAR(c.separation[k], Real(-0.3), kTol);
+}
+
+// The quad [-1, 1] x [-1, 1] at y = 0 as two triangles sharing the diagonal (-1, -1)-(1, 1),
+// which is inactive in both (coplanar neighbours); the outer edges are active.
+MeshTriangle quad_half(int which) {
+  MeshTriangle t;
+  if (which == 0) {
+    t.v[0] = Vec3(-1, 0, -1), t.v[1] = Vec3(1, 0, 1), t.v[2] = Vec3(1, 0, -1);
+    t.active_edges = 0b110;  // edge 0 is the diagonal
+  } else {
+    t.v[0] = Vec3(1, 0, 1), t.v[1] = Vec3(-1, 0, -1), t.v[2] = Vec3(-1, 0, 1);
+    t.active_edges = 0b110;
+  }
+  t.index = uint32_t(which);
+  return t;
+}
+
+TEST(TriangleContact, BoxAcrossTheInternalEdgeGetsTheFaceNormal) {
+  const Shape b = box(Real(0.3), Real(0.3), Real(0.3));
+  // Across the diagonal at several offsets and turns, 1 cm deep: every triangle's contact takes
+  // the face normal and its points sit at the face's height, whichever feature GJK/EPA found.
+  for (const Real offset : {Real(0), Real(0.1), Real(0.25), Real(0.35)}) {
+    for (const Real turn : {Real(0), Real(0.4), Real(0.785398)}) {
+      const Transform xa = at(offset, Real(0.29), -offset, axis_angle(turn, Vec3::UnitY()));
+      int touching = 0;
+      for (int which = 0; which < 2; ++which) {
+        TriangleContact c;
+        if (!collide_triangle(b, xa, quad_half(which), kSpec, c)) continue;
+        ++touching;
+        SCOPED_TRACE(testing::Message()
+                     << "offset " << offset << " turn " << turn << " tri " << which);
+        expect_vec(c.normal, -Vec3::UnitY(), kTol);
+        for (int k = 0; k < c.count; ++k) EXPECT_NEAR(c.separation[k], Real(-0.01), kTol);
+      }
+      EXPECT_GE(touching, 1);
+    }
+  }
+  // Entirely over triangle 1 (x < z), 2 cm below the plane, its corner (x + 0.3, z - 0.3) 1 mm
+  // from the diagonal: triangle 0 sees a box beside its edge (GJK would push it sideways, a ghost
+  // collision), and must give the face normal with the box's depth below the plane.
+  const Real cx = Real(-0.5), cz = cx + Real(0.6) + Real(0.001) * Real(1.41421356);
+  const Transform xa = at(cx, Real(0.28), cz);
+  TriangleContact c;
+  ASSERT_TRUE(collide_triangle(b, xa, quad_half(0), kSpec, c));
+  expect_vec(c.normal, -Vec3::UnitY(), kTol);
+  for (int k = 0; k < c.count; ++k) EXPECT_NEAR(c.separation[k], Real(-0.02), kTol);
+}
+
+TEST(TriangleContact, OneSidedTriangleFromBehindGivesNothing) {
+  const MeshTriangle t = big_triangle(7, false);
+  TriangleContact c;
+  EXPECT_FALSE(collide_triangle(sphere(Real(0.5)), at(0, Real(-0.3), 0), t, kSpec, c));
+  EXPECT_FALSE(
+      collide_triangle(box(Real(0.5), Real(0.5), Real(0.5)), at(0, Real(-0.3), 0), t, kSpec, c));
+  EXPECT_FALSE(collide_triangle(capsule(Real(0.2), Real(0.5)), at(0, Real(-0.3), 0), t, kSpec, c));
+  // From the front it collides as a two-sided one.
+  ASSERT_TRUE(collide_triangle(sphere(Real(0.5)), at(0, Real(0.3), 0), t, kSpec, c));
+  expect_vec(c.normal, -Vec3::UnitY(), kTol);
+}
+
+TEST(TriangleContact, FeatureIdsStayWhileSlidingOnOneTriangle) {
+  const Shape shapes[] = {box(Real(0.5), Real(0.2), Real(0.4)), capsule(Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.5)), sphere(Real(0.5))};
+  for (const Shape& s : shapes) {
+    const Quat q = s.type == ShapeType::Capsule
+                       ? axis_angle(Real(std::numbers::pi / 2), Vec3::UnitZ())
+                       : axis_angle(Real(0.3), Vec3::UnitY());
+    // The centre's height when A's lowest point is 1 cm into the face.
+    const Real h = -(q * support(s, q.conjugate() * Vec3(-Vec3::UnitY()))).y();
+    TriangleContact c0, c1;
+    const Transform x0 = at(Real(0.3), h - Real(0.01), Real(-1), q);
+    const Transform x1 = at(Real(0.301), h - Real(0.01), Real(-1), q);
+    ASSERT_TRUE(collide_triangle(s, x0, big_triangle(), kSpec, c0));
+    ASSERT_TRUE(collide_triangle(s, x1, big_triangle(), kSpec, c1));
+    ASSERT_EQ(c0.count, c1.count);
+    std::vector<uint32_t> a(c0.feature, c0.feature + c0.count);
+    std::vector<uint32_t> b(c1.feature, c1.feature + c1.count);
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b) << "shape type " << int(s.type);
+    // Distinct points have distinct ids (warm starting matches by id).
+    EXPECT_EQ(std::adjacent_find(a.begin(), a.end()), a.end());
+  }
+}
+
+}  // namespace narrowphase_triangle_contact_test
+}  // namespace elan::detail

@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: MIT
+// The heightfield: the triangle layout the header fixes, normals up, active edges of flat and
+// bumpy grids, validation, the ray's cell walk against brute force, bytes a sample.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/base/heightfield.hpp"
+#include "core/base/triangle_mesh.hpp"
+#include "elan/error.hpp"
+
+namespace elan::detail {
+namespace heightfield_test {
+
+HeightField bumpy(uint32_t columns, uint32_t rows, Real sx, Real sz) {
+  std::vector<Real> h(std::size_t(columns) * rows);
+  for (uint32_t j = 0; j < rows; ++j) {
+    for (uint32_t i = 0; i < columns; ++i) {
+      h[j * columns + i] = Real(1.5 * std::sin(0.7 * i) * std::cos(0.45 * j) + 0.1 * ((i * j) % 3));
+    }
+  }
+  return build_heightfield(h, columns, sx, sz);
+}
+
+TEST(HeightField, TriangleLayoutAndNormalsUp) {
+  const HeightField f = bumpy(5, 4, 0.5f, 2);
+  EXPECT_EQ(f.columns, 5u);
+  EXPECT_EQ(f.rows, 4u);
+  // Cell (2, 1): c = 1 * 4 + 2 = 6; triangle 12 has the corner (3, 1), 13 the corner (2, 2).
+  const MeshTriangle lower = f.triangle(12), upper = f.triangle(13);
+  const auto has = [](const MeshTriangle& t, const Vec3& p) {
+    return t.v[0] == p || t.v[1] == p || t.v[2] == p;
+  };
+  EXPECT_TRUE(has(lower, f.point(2, 1)) && has(lower, f.point(3, 2)) && has(lower, f.point(3, 1)));
+  EXPECT_TRUE(has(upper, f.point(2, 1)) && has(upper, f.point(3, 2)) && has(upper, f.point(2, 2)));
+  EXPECT_EQ(lower.index, 12u);
+  EXPECT_FALSE(lower.two_sided);
+  EXPECT_EQ(f.point(3, 2), Vec3(1.5f, f.height(3, 2), 4));
+  for (uint32_t t = 0; t < 2 * 4 * 3; ++t) EXPECT_GT(f.triangle(t).normal().y(), 0) << t;
+}
+
+TEST(HeightField, FlatGridInteriorEdgesInactiveBorderActive) {
+  const HeightField f = build_heightfield(std::vector<Real>(6 * 5, 2), 6, 1, 1);
+  for (uint32_t t = 0; t < 2 * 5 * 4; ++t) {
+    const MeshTriangle tri = f.triangle(t);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = tri.v[k], b = tri.v[(k + 1) % 3];
+      const bool border = (a.x() == 0 && b.x() == 0) || (a.x() == 5 && b.x() == 5) ||
+                          (a.z() == 0 && b.z() == 0) || (a.z() == 4 && b.z() == 4);
+      EXPECT_EQ(bool((tri.active_edges >> k) & 1), border) << t << " " << k;
+    }
+  }
+}
+
+// A mesh of the field's triangles: its active edges (from true adjacency) must match the field's.
+TEST(HeightField, BumpyActiveEdgesMatchTheMeshOfTheSameTriangles) {
+  const HeightField f = bumpy(9, 7, 1, 0.8f);
+  std::vector<Vec3> v;
+  for (uint32_t j = 0; j < f.rows; ++j) {
+    for (uint32_t i = 0; i < f.columns; ++i) v.push_back(f.point(i, j));
+  }
+  const uint32_t cells = (f.columns - 1) * (f.rows - 1);
+  std::vector<std::array<uint32_t, 3>> tris;
+  const auto index_of = [&](const Vec3& p) {
+    return uint32_t(std::lround(p.z() / f.spacing_z)) * f.columns +
+           uint32_t(std::lround(p.x() / f.spacing_x));
+  };
+  for (uint32_t t = 0; t < 2 * cells; ++t) {
+    const MeshTriangle tri = f.triangle(t);
+    tris.push_back({index_of(tri.v[0]), index_of(tri.v[1]), index_of(tri.v[2])});
+  }
+  const TriangleMesh m = build_triangle_mesh(v, tris);
+  int active = 0, inactive = 0;
+  for (uint32_t t = 0; t < m.size(); ++t) {
+    // Find this mesh triangle among the field's by its vertices.
+    for (uint32_t u = 0; u < 2 * cells; ++u) {
+      if (tris[u] != m.triangles[t]) continue;
+      EXPECT_EQ(int(m.active_edges[t]), int(f.triangle(u).active_edges)) << u;
+      for (int k = 0; k < 3; ++k) ((m.active_edges[t] >> k) & 1 ? active : inactive)++;
+    }
+  }
+  EXPECT_GT(active, 0);
+  EXPECT_GT(inactive, 0);
+}
+
+std::string error_field(const std::vector<Real>& h, uint32_t columns, Real sx, Real sz,
+                        std::string& message) {
+  try {
+    build_heightfield(h, columns, sx, sz);
+  } catch (const Error& e) {
+    message = e.what();
+    return e.field();
+  }
+  return "";
+}
+
+TEST(HeightField, Validation) {
+  std::string m;
+  EXPECT_EQ(error_field(std::vector<Real>(3, 0), 3, 1, 1, m), "shape.heights");
+  EXPECT_EQ(error_field(std::vector<Real>(4, 0), 1, 1, 1, m), "shape.heights");
+  EXPECT_EQ(error_field(std::vector<Real>(7, 0), 3, 1, 1, m), "shape.heights");
+  EXPECT_NE(m.find("heights.size() 7 is not a multiple of columns 3"), std::string::npos) << m;
+  std::vector<Real> h(6, 0);
+  h[4] = NAN;
+  EXPECT_EQ(error_field(h, 3, 1, 1, m), "shape.heights");
+  EXPECT_NE(m.find("row 1, column 1"), std::string::npos) << m;
+  h[4] = 2e5f;
+  EXPECT_EQ(error_field(h, 3, 1, 1, m), "shape.heights");
+  h[4] = 0;
+  EXPECT_EQ(error_field(h, 3, 0, 1, m), "shape.spacing");
+  EXPECT_EQ(error_field(h, 3, 1, -2, m), "shape.spacing");
+  EXPECT_EQ(error_field(h, 3, INFINITY, 1, m), "shape.spacing");
+  EXPECT_EQ(error_field(h, 3, 1, NAN, m), "shape.spacing");
+  EXPECT_EQ(error_field(h, 3, 1, 1, m), "");
+  const HeightField f = build_heightfield(std::vector<Real>{1, -2, 3, 0.5f}, 2, 1, 1);
+  EXPECT_EQ(f.min_height, -2);
+  EXPECT_EQ(f.max_height, 3);
+}
+
+TEST(HeightField, RayNearestHitEqualsBruteForce) {
+  const HeightField f = bumpy(30, 25, 0.7f, 1.1f);
+  const uint32_t tris = 2 * (f.columns - 1) * (f.rows - 1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<Real> pos(-3, 30), unit(-1, 1);
+  int hits = 0, below = 0;
+  for (int q = 0; q < 400; ++q) {
+    const Vec3 o(pos(rng), 4 * unit(rng), pos(rng));
+    Vec3 d(unit(rng), unit(rng), unit(rng));
+    if (q % 7 == 0) d = Vec3(0, q % 14 == 0 ? -1 : 1, 0);  // vertical rays
+    if (q % 11 == 0) d.x() = 0;                            // rays in a z column
+    Real best = -1;
+    for (uint32_t t = 0; t < tris; ++t) {
+      const MeshTriangle tri = f.triangle(t);
+      Real th;
+      if (ray_triangle(o, d, tri.v[0], tri.v[1], tri.v[2], 60, th) && (best < 0 || th < best)) {
+        best = th;
+      }
+    }
+    SurfaceHit hit;
+    const bool found = ray_cast_heightfield(f, o, d, 60, hit);
+    ASSERT_EQ(found, best >= 0) << "ray " << q;
+    if (!found) continue;
+    ++hits;
+    EXPECT_EQ(hit.t, best) << "ray " << q;
+    EXPECT_LE(hit.normal.dot(d), 0);
+    EXPECT_NEAR(std::abs(hit.normal.dot(f.triangle(hit.triangle).normal())), 1, 1e-5);
+    below += hit.normal.y() < 0;  // hit from below: the normal faces the ray
+  }
+  EXPECT_GT(hits, 80);
+  EXPECT_GT(below, 0);
+}
+
+TEST(HeightField, AboutFourBytesASample) {
+  const uint32_t n = 257;
+  const HeightField f = build_heightfield(std::vector<Real>(std::size_t(n) * n, 1), n, 1, 1);
+  EXPECT_LE(double(heightfield_bytes(f)) / (double(n) * n), 4.1);
+  EXPECT_GE(double(heightfield_bytes(f)) / (double(n) * n), 4.0);
+}
+
+TEST(HeightField, QueryVisitsTheCellsUnderTheBox) {
+  const HeightField f = bumpy(10, 10, 1, 1);
+  std::vector<uint32_t> seen;
+  for_each_triangle(f, Vec3(2.5f, -10, 3.5f), Vec3(4.5f, 10, 4.2f),
+                    [&](const MeshTriangle& t) { seen.push_back(t.index); });
+  // Cells i 2..4, j 3..4: 6 cells, 12 triangles, row by row.
+  ASSERT_EQ(seen.size(), 12u);
+  EXPECT_EQ(seen.front(), 2 * (3 * 9 + 2));
+  EXPECT_EQ(seen.back(), 2 * (4 * 9 + 4) + 1);
+}
+
+}  // namespace heightfield_test
+}  // namespace elan::detail
