@@ -29,6 +29,14 @@ constexpr double kDependentPivot = 1e-12;
 // for 500 kg on 1 kg, 4 cm for 1e6 kg on 1 kg (which then stands).
 constexpr double kCompliance = 1e-6;
 
+// Capacity for n, a quarter past it when it must grow: the buffers are sized to what a step can
+// need at most (every lane and joint loaded, a system of kDirectMaxRows), so a warm step
+// allocates nothing.
+template <class V>
+void reserve_for(V& v, std::size_t n) {
+  if (v.capacity() < n) v.reserve(n + n / 4);
+}
+
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) {
     parent[i] = parent[parent[i]];  // path halving
@@ -182,6 +190,8 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
   auto small = [&](uint32_t root) {
     return root != UINT32_MAX && island_size[root] <= kDirectMaxBodies;
   };
+  const std::size_t item_bound = ctx.lane_manifolds.size() + joints.size();
+  reserve_for(ds.item_source, item_bound);
   const std::size_t bundles = std::min(ds.loaded_lanes.size(), ctx.bundles.size());
   for (std::size_t j = 0; j < bundles; ++j) {
     const uint32_t mask = ds.loaded_lanes[j];
@@ -217,9 +227,20 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     if (!written_packet(a, written_end)) a = 0;
     if (!written_packet(b, written_end)) b = 0;
   };
+  reserve_for(ds.items, 2 * item_bound);
+  reserve_for(ds.systems, item_bound);
+  reserve_for(ds.rows, (3 + kMaxManifoldPoints) * ctx.lane_manifolds.size() + 3 * joints.size());
+  reserve_for(ds.packets, ctx.bodies.size());
+  reserve_for(ds.active, std::max<std::size_t>(item_bound, kDirectMaxRows));
   // Systems: the loaded rows linked through their written bodies (union-find over packets).
-  if (ds.parent.size() < ctx.bodies.size()) ds.parent.resize(ctx.bodies.size());
-  if (ds.slot_of.size() < ctx.bodies.size()) ds.slot_of.resize(ctx.bodies.size(), -1);
+  if (ds.parent.size() < ctx.bodies.size()) {
+    reserve_for(ds.parent, ctx.bodies.size());
+    ds.parent.resize(ctx.bodies.size());
+  }
+  if (ds.slot_of.size() < ctx.bodies.size()) {
+    reserve_for(ds.slot_of, ctx.bodies.size());
+    ds.slot_of.resize(ctx.bodies.size(), -1);
+  }
   for (const uint64_t item : ds.item_source) {
     uint32_t a, b;
     packets_of(item, a, b);
@@ -329,6 +350,23 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
 void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool use_bias,
                   DirectState& ds) {
   const double max_push = double(ctx.max_push_velocity);
+  // The largest system's buffers, once (a system has at most kDirectMaxRows rows and
+  // kDirectMaxBodies packets).
+  constexpr std::size_t rows_max = kDirectMaxRows, slots_max = 2 * kDirectMaxBodies;
+  reserve_for(ds.jac, 12 * rows_max);
+  reserve_for(ds.mjac, 12 * rows_max);
+  for (std::vector<double>* v :
+       {&ds.target, &ds.lambda, &ds.rhs, &ds.delta, &ds.fixed, &ds.lever}) {
+    reserve_for(*v, rows_max);
+  }
+  reserve_for(ds.in_set, rows_max);
+  reserve_for(ds.dependent, rows_max);
+  reserve_for(ds.first, rows_max);
+  reserve_for(ds.offset, rows_max + 1);
+  reserve_for(ds.factor, kDirectMaxEnvelope);
+  reserve_for(ds.velocity, 6 * slots_max);
+  reserve_for(ds.trial, 6 * slots_max);
+  reserve_for(ds.slot_first, slots_max);
   for (const DirectSystem& system : ds.systems) {
     const uint32_t n = system.row_end - system.row_begin;
     const uint32_t slots = system.packet_end - system.packet_begin;

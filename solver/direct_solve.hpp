@@ -48,6 +48,10 @@ namespace elan::detail {
 // give more than this are solved directly. A single 0.5 m cube resting on another gives 0.2 mm;
 // three cubes on it, 0.5 mm.
 inline constexpr Real kDirectGive = Real(0.0005);
+// A joint's point rows are loaded past a larger give: a ragdoll heap's joints give a millimetre
+// and hold (its limbs are not a load path), while a light chain under a heavy weight gives
+// centimetres.
+inline constexpr Real kDirectJointGive = Real(0.001);  // m
 // Rows pressed in deeper than this are solved directly too (prepare_bundle).
 inline constexpr Real kDirectDepth = Real(0.0001);  // m  // m
 // Systems with more rows are left to Gauss-Seidel: the envelope of a large pile is dense, and

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
 #include "solver/direct_solve.hpp"
 
@@ -602,12 +603,12 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
       r.impulses.friction.setZero();
     }
     refresh_row(r, st.packets, st.masses);
-    // Loaded: the point rows' soft spring would give more than kDirectGive under last step's
+    // Loaded: the point rows' soft spring would give more than kDirectJointGive under last step's
     // impulse, lambda gamma / m_eff with m_eff the mean of the point mass's diagonal. A joint
     // made soft on purpose (its own constraint_hertz) keeps its softness.
     if (has_point_rows(r.type) && !(d.constraint_hertz > 0)) {
       const Real m_eff = (r.point_mass.xx + r.point_mass.yy + r.point_mass.zz) / 3;
-      if (give_per_impulse(r.softness) * r.point_impulse.norm() > kDirectGive * m_eff) {
+      if (give_per_impulse(r.softness) * r.point_impulse.norm() > kDirectJointGive * m_eff) {
         r.flags |= kJointLoaded;
       }
     }
@@ -618,7 +619,8 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
     if (group[k] != UINT8_MAX) st.joint_rows[next[group[k]]++].joint = uint32_t(k);
   }
   // determinism: each row is written by its block alone, from its joint alone (rule 1).
-  st.direct.loaded_joint_blocks.assign(block_count(st.joint_rows.size(), kPrepareGrain), 0);
+  grow_fill(st.direct.loaded_joint_blocks, block_count(st.joint_rows.size(), kPrepareGrain),
+            uint8_t(0));
   for_blocks(st.joint_rows.size(), kPrepareGrain,
              [&](std::size_t begin, std::size_t end, std::size_t block) {
                uint8_t loaded = 0;
