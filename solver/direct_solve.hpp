@@ -116,6 +116,18 @@ struct DirectState {
   std::vector<std::size_t> offset;
   std::vector<double> factor;
   std::vector<uint8_t> dependent;
+
+  // The bytes its buffers hold (the memory report).
+  std::size_t heap_bytes() const {
+    std::size_t sum = 0;
+    auto add = [&](const auto& v) { sum += v.capacity() * sizeof(v[0]); };
+    add(loaded_lanes), add(loaded_joint_blocks), add(systems), add(rows), add(packets);
+    add(items), add(item_source), add(parent), add(slot_of), add(jac), add(mjac), add(target);
+    add(lambda), add(rhs), add(delta), add(fixed), add(lever), add(velocity), add(trial);
+    add(active), add(in_set), add(first), add(slot_first), add(offset), add(factor);
+    add(dependent);
+    return sum;
+  }
 };
 
 // Serial, before the substeps: the loaded rows of islands (islands.hpp: `island_root` per body,
