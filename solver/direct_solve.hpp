@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The direct solve of loaded rows: the normal rows of contacts and the point rows of joints that
-// carry a load their soft spring would give under (s = lambda gamma / m_eff, see loaded_give),
+// carry a load their soft spring would give under (s = lambda gamma / m_eff, see kDirectGive),
+// face contacts only (three points or more), in islands of at most kDirectMaxBodies bodies,
 // gathered into linear systems, one per connected set of bodies, and solved exactly once per
 // biased pass and once per relax pass of every substep, after the Gauss-Seidel passes.
 //
@@ -11,21 +12,25 @@
 // body by m_eff / M of the error per pass, cannot carry the load through the light bodies within
 // a few passes. Solved exactly (the seed's "linear systems for resting contact"), the rows are
 // rigid: the velocity meets the target J v = -beta C (the soft step's bias rate beta, capped by
-// max_push_velocity) with no compliance term, whatever the masses, and the position error decays
-// at rate beta. The friction rows and the rows that carry no such load stay in Gauss-Seidel;
-// the direct solve is one block of a block Gauss-Seidel step over all rows.
+// max_push_velocity) with no spring compliance, whatever the masses, and the position error
+// decays at rate beta. The rows that carry no such load stay in Gauss-Seidel: the direct solve is
+// one block of a block Gauss-Seidel step over all rows.
 //
 // The system A lambda = b, A = J M^-1 J^T, is assembled in double in an envelope (skyline) and
 // factored by Cholesky: rows are ordered by their manifold's key (bodies in index order: a tower
 // or a pile's column is then a band) and joints by joint order (a chain is a band), so the
-// factor has the envelope's fill only. Linearly dependent rows (the fourth point of a face)
-// get none. Contacts are unilateral and their friction bounded: an active-set loop fixes at zero
-// the normal rows whose impulse would turn negative, fixes on the cone the friction that would
-// leave it (mu times the manifold's normal impulse; the twist within mu times the points'
-// levers), and frees the separated rows the solution would violate (principal pivoting, a few
-// rounds; in a resting stack the first set is right). Friction is in the system because the
-// normal rows move a light body's rotation, and a light body held by Gauss-Seidel friction
-// between a heavy one and the ground would slide: its friction has the same mass ratio.
+// factor has the envelope's fill only. A face's four points give three independent rows: a
+// compliance of 1e-6 of each row's diagonal (on the whole impulse) makes the system definite and
+// the split of a load between the points the least-squares one, and each manifold's biased
+// targets are fitted by one plane, those of one rigid motion. Contacts are unilateral and their
+// friction bounded: an active-set loop fixes at zero the normal rows whose impulse would turn
+// negative, fixes on the cone the friction that would leave it (mu times the manifold's normal
+// impulse; the twist within mu times the points' levers), and frees the separated rows the solution
+// would violate (principal pivoting, a few rounds; in a resting stack the first set is right; a set
+// that does not settle, or impulses far beyond the bodies' momentum, leave the passes' impulses
+// standing). Friction is in the system because the normal rows move a light body's rotation, and a
+// light body held by Gauss-Seidel friction between a heavy one and the ground would slide: its
+// friction has the same mass ratio.
 //
 // Determinism: the systems are built serially in a fixed order (bundle order, then sorted by
 // key), each solved by one thread in a stage of its own, in system order (rules 3 and 5).
@@ -47,13 +52,13 @@ namespace elan::detail {
 // fixed point: 0 = -m_eff mass_scale (0 + bias_rate s) - impulse_scale lambda). Rows that would
 // give more than this are solved directly. A single 0.5 m cube resting on another gives 0.2 mm;
 // three cubes on it, 0.5 mm.
-inline constexpr Real kDirectGive = Real(0.0005);
+inline constexpr Real kDirectGive = Real(0.0005);  // m
 // A joint's point rows are loaded past a larger give: a ragdoll heap's joints give a millimetre
 // and hold (its limbs are not a load path), while a light chain under a heavy weight gives
 // centimetres.
 inline constexpr Real kDirectJointGive = Real(0.001);  // m
 // Rows pressed in deeper than this are solved directly too (prepare_bundle).
-inline constexpr Real kDirectDepth = Real(0.0001);  // m  // m
+inline constexpr Real kDirectDepth = Real(0.0001);  // m
 // Systems with more rows are left to Gauss-Seidel: the envelope of a large pile is dense, and
 // its factor would cost more than the passes it replaces.
 inline constexpr uint32_t kDirectMaxRows = 640;
