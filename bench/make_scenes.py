@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Writes the generated benchmark scenes into scenes/: many_pyramids, rain and tumbler, and the
-geometry scenes convex_vs_mesh, heightfield_rain, compounds and geometry_demo (with the OBJ files
-of scenes/meshes/ that geometry_demo loads).
+"""Writes the generated benchmark scenes into scenes/: many_pyramids, rain, tumbler and towers,
+and the geometry scenes convex_vs_mesh, heightfield_rain, compounds and geometry_demo (with the
+OBJ files of scenes/meshes/ that geometry_demo loads).
 
 Box2D/Box3D-style joint-free scenes. Seeded, so rerunning gives the same files.
 Usage: bench/make_scenes.py [SCENE_DIR]
@@ -305,12 +305,31 @@ def generated_bodies(g):
     return 1  # terrain
 
 
+def towers():
+    # Sixteen towers of 0.5 m cubes (125 kg each), 20 to 40 high, on a 4 x 4 grid 4 m apart,
+    # each capped by a 0.5 m cube of 2500 kg (twenty cubes' mass): the loaded contacts of the
+    # stacking issue (tall columns, heavy on light) in a scene to time and to compare.
+    bodies = [static_box("ground", (12, 1, 12), (0, -1, 0))]
+    for i in range(16):
+        x, z = (i % 4 - 1.5) * 4.0, (i // 4 - 1.5) * 4.0
+        height = 20 + (20 * i + 7) // 15
+        for k in range(height):
+            body = {"shape": {"type": "box", "half_extents": [0.25, 0.25, 0.25]},
+                    "position": [x, 0.25 + 0.5 * k, z]}
+            if k == height - 1:
+                body["name"] = "cap%02d" % i
+                body["mass"] = 2500
+            bodies.append(body)
+    return {"gravity": [0, -9.81, 0], "timestep": DT, "allow_sleep": True, "bodies": bodies}
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
         os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
     for name, make in (("many_pyramids", many_pyramids), ("rain", rain), ("tumbler", tumbler),
                        ("convex_vs_mesh", convex_vs_mesh), ("heightfield_rain", heightfield_rain),
-                       ("compounds", compounds), ("geometry_demo", geometry_demo)):
+                       ("compounds", compounds), ("geometry_demo", geometry_demo),
+                       ("towers", towers)):
         scene = make()
         write_scene(os.path.join(out, name + ".json"), scene)
         n = len(scene["bodies"]) + sum(generated_bodies(g) for g in scene.get("generators", []))

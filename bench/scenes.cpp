@@ -44,7 +44,7 @@ struct Options {
   int calib_reps = 5;
   std::vector<std::string> scenes = {"jolt_pyramid", "pyramid20", "tower20", "many_pyramids",
                                      "pile1k",       "pile4k",    "pile10k", "spheres_in_box",
-                                     "rain",         "tumbler"};
+                                     "rain",         "tumbler",   "towers"};
   // Scenes that fall asleep within the warm-up, run once more with allow_sleep = false under the
   // name "<scene>-no-sleep", so that the work of their stacks is timed, not only their sleep.
   std::vector<std::string> no_sleep = {"pyramid20"};

@@ -367,6 +367,12 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
   take_from(sorted_lo2_, scratch, n);
   take_from(sorted_hi2_, scratch, n);
   take_from(sorted_strips_, scratch, 2 * n);
+  // Room for the most any spread of these n boxes can need (blocks * strips <= n / 4 + strips,
+  // strips <= n / kMinBoxesPerStrip), so a scene that spreads out does not grow it in a warm step.
+  const std::size_t most_strips = n / kMinBoxesPerStrip + 1;
+  if (deal_counts_.capacity() < n / 4 + most_strips + 1)
+    deal_counts_.reserve(n / 4 + most_strips + 1);
+  if (strip_begin_.capacity() < most_strips + 1) strip_begin_.reserve(most_strips + 1);
   deal_counts_.assign(blocks * strips, 0);
   // The rest of each box in sweep order, its strips, and per block the entries per strip.
   // determinism: indexed writes, and each block counts into its own row (rule 1).

@@ -61,7 +61,8 @@ void prepare_contacts(const BodyStore& bodies, std::span<const ManifoldHead> con
       }
     }
   };
-  // determinism: group g writes only its own bundles and their rows.
+  // determinism: group g writes only its own bundles and their rows (and loaded lanes).
+  grow_to(st.direct.loaded_lanes, st.bundles.size());
   std::vector<StageSpec>& stages = st.stages;
   stages.assign({{kGroups, 0, 0}});
   st.executor.run(stages, std::min(settings.participants, int(kHalves)),

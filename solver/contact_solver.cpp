@@ -8,6 +8,7 @@
 #include <cstddef>
 
 #include "solver/body_lanes.hpp"
+#include "solver/direct_solve.hpp"
 
 namespace elan::detail {
 
@@ -37,13 +38,6 @@ Softness make_softness(Real hertz, Real damping_ratio, Real h) {
 }
 
 namespace {
-
-// Radius of the contact patch that a point contact stands for, m: the twist friction of a
-// manifold is at least mu * kTorsionPatch * sum(lambda_n). An ideal point contact has no
-// torsional friction, so a sphere pinched between two bodies would spin about the normal for
-// ever and keep its island awake; real contacts have a patch (MuJoCo's default torsional
-// friction length is the same 5 mm).
-constexpr Real kTorsionPatch = Real(0.005);
 
 // Below these relative motions since the step's start refresh_contacts keeps a constraint's
 // arms (m, rad): the angular momentum error left is at most this distance times the impulse.
@@ -275,6 +269,27 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   set_friction_mass(c, ma, mb);
   const Wide k_twist = dot(n, ma.inv_inertia * n) + dot(n, mb.inv_inertia * n);
   c.twist_mass = inverse_or_zero(k_twist);
+  if (!ctx.loaded_lanes.empty()) {
+    // A row is loaded when its soft spring would give more than kDirectGive under the impulse it
+    // carried last step, lambda gamma / m_eff > kDirectGive (direct_solve.hpp),
+    const Wide give = mb.inv_mass == zero ? splat(ctx.static_give) : splat(ctx.contact_give);
+    const Wide limit = splat(kDirectGive);
+    auto loaded = give < zero;  // all false
+    // Face contacts only (three points or more): the resting support of a stack or a load. The
+    // contacts of round shapes roll and spin, and their rows are left to the passes.
+    const auto face = point_count > splat(Real(2));
+    for (int k = 0; k < points; ++k) {
+      const WideNormalRow& p = row_of(c, rows, k);
+      // or already pressed in that deep (a tower placed at rest sinks while Gauss-Seidel
+      // carries the load up from the bottom, before its rows carry it).
+      loaded = loaded | (give * p.normal_impulse > limit * p.normal_mass) |
+               ((p.separation < splat(-kDirectDepth)) & (p.normal_mass > zero));
+    }
+    loaded = loaded & face;
+    uint32_t bits = 0;
+    for (int l = 0; l < lane_count; ++l) bits |= loaded[l] ? 1u << l : 0u;
+    ctx.loaded_lanes[bundle] = bits;
+  }
 }
 
 void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,

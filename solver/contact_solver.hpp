@@ -22,6 +22,13 @@
 
 namespace elan::detail {
 
+// Radius of the contact patch that a point contact stands for, m: the twist friction of a
+// manifold is at least mu * kTorsionPatch * sum(lambda_n). An ideal point contact has no
+// torsional friction, so a sphere pinched between two bodies would spin about the normal for
+// ever and keep its island awake; real contacts have a patch (MuJoCo's default torsional
+// friction length is the same 5 mm).
+inline constexpr Real kTorsionPatch = Real(0.005);
+
 // The solver's tangent basis of each lane's normal: tangent_basis() across the lanes, the same
 // operations in the same order. perf: derived in every pass, not kept in the bundle (12 bytes a
 // lane): a compare and one division a bundle (Duff et al.'s basis needs no square root) cost
@@ -56,6 +63,11 @@ struct ContactSolverContext {
   Softness static_softness;        // against a static or kinematic body (stiffer)
   Real max_push_velocity = 3;      // m/s: cap of the position-correction speed
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
+  // Per bundle, written by prepare_bundle: the lanes whose rows carry a load their soft spring
+  // would give under by more than kDirectGive (direct_solve.hpp), a bit a lane. Empty: not
+  // wanted. The give per impulse of each softness (give_per_impulse), s/kg.
+  std::span<uint32_t> loaded_lanes;
+  Real contact_give = 0, static_give = 0;
 
   // Bundle j's points: as many as the most points of its lanes, the first in the bundle
   // (ContactBundle::first), the others rows_of(j)[0, point_count(j) - 1).

@@ -87,9 +87,13 @@ std::size_t update_islands(BodyStore& bodies, std::span<const ManifoldHead> cont
   }
 
   std::size_t islands = 0;
+  s.root.assign(n, UINT32_MAX);
+  s.size.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     if (!bodies.is_dynamic(i) || (bodies.flags[i] & kFrozen)) continue;
     const uint32_t r = s.parent[i];
+    s.root[i] = r;
+    ++s.size[r];
     if (r == i) ++islands;
     if (!s.island_awake[r]) continue;
     if (settings.allow_sleep && s.island_sleep_time[r] >= settings.time_to_sleep) {

@@ -25,6 +25,11 @@ struct IslandScratch {
   ScratchVector<uint32_t> parent;
   ScratchVector<Real> island_sleep_time;
   ScratchVector<uint8_t> island_awake;
+  // Kept after the stage (the direct solve reads them): per body its island's root (its lowest
+  // body), UINT32_MAX for a body outside any island (static, kinematic, frozen); per root the
+  // island's body count.
+  std::vector<uint32_t> root;
+  std::vector<uint32_t> size;
 };
 
 struct IslandSettings {

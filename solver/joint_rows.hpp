@@ -17,6 +17,9 @@ enum JointRowFlags : uint8_t {
   kJointSpring = 4,
   kJointSwing = 8,  // a cone whose swing limit is below pi
   kJointFriction = 16,
+  // Its point rows carry a load their soft spring would give under by more than kDirectJointGive
+  // (direct_solve.hpp): the direct solve takes them.
+  kJointLoaded = 32,
 };
 
 // A joint's geometry at the current poses: it changes only when the positions do, once a substep

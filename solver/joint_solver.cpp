@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
+#include "solver/direct_solve.hpp"
 
 namespace elan::detail {
 
@@ -17,8 +19,7 @@ constexpr Real kPi = Real(3.14159265358979323846);
 // chain or a ragdoll sags less, and a joint has no speculative margin to hide a soft response in.
 constexpr Real kJointHertzScale = 2;
 
-// Joint rows prepared (and stored back) per block of the parallel loops.
-constexpr std::size_t kPrepareGrain = 256;
+constexpr std::size_t kPrepareGrain = kJointPrepareGrain;
 
 Real wrap_angle(Real a) {
   if (a > kPi) return a - 2 * kPi;
@@ -602,6 +603,15 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
       r.impulses.friction.setZero();
     }
     refresh_row(r, st.packets, st.masses);
+    // Loaded: the point rows' soft spring would give more than kDirectJointGive under last step's
+    // impulse, lambda gamma / m_eff with m_eff the mean of the point mass's diagonal. A joint
+    // made soft on purpose (its own constraint_hertz) keeps its softness.
+    if (has_point_rows(r.type) && !(d.constraint_hertz > 0)) {
+      const Real m_eff = (r.point_mass.xx + r.point_mass.yy + r.point_mass.zz) / 3;
+      if (give_per_impulse(r.softness) * r.point_impulse.norm() > kDirectJointGive * m_eff) {
+        r.flags |= kJointLoaded;
+      }
+    }
   };
   uint32_t next[kGroups];
   for (uint32_t g = 0; g < kGroups; ++g) next[g] = st.joint_group_start[g];
@@ -609,9 +619,16 @@ void prepare_joints(const BodyStore& bodies, const JointStore& joints,
     if (group[k] != UINT8_MAX) st.joint_rows[next[group[k]]++].joint = uint32_t(k);
   }
   // determinism: each row is written by its block alone, from its joint alone (rule 1).
+  grow_fill(st.direct.loaded_joint_blocks, block_count(st.joint_rows.size(), kPrepareGrain),
+            uint8_t(0));
   for_blocks(st.joint_rows.size(), kPrepareGrain,
-             [&](std::size_t begin, std::size_t end, std::size_t) {
-               for (std::size_t row = begin; row < end; ++row) prepare_row(st.joint_rows[row]);
+             [&](std::size_t begin, std::size_t end, std::size_t block) {
+               uint8_t loaded = 0;
+               for (std::size_t row = begin; row < end; ++row) {
+                 prepare_row(st.joint_rows[row]);
+                 loaded |= st.joint_rows[row].flags & kJointLoaded;
+               }
+               st.direct.loaded_joint_blocks[block] = loaded != 0;
              });
 }
 

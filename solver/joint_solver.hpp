@@ -30,6 +30,9 @@ namespace elan::detail {
 void joint_links(const JointStore& joints, std::span<const uint32_t> slot_index,
                  std::vector<JointLink>& links);
 
+// Joint rows prepared (and stored back) per block of the parallel loops.
+inline constexpr std::size_t kJointPrepareGrain = 256;
+
 // The stage after load_packets: the rows of the joints with an awake dynamic body, group by group
 // (SolverState::joint_rows, joint_group_start). Reads the store, the bodies' poses, the packets.
 void prepare_joints(const BodyStore& bodies, const JointStore& joints,

@@ -26,6 +26,8 @@ enum StageKind : uint32_t {
   kKinematicPositions,
   kRelax,
   kRestitution,
+  kDirectBias,   // the direct solve of the loaded rows after the biased passes
+  kDirectRelax,  // and after the relax pass
 };
 
 }  // namespace
@@ -48,6 +50,9 @@ ContactSolverContext make_solver_context(const SolveSettings& settings, SolverSt
   const Real hertz = std::min(settings.contact_hertz, Real(0.25) * ctx.inv_h);
   ctx.contact_softness = make_softness(hertz, settings.contact_damping_ratio, ctx.h);
   ctx.static_softness = make_softness(2 * hertz, settings.contact_damping_ratio, ctx.h);
+  ctx.loaded_lanes = state.direct.loaded_lanes;
+  ctx.contact_give = give_per_impulse(ctx.contact_softness);
+  ctx.static_give = give_per_impulse(ctx.static_softness);
   ctx.max_push_velocity = settings.max_push_velocity;
   ctx.restitution_threshold = settings.restitution_threshold;
   return ctx;
@@ -76,13 +81,20 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
   auto add_kinematic = [&](StageKind kind) {
     if (kinematic) stages.push_back({1, kind, 0});
   };
+  // The loaded rows' systems, solved directly by one block after the passes of both halves and
+  // the cut (direct_solve.hpp): a system may span the cut. No system, no stage.
+  const bool direct =
+      build_direct_systems(ctx, contacts, st.joint_rows, kJointPrepareGrain, st.island_scratch.root,
+                           st.island_scratch.size, st.direct);
   for (int s = 0; s < settings.substeps; ++s) {
     add_kinematic(kKinematicVelocities);
     add_pass(kWarmStart);  // halves: integrate velocities first
     for (int it = 0; it < settings.iterations; ++it) add_pass(kSolve);
+    if (direct) stages.push_back({1, kDirectBias, 0});
     // The bodies move; the relax pass first refreshes each bundle's arms and separations.
     add_kinematic(kKinematicPositions);
     add_pass(kRelax);  // halves: integrate positions first
+    if (direct) stages.push_back({1, kDirectRelax, 0});
   }
   // Restitution, then each bundle's impulses are final and stored.
   add_pass(kRestitution);
@@ -92,6 +104,10 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
     if (stage.kind == kKinematicVelocities) {
       integrate_velocities(st.packets, st.masses, bodies, settings.gravity, h,
                            st.half_start[kHalves], packet_count);
+      return;
+    }
+    if (stage.kind == kDirectBias || stage.kind == kDirectRelax) {
+      solve_direct(ctx, st.joint_rows, stage.kind == kDirectBias, st.direct);
       return;
     }
     if (stage.kind == kKinematicPositions) {

@@ -19,6 +19,7 @@
 #include "core/base/step_scratch.hpp"
 #include "solver/coloring.hpp"
 #include "solver/contact_solver.hpp"
+#include "solver/direct_solve.hpp"
 #include "solver/islands.hpp"
 #include "solver/joint_rows.hpp"
 #include "solver/solver_types.hpp"
@@ -100,6 +101,7 @@ struct SolverState {
   uint32_t joint_group_start[kGroups + 1] = {};
   std::vector<uint8_t> joint_group;
   std::vector<uint8_t> joint_broke;  // per row: broke in the step (store_joint_impulses)
+  DirectState direct;                // the loaded rows' direct solve (direct_solve.hpp)
   ColorScratch color_scratch[kGroups];
   IslandScratch island_scratch;
   StageExecutor executor;

@@ -74,7 +74,9 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
 
   // Impacts are few (a handful of fast bodies' near pairs), so each thread lists those it found
   // rather than every pair keeping a time (4 bytes a pair, most of them never set).
-  reset_thread_buffers(st.impacts, largest_capacity(st.impacts));
+  // Room for a few hundred from the start (2 KiB a thread), so that a scene whose fast bodies
+  // come in bursts does not grow the lists in a warm step.
+  reset_thread_buffers(st.impacts, std::max<std::size_t>(largest_capacity(st.impacts), 256));
   // A pair with a manifold had its (speculative) contact in the solve, placed along the motion
   // predicted at the step's start: the contact solver has it in hand. So the candidates are the
   // pairs found apart, in either list: one range over both.

@@ -80,7 +80,8 @@ MemoryUse memory_use(const WorldState& w) {
              heap_bytes(v.row_start) + heap_bytes(v.lane_start) + heap_bytes(v.rows) +
              heap_bytes(v.restitution) + heap_bytes(v.bundle_start) +
              heap_bytes(v.island_scratch.parent) + heap_bytes(v.island_scratch.island_sleep_time) +
-             heap_bytes(v.island_scratch.island_awake) + v.executor.heap_bytes() +
+             heap_bytes(v.island_scratch.island_awake) + heap_bytes(v.island_scratch.root) +
+             heap_bytes(v.island_scratch.size) + v.direct.heap_bytes() + v.executor.heap_bytes() +
              heap_bytes(v.stages) + heap_bytes(v.block_flags) + heap_bytes(v.fast) +
              heap_bytes(v.impacts) + heap_bytes(v.earliest_toi);
   for (const ColorScratch& c : v.color_scratch) {

@@ -140,11 +140,13 @@ TEST(StepAllocations, NoneOnceAPileHasSettled) {
 }
 
 // Joints: the rows, the groups and the island links keep their capacity; the chains swing over a
-// pile, so the joints share the step with contacts that come and go.
+// pile, so the joints share the step with contacts that come and go. The chains' widest swings
+// (the most sweep strips, the most continuous impacts and pairs) come within the first 8 s: the
+// count starts after them.
 TEST(StepAllocations, NoneOnceJointedScenesAreWarm) {
   if (test::kSanitized) GTEST_SKIP() << "the optimised build checks the counts";
   for (int threads : {1, 2}) {
-    EXPECT_EQ(allocations_once_warm("chains.json", threads, 300, 120), 0) << threads << " threads";
+    EXPECT_EQ(allocations_once_warm("chains.json", threads, 480, 120), 0) << threads << " threads";
     EXPECT_EQ(allocations_once_warm("ragdolls.json", threads, 200, 60), 0) << threads << " threads";
   }
 }

@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: MIT
+// The direct solve of loaded rows: the normal rows of contacts and the point rows of joints that
+// carry a load their soft spring would give under (s = lambda gamma / m_eff, see kDirectGive),
+// face contacts only (three points or more), in islands of at most kDirectMaxBodies bodies,
+// gathered into linear systems, one per connected set of bodies, and solved exactly once per
+// biased pass and once per relax pass of every substep, after the Gauss-Seidel passes.
+//
+// Why: a soft row is a spring on the row's effective mass m_eff, so it settles at a penetration
+// F / (m_eff omega^2) under a load F. A tower's lower contacts carry many bodies' weight, a light
+// box under a heavy one has m_eff of the light box, a light chain link holds the weight below:
+// the give grows with the load over the row's own mass, and Gauss-Seidel, which moves the heavy
+// body by m_eff / M of the error per pass, cannot carry the load through the light bodies within
+// a few passes. Solved exactly (the seed's "linear systems for resting contact"), the rows are
+// rigid: the velocity meets the target J v = -beta C (the soft step's bias rate beta, capped by
+// max_push_velocity) with no spring compliance, whatever the masses, and the position error
+// decays at rate beta. The rows that carry no such load stay in Gauss-Seidel: the direct solve is
+// one block of a block Gauss-Seidel step over all rows.
+//
+// The system A lambda = b, A = J M^-1 J^T, is assembled in double in an envelope (skyline) and
+// factored by Cholesky: rows are ordered by their manifold's key (bodies in index order: a tower
+// or a pile's column is then a band) and joints by joint order (a chain is a band), so the
+// factor has the envelope's fill only. A face's four points give three independent rows: a
+// compliance of 1e-6 of each row's diagonal (on the whole impulse) makes the system definite and
+// the split of a load between the points the least-squares one, and each manifold's biased
+// targets are fitted by one plane, those of one rigid motion. Contacts are unilateral and their
+// friction bounded: an active-set loop fixes at zero the normal rows whose impulse would turn
+// negative, fixes on the cone the friction that would leave it (mu times the manifold's normal
+// impulse; the twist within mu times the points' levers), and frees the separated rows the solution
+// would violate (principal pivoting, a few rounds; in a resting stack the first set is right; a set
+// that does not settle, or impulses far beyond the bodies' momentum, leave the passes' impulses
+// standing). Friction is in the system because the normal rows move a light body's rotation, and a
+// light body held by Gauss-Seidel friction between a heavy one and the ground would slide: its
+// friction has the same mass ratio.
+//
+// Determinism: the systems are built serially in a fixed order (bundle order, then sorted by
+// key), each solved by one thread in a stage of its own, in system order (rules 3 and 5).
+// Memory: every buffer is a member kept between steps (grown, never shrunk within a step).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/base/contact.hpp"
+#include "solver/contact_solver.hpp"
+#include "solver/joint_rows.hpp"
+
+namespace elan::detail {
+
+// A row's soft spring gives s = lambda * gamma / m_eff under the impulse lambda it carries per
+// substep, gamma = impulse_scale / (mass_scale * bias_rate) = 1 / (h omega^2) (the soft step's
+// fixed point: 0 = -m_eff mass_scale (0 + bias_rate s) - impulse_scale lambda). Rows that would
+// give more than this are solved directly. A single 0.5 m cube resting on another gives 0.2 mm;
+// three cubes on it, 0.5 mm.
+inline constexpr Real kDirectGive = Real(0.0005);  // m
+// A joint's point rows are loaded past a larger give: a ragdoll heap's joints give a millimetre
+// and hold (its limbs are not a load path), while a light chain under a heavy weight gives
+// centimetres.
+inline constexpr Real kDirectJointGive = Real(0.001);  // m
+// Rows pressed in deeper than this are solved directly too (prepare_bundle).
+inline constexpr Real kDirectDepth = Real(0.0001);  // m
+// Systems with more rows are left to Gauss-Seidel: the envelope of a large pile is dense, and
+// its factor would cost more than the passes it replaces.
+inline constexpr uint32_t kDirectMaxRows = 640;
+// Islands of more bodies are not looked at (a pile, a joint grid): they are left to
+// Gauss-Seidel, and their rows not even gathered.
+inline constexpr uint32_t kDirectMaxBodies = 96;
+inline constexpr std::size_t kDirectMaxEnvelope = 64 * 1024;  // factor entries
+
+// gamma of `loaded_give` for one softness, s (0 for a rigid or bias-free softness).
+Real give_per_impulse(const Softness& s);
+
+// What a row of a direct system is: a contact's normal row at one point, its friction at the
+// manifold centre (two tangents and the twist, as the passes solve them), or a joint point row.
+enum DirectRowKind : uint8_t {
+  kDirectNormal,
+  kDirectTangent0,
+  kDirectTangent1,
+  kDirectTwist,
+  kDirectJoint,
+};
+
+// One row of a direct system. A manifold's rows are consecutive: its points' normal rows, then
+// its two tangent rows and its twist row.
+struct DirectRow {
+  uint32_t source = 0;  // contact: the bundle; joint: the index in SolverState::joint_rows
+  uint32_t head = 0;    // contact: the system's index of the manifold's first normal row
+  uint8_t lane = 0;     // contact: the lane
+  uint8_t point = 0;    // contact normal: the point; joint: the axis (x, y, z)
+  uint8_t kind = kDirectNormal;
+  uint8_t count = 0;           // contact: the manifold's points
+  int32_t slot[2] = {-1, -1};  // the written packets of sides A and B (DirectState::packets)
+};
+
+// A system's rows and packets: rows [row_begin, row_end), packets [packet_begin, packet_end).
+struct DirectSystem {
+  uint32_t row_begin = 0, row_end = 0;
+  uint32_t packet_begin = 0, packet_end = 0;
+};
+
+struct DirectState {
+  // Per bundle (prepare_bundle): the lanes whose rows are loaded, a bit a lane.
+  std::vector<uint32_t> loaded_lanes;
+  // Per block of prepare_joints' loop: some row in it is loaded (JointRow kJointLoaded).
+  std::vector<uint8_t> loaded_joint_blocks;
+  std::vector<DirectSystem> systems;  // this step's
+  std::vector<DirectRow> rows;
+  std::vector<uint32_t> packets;  // system by system: the written packets
+  // Build scratch.
+  std::vector<uint64_t> items;  // (root << 32 | order) then the item's index in item_source
+  std::vector<uint64_t> item_source;
+  std::vector<uint32_t> parent;  // per packet (union-find)
+  std::vector<int32_t> slot_of;  // per packet
+  // Solve scratch, per row of the largest system and per slot.
+  std::vector<double> jac, mjac;  // 12 a row: per side sigma (d, r x d), and M^-1 of it
+  std::vector<double> target, lambda, rhs, delta, fixed, lever;
+  std::vector<double> velocity, trial;  // 6 a slot
+  std::vector<uint32_t> active;
+  std::vector<uint8_t> in_set;
+  std::vector<int32_t> first, slot_first;
+  std::vector<std::size_t> offset;
+  std::vector<double> factor;
+  std::vector<uint8_t> dependent;
+
+  // The bytes its buffers hold (the memory report).
+  std::size_t heap_bytes() const {
+    std::size_t sum = 0;
+    auto add = [&](const auto& v) { sum += v.capacity() * sizeof(v[0]); };
+    add(loaded_lanes), add(loaded_joint_blocks), add(systems), add(rows), add(packets);
+    add(items), add(item_source), add(parent), add(slot_of), add(jac), add(mjac), add(target);
+    add(lambda), add(rhs), add(delta), add(fixed), add(lever), add(velocity), add(trial);
+    add(active), add(in_set), add(first), add(slot_first), add(offset), add(factor);
+    add(dependent);
+    return sum;
+  }
+};
+
+// Serial, before the substeps: the loaded rows of islands (islands.hpp: `island_root` per body,
+// `island_size` per root) of at most kDirectMaxBodies bodies, one system per set of them linked
+// through their bodies. Reads
+// ds.loaded_lanes, ds.loaded_joint_blocks (block size `joint_grain`), the bundles' lanes and point
+// counts, the joint rows' packets and flags. Returns whether any system is to be solved.
+bool build_direct_systems(const ContactSolverContext& ctx, std::span<const ManifoldHead> contacts,
+                          std::span<const JointRow> joints, std::size_t joint_grain,
+                          std::span<const uint32_t> island_root,
+                          std::span<const uint32_t> island_size, DirectState& ds);
+
+// Solves every system once: `use_bias` the biased pass (targets -beta C), else the relax pass
+// (targets 0; a speculative row may close its gap). Reads and writes the packets' velocities,
+// the rows' accumulated impulses (bundles, joint rows) and the restitution's largest impulses.
+void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool use_bias,
+                  DirectState& ds);
+
+}  // namespace elan::detail
