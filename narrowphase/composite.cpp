@@ -28,6 +28,12 @@ constexpr int kMaxCandidates = 128;
 constexpr Real kSameNormalCos = Real(0.9);
 // Candidates closer than this are one point, m: the solver gains nothing from a second one there.
 constexpr Real kSamePoint = Real(1e-3);
+// Candidates within this gap of the deepest carry the body, m: a resting body sinks into its
+// contacts and rocks on them by tenths of a millimetre, and a point this far off is clear of the
+// surface this step and the next. The support polygon is made of these first; on a curved
+// surface the widest polygon of all candidates is mostly of points hovering a centimetre up, and
+// a body held up by some of its touching points and not others tips on them for ever.
+constexpr Real kSupportBand = Real(0.005);
 // The feature id of a candidate that came from no triangle.
 constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 
@@ -132,6 +138,73 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
   }
 }
 
+// Adds to keep[0, kept) the points of pos that widen the kept polygon most seen along the normal,
+// as reduce_to_four does from its deepest point (farthest, largest triangle, largest
+// quadrilateral), until there are four or none adds any width. Returns the new count.
+int widen(const Vec3* pos, int count, bool* taken, const Vec3& normal, int* keep, int kept) {
+  const auto area = [&normal](const Vec3& a, const Vec3& b, const Vec3& q) {
+    return (b - a).cross(q - a).dot(normal);
+  };
+  while (kept < kMaxManifoldPoints) {
+    int t[3] = {keep[0], kept > 1 ? keep[1] : 0, kept > 2 ? keep[2] : 0};
+    if (kept == 3 && area(pos[t[0]], pos[t[1]], pos[t[2]]) < 0) std::swap(t[1], t[2]);
+    // determinism: a strict comparison, so ties keep the lower index.
+    int best_i = -1;
+    Real best = 0;
+    for (int i = 0; i < count; ++i) {
+      if (taken[i]) continue;
+      const Vec3 d = pos[i] - pos[t[0]];
+      Real gain = 0;
+      if (kept == 1) {
+        gain = (d - normal * normal.dot(d)).squaredNorm();
+      } else if (kept == 2) {
+        gain = std::abs(area(pos[t[0]], pos[t[1]], pos[i]));
+      } else {
+        for (int e = 0; e < 3; ++e) {
+          gain = std::max(gain, -area(pos[t[e]], pos[t[(e + 1) % 3]], pos[i]));
+        }
+      }
+      if (gain > best) best = gain, best_i = i;
+    }
+    if (best_i < 0) break;
+    taken[best_i] = true;
+    keep[kept++] = best_i;
+  }
+  return kept;
+}
+
+// Four of the merged points: the support polygon of the points within kSupportBand of the
+// deepest (reduce_to_four over them: the deepest, then the widest), then, while there are fewer
+// than four of those, the points that widen it most, whose speculative rows stop the body
+// tipping onto them.
+int choose_four(const Vec3* pos, const Real* sep, int count, const Vec3& normal, int* keep) {
+  if (count <= kMaxManifoldPoints) {
+    return reduce_to_four(std::span<const Vec3>(pos, std::size_t(count)),
+                          std::span<const Real>(sep, std::size_t(count)), normal, keep);
+  }
+  Real deepest = sep[0];
+  for (int i = 1; i < count; ++i) deepest = std::min(deepest, sep[i]);
+  Vec3 spos[kMaxCandidates];
+  Real ssep[kMaxCandidates];
+  int sfrom[kMaxCandidates];
+  int n = 0;
+  for (int i = 0; i < count; ++i) {
+    if (sep[i] > deepest + kSupportBand) continue;
+    spos[n] = pos[i], ssep[n] = sep[i], sfrom[n] = i;
+    ++n;
+  }
+  int local[kMaxManifoldPoints];
+  int kept = reduce_to_four(std::span<const Vec3>(spos, std::size_t(n)),
+                            std::span<const Real>(ssep, std::size_t(n)), normal, local);
+  bool taken[kMaxCandidates] = {};
+  for (int k = 0; k < kept; ++k) {
+    keep[k] = sfrom[local[k]];
+    taken[keep[k]] = true;
+  }
+  if (kept < kMaxManifoldPoints) kept = widen(pos, count, taken, normal, keep, kept);
+  return kept;
+}
+
 // A piece p of A's side against the whole of B's side.
 void collide_piece_with(const Shape& p, const Transform& xp, uint32_t part_a, const Shape& b,
                         const Transform& xb, Walk& w) {
@@ -147,7 +220,7 @@ void collide_piece_with(const Shape& p, const Transform& xp, uint32_t part_a, co
 }
 
 // The merge: the deepest candidate's normal (the point the solver must push apart first; its
-// normal is the one that resolves it, and reduce_to_four keeps that point too), the candidates
+// normal is the one that resolves it, and choose_four keeps that point too), the candidates
 // near that normal with their gap re-measured along it (to their own plane: s / cos), then four.
 bool merge(const Candidates& cands, Real speculative, Manifold& out) {
   if (cands.count == 0) return false;
@@ -183,8 +256,7 @@ bool merge(const Candidates& cands, Real speculative, Manifold& out) {
     ++count;
   }
   int keep[kMaxManifoldPoints];
-  const int kept = reduce_to_four(std::span<const Vec3>(pos, std::size_t(count)),
-                                  std::span<const Real>(sep, std::size_t(count)), normal, keep);
+  const int kept = choose_four(pos, sep, count, normal, keep);
   out.normal = normal;
   for (int k = 0; k < kept; ++k) {
     ContactPoint& p = out.points[k];
