@@ -231,7 +231,7 @@ bool merge(const Candidates& cands, Real speculative, Manifold& out) {
   const Vec3 normal = cands.c[deepest].normal;
   Vec3 pos[kMaxCandidates];
   Real sep[kMaxCandidates];
-  int from[kMaxCandidates];
+  uint32_t ids[kMaxCandidates];
   int count = 0;
   for (int i = 0; i < cands.count; ++i) {
     const Candidate& c = cands.c[i];
@@ -241,18 +241,21 @@ bool merge(const Candidates& cands, Real speculative, Manifold& out) {
     const Real s = c.normal == normal ? c.separation : c.separation / cosine;
     if (s > speculative) continue;
     // Neighbouring triangles report a point on their shared edge or corner each (a sphere over
-    // an inactive edge, a box corner over a vertex): one point there is enough, the deepest.
+    // an inactive edge, a box corner over a vertex): one point there is enough, the deepest. Its
+    // id is the least of theirs, not the deepest one's: which of two triangles is deeper there
+    // flips with the body's rocking, and a point whose id changes loses its warm start.
     int same = -1;
     for (int j = 0; j < count && same < 0; ++j) {
       if ((pos[j] - c.point).squaredNorm() <= kSamePoint * kSamePoint) same = j;
     }
     if (same >= 0) {
-      if (s < sep[same]) pos[same] = c.point, sep[same] = s, from[same] = i;
+      if (s < sep[same]) pos[same] = c.point, sep[same] = s;
+      ids[same] = std::min(ids[same], c.id);
       continue;
     }
     pos[count] = c.point;
     sep[count] = s;
-    from[count] = i;
+    ids[count] = c.id;
     ++count;
   }
   int keep[kMaxManifoldPoints];
@@ -262,7 +265,7 @@ bool merge(const Candidates& cands, Real speculative, Manifold& out) {
     ContactPoint& p = out.points[k];
     p.anchor_a = pos[keep[k]];
     p.separation = sep[keep[k]];
-    p.feature_id = cands.c[from[keep[k]]].id;
+    p.feature_id = ids[keep[k]];
   }
   out.point_count = uint32_t(kept);
   return kept > 0;
