@@ -33,7 +33,8 @@ struct Shape {
   Real plane_offset = 0;
 
   // Placement of the principal frame in the user's shape frame:
-  // x_user = frame_rotation * x_principal + frame_position. Identity except for hulls.
+  // x_user = frame_rotation * x_principal + frame_position. Identity except for hulls and
+  // compounds.
   Vec3 frame_position = Vec3::Zero();
   Quat frame_rotation = Quat::Identity();
 

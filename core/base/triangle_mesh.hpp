@@ -14,8 +14,9 @@
 
 namespace elan::detail {
 
-// perf: about 32 bytes a triangle with its tree: 12 of indices, 1 of edge flags, ~6 of shared
-// vertices, ~8 of nodes at 4 triangles a leaf (half as many leaves as triangles... see build).
+// perf: under 32 bytes a triangle with its tree: 12 of indices, 1 of edge flags, ~6 of shared
+// vertices on a grid, ~10 of nodes at up to 8 triangles a leaf (32-byte nodes, about one per
+// three triangles).
 struct TriangleMesh {
   std::vector<Vec3> vertices;                      // m, shape frame
   std::vector<std::array<uint32_t, 3>> triangles;  // tree order
@@ -35,7 +36,7 @@ struct TriangleMesh {
 };
 
 // Builds the mesh: checks the input, finds each edge's neighbour (an edge shared by more than two
-// triangles is active), builds the tree (leaves of at most 4 triangles) and reorders the
+// triangles is active), builds the tree (leaves of at most 8 triangles) and reorders the
 // triangles into its leaf order. Throws elan::Error with field "shape.triangles" ("triangle 12:
 // index 40 out of range (30 vertices)", "... repeats vertex 3", "... has zero area") or
 // "shape.vertices" (none, or not finite, or past the supported coordinates).

@@ -6,8 +6,11 @@
 
 #include <cstdio>
 
+#include "core/base/compound.hpp"
 #include "core/base/grow.hpp"
 #include "core/base/heap_bytes.hpp"
+#include "core/base/heightfield.hpp"
+#include "core/base/triangle_mesh.hpp"
 #include "core/world/memory_use.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/scene.hpp"
@@ -49,6 +52,64 @@ TEST(MemoryUse, PartsAddUpToTheHeapTheWorldHolds) {
   // What it leaves out is the allocator's 8-16 bytes a block, shared_ptr control blocks and
   // the thread pool's bookkeeping: a few percent. A forgotten contact-sized buffer is 10%+.
   EXPECT_GE(double(use.total()), 0.9 * double(held));
+}
+
+// A mesh, a heightfield and a compound are counted once each however many bodies share them, and
+// they are nearly all of the heap such a world holds.
+TEST(MemoryUse, SharedSurfacesAreCountedOnce) {
+  World world;
+  // The world's own buffers (its thread pool, scratch) are there before the shapes.
+  const std::size_t before = heap_in_use();
+  const std::size_t reported_before = detail::memory_use(detail::state_of(world)).total();
+  ShapeDef mesh;
+  mesh.type = ShapeType::Mesh;
+  const uint32_t n = 100;
+  for (uint32_t j = 0; j <= n; ++j) {
+    for (uint32_t i = 0; i <= n; ++i)
+      mesh.vertices.emplace_back(Real(i), Real((i * j) % 3), Real(j));
+  }
+  for (uint32_t j = 0; j < n; ++j) {
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t a = j * (n + 1) + i;
+      mesh.triangles.push_back({a, a + n + 2, a + 1});
+      mesh.triangles.push_back({a, a + n + 1, a + n + 2});
+    }
+  }
+  ShapeDef field;
+  field.type = ShapeType::Heightfield;
+  field.columns = 200;
+  field.heights.assign(200 * 150, Real(1));
+  ShapeDef compound;
+  compound.type = ShapeType::Compound;
+  compound.children.resize(10);
+  for (int k = 0; k < 10; ++k) compound.children[k].position = Vec3(Real(k), 0, 0);
+  BodyDef b;
+  b.motion = MotionType::Static;
+  for (const ShapeDef* d : {&mesh, &field, &compound}) {
+    b.shape = world.create_shape(*d);
+    for (int copy = 0; copy < 3; ++copy) {
+      b.position = Vec3(Real(300 * copy), 0, 0);
+      world.create_body(b);
+    }
+  }
+  // Move-assigned (a copy of an empty vector would keep the buffer): the definitions let go.
+  mesh = ShapeDef{};
+  field = ShapeDef{};
+  compound = ShapeDef{};
+  const std::size_t held = heap_in_use() - before;
+  const detail::WorldState& s = detail::state_of(world);
+  const detail::MemoryUse use = detail::memory_use(s);
+  const std::size_t surfaces = detail::mesh_bytes(*s.shapes[0].mesh) +
+                               detail::heightfield_bytes(*s.shapes[1].heightfield) +
+                               detail::compound_bytes(*s.shapes[2].compound);
+  EXPECT_EQ(use.shapes, detail::heap_bytes(s.shapes) + surfaces);
+  if (test::kSanitized) {
+    GTEST_SKIP() << "AddressSanitizer's allocator does not feed glibc's mallinfo2 counters";
+  }
+  const std::size_t reported = use.total() - reported_before;
+  std::printf("held %zu B, reported %zu B, surfaces %zu B\n", held, reported, surfaces);
+  EXPECT_LE(reported, held);
+  EXPECT_GE(double(reported), 0.9 * double(held));
 }
 
 // A spike is cut once its window has passed, to a quarter past the window's high; a use that swings
