@@ -29,11 +29,12 @@ constexpr Real kSameNormalCos = Real(0.9);
 // Candidates closer than this are one point, m: the solver gains nothing from a second one there.
 constexpr Real kSamePoint = Real(1e-3);
 // Candidates within this gap of the deepest carry the body, m: a resting body sinks into its
-// contacts and rocks on them by tenths of a millimetre, and a point this far off is clear of the
-// surface this step and the next. The support polygon is made of these first; on a curved
-// surface the widest polygon of all candidates is mostly of points hovering a centimetre up, and
-// a body held up by some of its touching points and not others tips on them for ever.
-constexpr Real kSupportBand = Real(0.005);
+// contacts and rocks on them by tenths of a millimetre, so a point a few tenths off is one it
+// leans on, and one more than this off is clear of the surface. The support polygon is made of
+// these first; on a curved surface the widest polygon of all candidates is mostly of points
+// hovering a centimetre up, and a body held up by some of its touching points and not others
+// tips on them for ever. A wider band lets points that carry nothing displace ones that do.
+constexpr Real kSupportBand = Real(0.002);
 // The feature id of a candidate that came from no triangle.
 constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 
