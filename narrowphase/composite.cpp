@@ -28,6 +28,13 @@ constexpr int kMaxCandidates = 128;
 constexpr Real kSameNormalCos = Real(0.9);
 // Candidates closer than this are one point, m: the solver gains nothing from a second one there.
 constexpr Real kSamePoint = Real(1e-3);
+// Candidates within this gap of the deepest carry the body, m: a resting body sinks into its
+// contacts and rocks on them by tenths of a millimetre, so a point a few tenths off is one it
+// leans on, and one more than this off is clear of the surface. The support polygon is made of
+// these first; on a curved surface the widest polygon of all candidates is mostly of points
+// hovering a centimetre up, and a body held up by some of its touching points and not others
+// tips on them for ever. A wider band lets points that carry nothing displace ones that do.
+constexpr Real kSupportBand = Real(0.002);
 // The feature id of a candidate that came from no triangle.
 constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 
@@ -132,6 +139,73 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
   }
 }
 
+// Adds to keep[0, kept) the points of pos that widen the kept polygon most seen along the normal,
+// as reduce_to_four does from its deepest point (farthest, largest triangle, largest
+// quadrilateral), until there are four or none adds any width. Returns the new count.
+int widen(const Vec3* pos, int count, bool* taken, const Vec3& normal, int* keep, int kept) {
+  const auto area = [&normal](const Vec3& a, const Vec3& b, const Vec3& q) {
+    return (b - a).cross(q - a).dot(normal);
+  };
+  while (kept < kMaxManifoldPoints) {
+    int t[3] = {keep[0], kept > 1 ? keep[1] : 0, kept > 2 ? keep[2] : 0};
+    if (kept == 3 && area(pos[t[0]], pos[t[1]], pos[t[2]]) < 0) std::swap(t[1], t[2]);
+    // determinism: a strict comparison, so ties keep the lower index.
+    int best_i = -1;
+    Real best = 0;
+    for (int i = 0; i < count; ++i) {
+      if (taken[i]) continue;
+      const Vec3 d = pos[i] - pos[t[0]];
+      Real gain = 0;
+      if (kept == 1) {
+        gain = (d - normal * normal.dot(d)).squaredNorm();
+      } else if (kept == 2) {
+        gain = std::abs(area(pos[t[0]], pos[t[1]], pos[i]));
+      } else {
+        for (int e = 0; e < 3; ++e) {
+          gain = std::max(gain, -area(pos[t[e]], pos[t[(e + 1) % 3]], pos[i]));
+        }
+      }
+      if (gain > best) best = gain, best_i = i;
+    }
+    if (best_i < 0) break;
+    taken[best_i] = true;
+    keep[kept++] = best_i;
+  }
+  return kept;
+}
+
+// Four of the merged points: the support polygon of the points within kSupportBand of the
+// deepest (reduce_to_four over them: the deepest, then the widest), then, while there are fewer
+// than four of those, the points that widen it most, whose speculative rows stop the body
+// tipping onto them.
+int choose_four(const Vec3* pos, const Real* sep, int count, const Vec3& normal, int* keep) {
+  if (count <= kMaxManifoldPoints) {
+    return reduce_to_four(std::span<const Vec3>(pos, std::size_t(count)),
+                          std::span<const Real>(sep, std::size_t(count)), normal, keep);
+  }
+  Real deepest = sep[0];
+  for (int i = 1; i < count; ++i) deepest = std::min(deepest, sep[i]);
+  Vec3 spos[kMaxCandidates];
+  Real ssep[kMaxCandidates];
+  int sfrom[kMaxCandidates];
+  int n = 0;
+  for (int i = 0; i < count; ++i) {
+    if (sep[i] > deepest + kSupportBand) continue;
+    spos[n] = pos[i], ssep[n] = sep[i], sfrom[n] = i;
+    ++n;
+  }
+  int local[kMaxManifoldPoints];
+  int kept = reduce_to_four(std::span<const Vec3>(spos, std::size_t(n)),
+                            std::span<const Real>(ssep, std::size_t(n)), normal, local);
+  bool taken[kMaxCandidates] = {};
+  for (int k = 0; k < kept; ++k) {
+    keep[k] = sfrom[local[k]];
+    taken[keep[k]] = true;
+  }
+  if (kept < kMaxManifoldPoints) kept = widen(pos, count, taken, normal, keep, kept);
+  return kept;
+}
+
 // A piece p of A's side against the whole of B's side.
 void collide_piece_with(const Shape& p, const Transform& xp, uint32_t part_a, const Shape& b,
                         const Transform& xb, Walk& w) {
@@ -147,7 +221,7 @@ void collide_piece_with(const Shape& p, const Transform& xp, uint32_t part_a, co
 }
 
 // The merge: the deepest candidate's normal (the point the solver must push apart first; its
-// normal is the one that resolves it, and reduce_to_four keeps that point too), the candidates
+// normal is the one that resolves it, and choose_four keeps that point too), the candidates
 // near that normal with their gap re-measured along it (to their own plane: s / cos), then four.
 bool merge(const Candidates& cands, Real speculative, Manifold& out) {
   if (cands.count == 0) return false;
@@ -158,7 +232,7 @@ bool merge(const Candidates& cands, Real speculative, Manifold& out) {
   const Vec3 normal = cands.c[deepest].normal;
   Vec3 pos[kMaxCandidates];
   Real sep[kMaxCandidates];
-  int from[kMaxCandidates];
+  uint32_t ids[kMaxCandidates];
   int count = 0;
   for (int i = 0; i < cands.count; ++i) {
     const Candidate& c = cands.c[i];
@@ -168,29 +242,31 @@ bool merge(const Candidates& cands, Real speculative, Manifold& out) {
     const Real s = c.normal == normal ? c.separation : c.separation / cosine;
     if (s > speculative) continue;
     // Neighbouring triangles report a point on their shared edge or corner each (a sphere over
-    // an inactive edge, a box corner over a vertex): one point there is enough, the deepest.
+    // an inactive edge, a box corner over a vertex): one point there is enough, the deepest. Its
+    // id is the least of theirs, not the deepest one's: which of two triangles is deeper there
+    // flips with the body's rocking, and a point whose id changes loses its warm start.
     int same = -1;
     for (int j = 0; j < count && same < 0; ++j) {
       if ((pos[j] - c.point).squaredNorm() <= kSamePoint * kSamePoint) same = j;
     }
     if (same >= 0) {
-      if (s < sep[same]) pos[same] = c.point, sep[same] = s, from[same] = i;
+      if (s < sep[same]) pos[same] = c.point, sep[same] = s;
+      ids[same] = std::min(ids[same], c.id);
       continue;
     }
     pos[count] = c.point;
     sep[count] = s;
-    from[count] = i;
+    ids[count] = c.id;
     ++count;
   }
   int keep[kMaxManifoldPoints];
-  const int kept = reduce_to_four(std::span<const Vec3>(pos, std::size_t(count)),
-                                  std::span<const Real>(sep, std::size_t(count)), normal, keep);
+  const int kept = choose_four(pos, sep, count, normal, keep);
   out.normal = normal;
   for (int k = 0; k < kept; ++k) {
     ContactPoint& p = out.points[k];
     p.anchor_a = pos[keep[k]];
     p.separation = sep[keep[k]];
-    p.feature_id = cands.c[from[keep[k]]].id;
+    p.feature_id = ids[keep[k]];
   }
   out.point_count = uint32_t(kept);
   return kept > 0;

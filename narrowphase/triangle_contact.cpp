@@ -188,7 +188,12 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
   closest_on_triangle(from_foot, foot_region);
   const bool foot_on_face = foot_region == kRegionFace;
   const bool done = (plane_gap_of_a >= 0 && foot_on_face) || t.active_edges == 0;
-  const bool points_over_face_only = done && !foot_on_face;
+  // Whether the contact takes the face's normal: then it is the face's contact, made only of A's
+  // points over the face (see below).
+  bool face_normal = done;
+  // The deepest point GJK/EPA found when the face's normal replaced theirs, and its separation.
+  Vec3 witness = Vec3::Zero();
+  Real witness_sep = 0;
   if (done) {
     n = -face;
     sep = plane_gap_of_a;
@@ -221,6 +226,9 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
   }
   if (!keeps_normal(region, t, v, face, -n)) {
     // The face's normal; the separation is A's lowest point's height above the face's plane.
+    face_normal = true;
+    witness = Real(0.5) * (on_a + on_b);
+    witness_sep = done ? Real(0) : sep;
     n = -face;
     on_a = lowest;
     sep = plane_gap_of_a;
@@ -268,8 +276,21 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
       ++count;
     }
   }
+  if (count == 0 && face_normal && !foot_on_face) {
+    // A face contact is A's points over the face. When none is (A's lowest point along the
+    // face's normal is beyond the triangle), the plane's gap to that point measures nothing of
+    // this triangle: on a curved surface the plane runs above the neighbours' surface, so the
+    // gap would be a penetration that is not there, at a point the triangle does not reach. The
+    // triangle A is over reports the contact there. Only A overlapping the triangle itself
+    // keeps one point: the deepest GJK/EPA found, at its depth along their normal, the least
+    // push along any direction that separates them, so never more than the overlap.
+    if (!(witness_sep < 0)) return false;
+    points[0] = witness;
+    seps[0] = witness_sep;
+    ids[0] = base | 0x3FFFu;
+    count = 1;
+  }
   if (count == 0) {
-    if (points_over_face_only) return false;
     points[0] = Real(0.5) * (on_a + on_b);
     seps[0] = sep;
     ids[0] = base | 0x3FFFu;

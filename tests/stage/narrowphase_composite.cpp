@@ -115,6 +115,45 @@ TEST(Composite, BoxAcrossInternalEdgesGetsTheFaceNormalAndHeight) {
   }
 }
 
+TEST(Composite, FourPointsAreTheSupportNotTheWidestHovering) {
+  // A plateau 0.4 m square at y = 0 in a ring sloping down 5 cm a metre (2.9 degrees, one
+  // manifold) to a 2 m square. A 1 m box 0.5 mm into the plateau touches it at the plateau's
+  // edge; its corners over the ring hover 1.5 cm up, within the speculative distance. The four
+  // points must be the touching ones, the plateau's corners: a manifold of the widest points
+  // would hold the box on one touching point and three hovering ones, and it would rock.
+  std::vector<Vec3> v;
+  for (const Real h : {Real(0.2), Real(1)}) {
+    const Real y = h == Real(1) ? Real(-0.04) : Real(0);
+    v.emplace_back(-h, y, -h), v.emplace_back(h, y, -h), v.emplace_back(h, y, h),
+        v.emplace_back(-h, y, h);
+  }
+  std::vector<std::array<uint32_t, 3>> t;
+  const auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
+    if ((v[b] - v[a]).cross(v[c] - v[a]).y() < 0) std::swap(b, c);  // front up
+    t.push_back({a, b, c});
+  };
+  add(0, 1, 2), add(0, 2, 3);
+  for (uint32_t k = 0; k < 4; ++k) {
+    const uint32_t n = (k + 1) % 4;
+    add(k, n, n + 4), add(k, n + 4, k + 4);
+  }
+  const Shape ground = mesh_shape(v, t);
+  const Shape b = box(Real(0.5), Real(0.3), Real(0.5));
+  for (const Real turn : {Real(0), Real(0.3)}) {
+    const Transform xa = at(0, Real(0.2995), 0, axis_angle(turn, Vec3::UnitY()));
+    Manifold m;
+    ASSERT_TRUE(collide(b, xa, ground, at(0, 0, 0), kSpec, m));
+    ASSERT_EQ(m.point_count, 4u);
+    EXPECT_LT(m.normal.y(), -std::cos(Real(0.051)));  // the plateau's or a ring triangle's
+    for (int k = 0; k < 4; ++k) {
+      const ContactPoint& p = m.points[k];
+      EXPECT_NEAR(p.separation, Real(-0.0005), Real(1e-4));
+      EXPECT_NEAR(std::abs(p.anchor_a.x()), Real(0.2), Real(1e-3));
+      EXPECT_NEAR(std::abs(p.anchor_a.z()), Real(0.2), Real(1e-3));
+    }
+  }
+}
+
 TEST(Composite, SurfaceAsAFlipsTheNormal) {
   const Shape floor = floor_mesh(1);
   const Transform xs = at(Real(0.2), Real(0.49), Real(0.1));
