@@ -159,38 +159,65 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
   }
 
   const Transform at_origin{Vec3::Zero(), xa.rotation};
-  const PlacedShape core = place(a, at_origin, false);
+  const PlacedShape full = place(a, at_origin, true);
+  // A lies on its centre's side of the plane down to its lowest point: when that is above the
+  // plane by more than the speculative distance, the triangle is farther still. perf: one
+  // support rejects most of the triangles under a body's box.
+  const Vec3 lowest = support_world(full, -face);
+  const Real plane_gap_of_a = face.dot(lowest - v[0]);
+  if (plane_gap_of_a > speculative_distance) return false;
   const Real radius = core_radius(a);
-  Simplex simplex;
-  const GjkResult g = gjk_triangle(core, v, Vec3(-face), simplex);
   Vec3 n, on_a, on_b;  // A to the triangle; closest (or deepest) points
   Real sep;
-  if (!g.overlap && g.distance > Real(1e-6) * a.bounding_radius) {
-    sep = g.distance - radius;
-    // The distance to the triangle bounds the separation along its face normal from above only
-    // where A is over the face; beyond it the neighbour's triangle reports the contact.
-    if (sep > speculative_distance) return false;
-    n = (g.point_b - g.point_a) / g.distance;
-    on_a = g.point_a + radius * n;
-    on_b = g.point_b;
-  } else {
-    const PlacedShape full = radius > 0 ? place(a, at_origin, true) : core;
-    Simplex full_simplex = simplex;
-    if (radius > 0) gjk_triangle(full, v, Vec3(-face), full_simplex);
-    const EpaResult e = epa_triangle(full, v, full_simplex);
-    n = e.normal;
-    sep = -e.depth;
-    on_a = e.point_a;
-    on_b = e.point_b;
-    if (!e.ok || !n.allFinite() || n.squaredNorm() < Real(0.5)) n = -face, on_b = on_a;
+  uint32_t region = kRegionFace;
+  // Two cases need no GJK. A whose lowest point is above the plane with its foot on the face:
+  // that foot is the closest point of the triangle (nothing of it is nearer than its plane), so
+  // the contact is the face's. And a triangle with no active edge (inside a smooth surface) gives
+  // the face's normal wherever A touches it; A's points over it come from the clipping below,
+  // and when none is over it, its neighbour's triangle reports them. perf: most triangles under a
+  // body resting on a mesh or a heightfield are one or the other.
+  const Vec3 foot = lowest - plane_gap_of_a * face;
+  const Vec3 from_foot[3] = {v[0] - foot, v[1] - foot, v[2] - foot};
+  uint32_t foot_region = kRegionFace;
+  closest_on_triangle(from_foot, foot_region);
+  const bool foot_on_face = foot_region == kRegionFace;
+  const bool done = (plane_gap_of_a >= 0 && foot_on_face) || t.active_edges == 0;
+  const bool points_over_face_only = done && !foot_on_face;
+  if (done) {
+    n = -face;
+    sep = plane_gap_of_a;
+    on_a = lowest;
+    on_b = foot;
   }
-  const uint32_t region = region_of(v, on_b);
+  if (!done) {
+    const PlacedShape core = radius > 0 ? place(a, at_origin, false) : full;
+    Simplex simplex;
+    const GjkResult g = gjk_triangle(core, v, Vec3(-face), simplex);
+    if (!g.overlap && g.distance > Real(1e-6) * a.bounding_radius) {
+      sep = g.distance - radius;
+      // The distance to the triangle bounds the separation along its face normal from above
+      // only where A is over the face; beyond it the neighbour's triangle reports the contact.
+      if (sep > speculative_distance) return false;
+      n = (g.point_b - g.point_a) / g.distance;
+      on_a = g.point_a + radius * n;
+      on_b = g.point_b;
+    } else {
+      Simplex full_simplex = simplex;
+      if (radius > 0) gjk_triangle(full, v, Vec3(-face), full_simplex);
+      const EpaResult e = epa_triangle(full, v, full_simplex);
+      n = e.normal;
+      sep = -e.depth;
+      on_a = e.point_a;
+      on_b = e.point_b;
+      if (!e.ok || !n.allFinite() || n.squaredNorm() < Real(0.5)) n = -face, on_b = on_a;
+    }
+    region = region_of(v, on_b);
+  }
   if (!keeps_normal(region, t, v, face, -n)) {
     // The face's normal; the separation is A's lowest point's height above the face's plane.
     n = -face;
-    on_a = support_world(place(a, at_origin, true), n);
-    sep = face.dot(on_a - v[0]);
-    if (sep > speculative_distance) return false;
+    on_a = lowest;
+    sep = plane_gap_of_a;
     on_b = on_a + sep * n;
   }
   out.normal = n;
@@ -214,16 +241,18 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
   } else if (triangle_align >= kFaceCos) {
     ref = &fb;
   }
-  Vec3 points[kMaxClipVertices];
-  Real seps[kMaxClipVertices];
-  uint32_t ids[kMaxClipVertices];
+  // A feature of at most kMaxFeature points clipped by three planes, or the triangle by as many.
+  constexpr int kMaxPoints = kMaxFeature + 3;
+  Vec3 points[kMaxPoints];
+  Real seps[kMaxPoints];
+  uint32_t ids[kMaxPoints];
   int count = 0;
   const uint32_t base = (region << 22) | ((fa.id & 0x7F) << 14);
   if (ref != nullptr) {
     const bool ref_is_a = ref == &fa;
     ClipPolygon clipped;
     clip_against(*ref, ref_is_a ? fb : fa, clipped);
-    for (int k = 0; k < clipped.count; ++k) {
+    for (int k = 0; k < std::min(clipped.count, kMaxPoints); ++k) {
       const Vec3& p = clipped.points[k];
       const Real s = plane_gap(*ref, n, p, ref_is_a);
       if (s > speculative_distance) continue;
@@ -234,6 +263,7 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
     }
   }
   if (count == 0) {
+    if (points_over_face_only) return false;
     points[0] = Real(0.5) * (on_a + on_b);
     seps[0] = sep;
     ids[0] = base | 0x3FFFu;

@@ -11,8 +11,10 @@
 #include <memory>
 #include <vector>
 
+#include "core/base/body_store.hpp"
 #include "core/base/compound.hpp"
 #include "core/base/heightfield.hpp"
+#include "core/base/pair_key.hpp"
 #include "core/base/triangle_mesh.hpp"
 #include "narrowphase/collide.hpp"
 #include "narrowphase_test_shapes.hpp"
@@ -246,6 +248,45 @@ TEST(Composite, TimeOfImpactAgainstAWallOneTriangleThick) {
   const Real tc = time_of_impact(pair, at(Real(-1.2), 1, 0), at(Real(1.3), 1, 0), wall(),
                                  at(0, 0, 0), at(0, 0, 0), target);
   EXPECT_NEAR(tc, touch - Real(0.2) / Real(2.5), Real(0.01) / Real(2.5));
+}
+
+// collide_pairs: a compound of boxes resting on a mesh keeps its pose for the body pair cache;
+// one with a sphere part rolls (its point does not travel with its material), so it does not.
+TEST(Composite, PairCacheKeepsOnlyCompoundsWithoutRoundParts) {
+  const auto child = [](const ShapeDef& shape, Real x) {
+    CompoundChild c;
+    c.shape = shape;
+    c.position = Vec3(x, 0, 0);
+    return c;
+  };
+  ShapeDef cube, ball;
+  cube.type = ShapeType::Box;
+  cube.half_extents = Vec3::Constant(Real(0.2));
+  ball.type = ShapeType::Sphere;
+  ball.radius = Real(0.2);
+  ShapeDef boxes, mixed;
+  boxes.type = mixed.type = ShapeType::Compound;
+  boxes.children = {child(cube, Real(-0.5)), child(cube, Real(0.5))};
+  mixed.children = {child(cube, Real(-0.5)), child(ball, Real(0.5))};
+  const std::vector<Shape> shapes = {floor_mesh(3), make_shape(boxes), make_shape(mixed)};
+  BodyStore bodies;
+  for (uint32_t k = 0; k < 3; ++k) {
+    const std::size_t b = bodies.push_back();
+    bodies.shape[b] = k;
+    bodies.motion[b] = uint8_t(k == 0 ? MotionType::Static : MotionType::Dynamic);
+    bodies.flags[b] = k == 0 ? 0 : kAwake;
+    // Both parts of each compound 1 cm into the floor (the parts' centres at the frame's height).
+    bodies.set_position(b, k == 0 ? Vec3::Zero() : Vec3(Real(k) - 1, Real(0.19), Real(k) - 1));
+  }
+  const std::vector<uint64_t> pairs = {make_pair_key(0, 1), make_pair_key(0, 2)};
+  const std::vector<uint8_t> idle = {1, 0, 0};
+  ContactStore store;
+  collide_pairs(pairs, bodies, shapes, CollideSettings{}, idle, store);
+  const std::vector<Manifold> manifolds = store.manifolds();
+  ASSERT_EQ(manifolds.size(), 2u);
+  EXPECT_EQ(manifolds[0].point_count, 4u);
+  ASSERT_EQ(store.pair_cache().size(), 1u);
+  EXPECT_EQ(store.pair_cache()[0].key, make_pair_key(0, 1));
 }
 
 }  // namespace narrowphase_composite_test
