@@ -107,9 +107,12 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
     const Transform local{to_q * (xp.position - xq.position), to_q * xp.rotation};
     Vec3 lo, hi;
     box_in(p, local, Transform{}, w.speculative, lo, hi);
-    const auto visit = [&](const MeshTriangle& t) {
-      TriangleContact tc;
-      if (!collide_triangle(p, local, t, w.speculative, tc)) return;
+    // perf: what depends on the piece alone is derived once for all its triangles.
+    const TriangleQuery query = make_triangle_query(p, local, w.speculative);
+    TriangleReach reach;
+    TriangleContact tc;
+    const auto contact = [&](const MeshTriangle& t) {
+      if (!collide_reached_triangle(query, t, reach, tc)) return;
       const Vec3 n = xq.rotation * tc.normal;
       for (int k = 0; k < tc.count; ++k) {
         w.out.push({xq.rotation * tc.points[k] + offset, n, tc.separation[k],
@@ -117,9 +120,19 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
       }
     };
     if (q.type == ShapeType::Mesh) {
-      for_each_triangle(*q.mesh, lo, hi, visit);
+      for_each_triangle(*q.mesh, lo, hi, [&](const MeshTriangle& t) {
+        if (reach_triangle(query, t, reach)) contact(t);
+      });
     } else {
-      for_each_triangle(*q.heightfield, lo, hi, visit);
+      // perf: a heightfield triangle's active edges (a normal per neighbour) only for the
+      // triangles in reach.
+      const HeightField& field = *q.heightfield;
+      for_each_triangle_index(field, lo, hi, [&](uint32_t index) {
+        MeshTriangle t = field.corners(index);
+        if (!reach_triangle(query, t, reach)) return;
+        t.active_edges = field.active_edges_of(t);
+        contact(t);
+      });
     }
     return;
   }

@@ -140,11 +140,22 @@ bool sphere_triangle(Real r, const MeshTriangle& t, const Vec3 (&v)[3], const Ve
 
 }  // namespace
 
-bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
-                      Real speculative_distance, TriangleContact& out) {
-  out.count = 0;
+TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real speculative_distance) {
+  TriangleQuery q;
+  q.shape = &a;
+  q.position = xa.position;
+  q.at_origin = Transform{Vec3::Zero(), xa.rotation};
+  q.full = place(a, q.at_origin, true);
+  q.radius = core_radius(a);
+  q.core = q.radius > 0 ? place(a, q.at_origin, false) : q.full;
+  q.speculative = speculative_distance;
+  return q;
+}
+
+bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r) {
   // Working frame: the surface's axes, origin at A's centre, so coordinates stay small.
-  const Vec3 v[3] = {t.v[0] - xa.position, t.v[1] - xa.position, t.v[2] - xa.position};
+  Vec3(&v)[3] = r.v;
+  for (int k = 0; k < 3; ++k) v[k] = t.v[k] - q.position;
   Vec3 geometric = (v[1] - v[0]).cross(v[2] - v[0]);
   const Real area2 = geometric.norm();
   if (!(area2 > 0)) return false;
@@ -153,20 +164,48 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
   // A one-sided triangle collides from the front only: a body whose centre is behind it has
   // passed through (the continuous stage exists to prevent that) and must not be pushed down.
   if (!t.two_sided && centre_height < 0) return false;
-  const Vec3 face = centre_height >= 0 ? geometric : Vec3(-geometric);
-  if (a.type == ShapeType::Sphere) {
-    return sphere_triangle(a.radius, t, v, face, speculative_distance, out);
+  r.geometric = geometric;
+  r.face = centre_height >= 0 ? geometric : Vec3(-geometric);
+  if (q.shape->type == ShapeType::Sphere) {
+    // The sphere's closed form rejects on its centre's distance to the triangle, which its
+    // height above the plane bounds from below; the margin covers that distance's rounding
+    // (coordinates of a few metres round to about 1e-6 m), so nothing it keeps is lost.
+    const Real margin = Real(1e-4) * (q.shape->radius + q.speculative + v[0].norm());
+    return !(std::abs(centre_height) - q.shape->radius > q.speculative + margin);
   }
-
-  const Transform at_origin{Vec3::Zero(), xa.rotation};
-  const PlacedShape full = place(a, at_origin, true);
   // A lies on its centre's side of the plane down to its lowest point: when that is above the
   // plane by more than the speculative distance, the triangle is farther still. perf: one
   // support rejects most of the triangles under a body's box.
-  const Vec3 lowest = support_world(full, -face);
-  const Real plane_gap_of_a = face.dot(lowest - v[0]);
-  if (plane_gap_of_a > speculative_distance) return false;
-  const Real radius = core_radius(a);
+  r.lowest = support_world(q.full, -r.face);
+  r.plane_gap = r.face.dot(r.lowest - v[0]);
+  return !(r.plane_gap > q.speculative);
+}
+
+bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
+                      Real speculative_distance, TriangleContact& out) {
+  out.count = 0;
+  const TriangleQuery q = make_triangle_query(a, xa, speculative_distance);
+  TriangleReach r;
+  if (!reach_triangle(q, t, r)) return false;
+  return collide_reached_triangle(q, t, r, out);
+}
+
+bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, const TriangleReach& r,
+                              TriangleContact& out) {
+  out.count = 0;
+  const Shape& a = *q.shape;
+  const Real speculative_distance = q.speculative;
+  const Vec3(&v)[3] = r.v;
+  const Vec3& geometric = r.geometric;
+  const Vec3& face = r.face;
+  if (a.type == ShapeType::Sphere) {
+    return sphere_triangle(a.radius, t, v, face, speculative_distance, out);
+  }
+  const Transform& at_origin = q.at_origin;
+  const PlacedShape& full = q.full;
+  const Vec3& lowest = r.lowest;
+  const Real plane_gap_of_a = r.plane_gap;
+  const Real radius = q.radius;
   Vec3 n, on_a, on_b;  // A to the triangle; closest (or deepest) points
   Real sep;
   uint32_t region = kRegionFace;
@@ -190,9 +229,15 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
     on_b = foot;
   }
   if (!done) {
-    const PlacedShape core = radius > 0 ? place(a, at_origin, false) : full;
     Simplex simplex;
-    const GjkResult g = gjk_triangle(core, v, Vec3(-face), simplex);
+    // GJK may stop once the core is shown farther than the speculative distance plus the radius
+    // (the rejection below); the margin covers the distance's rounding, so that GJK run to the
+    // end would reject those triangles too.
+    const Real reject = speculative_distance + radius +
+                        Real(1e-4) * (a.bounding_radius + speculative_distance +
+                                      (v[0] - v[1]).norm() + (v[0] - v[2]).norm() + v[0].norm());
+    const GjkResult g = gjk_triangle(q.core, v, Vec3(-face), simplex, reject);
+    if (g.beyond) return false;
     if (!g.overlap && g.distance > Real(1e-6) * a.bounding_radius) {
       sep = g.distance - radius;
       // The distance to the triangle bounds the separation along its face normal from above
