@@ -108,7 +108,7 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
     Vec3 lo, hi;
     box_in(p, local, Transform{}, w.speculative, lo, hi);
     // perf: what depends on the piece alone is derived once for all its triangles.
-    const TriangleQuery query = make_triangle_query(p, local, w.speculative);
+    TriangleQuery query = make_triangle_query(p, local, w.speculative);
     TriangleReach reach;
     TriangleContact tc;
     const auto contact = [&](const MeshTriangle& t) {
@@ -124,14 +124,13 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
         if (reach_triangle(query, t, reach)) contact(t);
       });
     } else {
-      // perf: a heightfield triangle's active edges (a normal per neighbour) only for the
-      // triangles in reach.
+      // perf: a heightfield triangle's active edges (a normal per neighbour) only where a
+      // contact needs them.
       const HeightField& field = *q.heightfield;
+      query.field = &field;
       for_each_triangle_index(field, lo, hi, [&](uint32_t index) {
-        MeshTriangle t = field.corners(index);
-        if (!reach_triangle(query, t, reach)) return;
-        t.active_edges = field.active_edges_of(t);
-        contact(t);
+        const MeshTriangle t = field.corners(index);
+        if (reach_triangle(query, t, reach)) contact(t);
       });
     }
     return;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/base/heightfield.hpp"
 #include "narrowphase/manifold_reduce.hpp"
 #include "narrowphase/minkowski.hpp"
 #include "narrowphase/supporting_feature.hpp"
@@ -89,10 +90,23 @@ uint32_t region_of(const Vec3 (&v)[3], const Vec3& p) {
 // Whether the normal found at the triangle's feature `region` stands: the feature is an active
 // edge, or a vertex with an active edge whose normal leans out past none of its inactive edges.
 // `out_normal`: from the triangle towards A; `face`: the face normal toward A's side.
-bool keeps_normal(uint32_t region, const MeshTriangle& t, const Vec3 (&v)[3], const Vec3& face,
+// A triangle's active edges, read on first use: a heightfield's triangles come without them
+// (TriangleQuery::field), and most contacts are decided before they are needed.
+struct LazyEdges {
+  const MeshTriangle& t;
+  const HeightField* field;
+  int value = -1;
+  uint8_t get() {
+    if (value < 0) value = field != nullptr ? field->active_edges_of(t) : t.active_edges;
+    return uint8_t(value);
+  }
+};
+
+bool keeps_normal(uint32_t region, LazyEdges& lazy, const Vec3 (&v)[3], const Vec3& face,
                   const Vec3& out_normal) {
   if (region == kRegionFace || out_normal.dot(face) < -kLeanTolerance) return false;
-  const auto active = [&](uint32_t k) { return ((t.active_edges >> k) & 1u) != 0; };
+  const uint8_t active_edges = lazy.get();
+  const auto active = [&](uint32_t k) { return ((active_edges >> k) & 1u) != 0; };
   if (region >= kRegionEdge) return active(region - kRegionEdge);
   const uint32_t k = region - kRegionVertex;
   const uint32_t edges[2] = {k, (k + 2) % 3};  // the edges leaving and reaching vertex k
@@ -116,14 +130,14 @@ void add(TriangleContact& out, const Vec3& p, Real s, uint32_t id) {
 }
 
 // The sphere's closed form: its centre (the origin) against the closest point of the triangle.
-bool sphere_triangle(Real r, const MeshTriangle& t, const Vec3 (&v)[3], const Vec3& face,
+bool sphere_triangle(Real r, LazyEdges& edges, const Vec3 (&v)[3], const Vec3& face,
                      Real speculative, TriangleContact& out) {
   uint32_t region = kRegionFace;
   const Vec3 q = closest_on_triangle(v, region);
   const Real dist = q.norm();
   if (dist - r > speculative) return false;
   const Real scale = std::max(r, (v[1] - v[0]).norm());
-  if (dist > 16 * kEps * scale && keeps_normal(region, t, v, face, -q / dist)) {
+  if (dist > 16 * kEps * scale && keeps_normal(region, edges, v, face, -q / dist)) {
     const Vec3 n = q / dist;
     add(out, Real(0.5) * (r * n + q), dist - r, region);
   } else {
@@ -170,7 +184,7 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
     // The sphere's closed form rejects on its centre's distance to the triangle, which its
     // height above the plane bounds from below; the margin covers that distance's rounding
     // (coordinates of a few metres round to about 1e-6 m), so nothing it keeps is lost.
-    const Real margin = Real(1e-4) * (q.shape->radius + q.speculative + v[0].norm());
+    const Real margin = Real(1e-4) * (q.shape->radius + q.speculative + v[0].cwiseAbs().sum());
     return !(std::abs(centre_height) - q.shape->radius > q.speculative + margin);
   }
   // A lies on its centre's side of the plane down to its lowest point: when that is above the
@@ -198,8 +212,9 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
   const Vec3(&v)[3] = r.v;
   const Vec3& geometric = r.geometric;
   const Vec3& face = r.face;
+  LazyEdges edges{t, q.field};
   if (a.type == ShapeType::Sphere) {
-    return sphere_triangle(a.radius, t, v, face, speculative_distance, out);
+    return sphere_triangle(a.radius, edges, v, face, speculative_distance, out);
   }
   const Transform& at_origin = q.at_origin;
   const PlacedShape& full = q.full;
@@ -220,7 +235,7 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
   uint32_t foot_region = kRegionFace;
   closest_on_triangle(from_foot, foot_region);
   const bool foot_on_face = foot_region == kRegionFace;
-  const bool done = (plane_gap_of_a >= 0 && foot_on_face) || t.active_edges == 0;
+  const bool done = (plane_gap_of_a >= 0 && foot_on_face) || edges.get() == 0;
   const bool points_over_face_only = done && !foot_on_face;
   if (done) {
     n = -face;
@@ -233,9 +248,10 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
     // GJK may stop once the core is shown farther than the speculative distance plus the radius
     // (the rejection below); the margin covers the distance's rounding, so that GJK run to the
     // end would reject those triangles too.
-    const Real reject = speculative_distance + radius +
-                        Real(1e-4) * (a.bounding_radius + speculative_distance +
-                                      (v[0] - v[1]).norm() + (v[0] - v[2]).norm() + v[0].norm());
+    const Real reject =
+        speculative_distance + radius +
+        Real(1e-4) * (a.bounding_radius + speculative_distance + v[0].cwiseAbs().sum() +
+                      (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
     const GjkResult g = gjk_triangle(q.core, v, Vec3(-face), simplex, reject);
     if (g.beyond) return false;
     if (!g.overlap && g.distance > Real(1e-6) * a.bounding_radius) {
@@ -258,7 +274,7 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
     }
     region = region_of(v, on_b);
   }
-  if (!keeps_normal(region, t, v, face, -n)) {
+  if (!keeps_normal(region, edges, v, face, -n)) {
     // The face's normal; the separation is A's lowest point's height above the face's plane.
     n = -face;
     on_a = lowest;

@@ -13,6 +13,8 @@
 
 namespace elan::detail {
 
+struct HeightField;
+
 // A triangle's contact: one normal, at most four points (more are reduced with reduce_to_four).
 struct TriangleContact {
   Vec3 normal = Vec3::UnitY();  // unit, surface frame, from A towards the triangle
@@ -47,6 +49,9 @@ struct TriangleQuery {
   PlacedShape core;              // the same without the radius (the same as `full` for radius 0)
   Real radius = 0;               // core_radius(A)
   Real speculative = 0;
+  // Set: the triangles are this heightfield's, given without their active edges (corners()),
+  // which are derived only where a contact needs them. Null: each triangle's own are read.
+  const HeightField* field = nullptr;
 };
 TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real speculative_distance);
 
@@ -64,8 +69,8 @@ struct TriangleReach {
 // only when it is in reach.
 bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r);
 
-// collide_triangle for a triangle in reach (`r` from reach_triangle for the same triangle, now
-// with its active edges): the same result.
+// collide_triangle for a triangle in reach (`r` from reach_triangle for the same triangle; its
+// active edges read from it, or from q.field): the same result.
 bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, const TriangleReach& r,
                               TriangleContact& out);
 
