@@ -8,6 +8,12 @@
 // an edge-angle map, and keeps the depth measured along the old normal; deciding on the flag
 // before the points are made lets the separation be measured along the normal the solver gets,
 // so a box resting across a shared edge sits at the face's height.
+//
+// The normal of a box, hull, cylinder or capsule: GJK between the cores when apart, EPA when they
+// overlap, rather than a SAT over the triangle's normal, A's faces and the edge pairs. One path
+// serves every shape (a cylinder has no finite set of axes), its witness point on the triangle
+// names the feature the active-edge rule needs, and most triangles under a resting body need
+// neither (the two cases before the GJK).
 #include "narrowphase/triangle_contact.hpp"
 
 #include <algorithm>

@@ -21,7 +21,7 @@ struct TriangleContact {
   int count = 0;
   Vec3 points[kMaxManifoldPoints];  // m, surface frame, from A's centre: midway between surfaces
   Real separation[kMaxManifoldPoints];   // m, along `normal`: negative = penetration
-  uint32_t feature[kMaxManifoldPoints];  // local to the triangle: combine with its index (24 bits)
+  uint32_t feature[kMaxManifoldPoints];  // local to the triangle: combine with its index
 };
 
 // Convex A (sphere, box, capsule, cylinder, hull; `xa` its principal pose in the surface's frame)

@@ -141,8 +141,8 @@ bool ray_cast_heightfield(const HeightField& field, const Vec3& origin, const Ve
   using Vec3d = Eigen::Vector3d;
   const Vec3d o = origin.cast<double>(), d = dir.cast<double>();
   const Vec3d lo(0, double(field.min_height), 0);
-  const Vec3d hi(double(field.columns - 1) * field.spacing_x, double(field.max_height),
-                 double(field.rows - 1) * field.spacing_z);
+  const Vec3d hi(double(Real(field.columns - 1) * field.spacing_x), double(field.max_height),
+                 double(Real(field.rows - 1) * field.spacing_z));
   // Clip the ray to the field's box (slabs).
   double t0 = 0, t1 = double(max_t);
   for (int a = 0; a < 3; ++a) {
@@ -156,21 +156,30 @@ bool ray_cast_heightfield(const HeightField& field, const Vec3& origin, const Ve
     t1 = std::min(t1, tb);
     if (t0 > t1) return false;
   }
-  const auto cell_of = [](double x, double spacing, uint32_t samples) {
+  // determinism and robustness: the cell boundaries are the samples' own coordinates, Real(i)
+  // spacing as point() rounds them, so the walk and the triangles agree on which cell a point is
+  // in.
+  const auto line_x = [&](int64_t i) { return double(Real(i) * field.spacing_x); };
+  const auto line_z = [&](int64_t j) { return double(Real(j) * field.spacing_z); };
+  const auto cell_of = [](double x, double spacing, int64_t cells, auto line) {
     const double c = std::floor(x / spacing);
-    return c <= 0 ? 0 : c >= double(samples - 2) ? int64_t(samples - 2) : int64_t(c);
+    int64_t k = c <= 0 ? 0 : c >= double(cells - 1) ? cells - 1 : int64_t(c);
+    while (k + 1 < cells && x >= line(k + 1)) ++k;
+    while (k > 0 && x < line(k)) --k;
+    return k;
   };
-  const double sx = field.spacing_x, sz = field.spacing_z;
+  const int64_t cells_x = int64_t(field.columns) - 1, cells_z = int64_t(field.rows) - 1;
   const Vec3d p = o + t0 * d;
-  int64_t i = cell_of(p.x(), sx, field.columns), j = cell_of(p.z(), sz, field.rows);
+  int64_t i = cell_of(p.x(), double(field.spacing_x), cells_x, line_x);
+  int64_t j = cell_of(p.z(), double(field.spacing_z), cells_z, line_z);
   const int step_i = d.x() > 0 ? 1 : -1, step_j = d.z() > 0 ? 1 : -1;
   const auto next_x = [&](int64_t cell) {
     if (d.x() == 0) return std::numeric_limits<double>::infinity();
-    return (double(cell + (d.x() > 0 ? 1 : 0)) * sx - o.x()) / d.x();
+    return (line_x(cell + (d.x() > 0 ? 1 : 0)) - o.x()) / d.x();
   };
   const auto next_z = [&](int64_t cell) {
     if (d.z() == 0) return std::numeric_limits<double>::infinity();
-    return (double(cell + (d.z() > 0 ? 1 : 0)) * sz - o.z()) / d.z();
+    return (line_z(cell + (d.z() > 0 ? 1 : 0)) - o.z()) / d.z();
   };
   bool found = false;
   Real best = max_t;
@@ -193,13 +202,15 @@ bool ray_cast_heightfield(const HeightField& field, const Vec3& origin, const Ve
     }
     const double tx = next_x(i), tz = next_z(j);
     const double exit = std::min(tx, tz);
-    if (exit > t1 || (found && double(best) < exit)) break;
+    // The clip's t1 may be the hit itself (a flat field's box has no height): a cell whose entry
+    // rounds a hair past it is still walked.
+    if (exit > t1 + 1e-9 * (1 + std::fabs(t1)) || (found && double(best) < exit)) break;
     if (tx <= tz) {
       i += step_i;
-      if (i < 0 || i > int64_t(field.columns) - 2) break;
+      if (i < 0 || i >= cells_x) break;
     } else {
       j += step_j;
-      if (j < 0 || j > int64_t(field.rows) - 2) break;
+      if (j < 0 || j >= cells_z) break;
     }
   }
   if (found && hit.normal.dot(dir) > 0) hit.normal = -hit.normal;

@@ -174,8 +174,9 @@ void make_heightfield(Shape& s, const ShapeDef& def) {
   auto field = std::make_shared<HeightField>(
       build_heightfield(def.heights, def.columns, def.spacing_x, def.spacing_z));
   s.local_min = Vec3(0, field->min_height, 0);
-  s.local_max = Vec3(Real(double(field->columns - 1) * field->spacing_x), field->max_height,
-                     Real(double(field->rows - 1) * field->spacing_z));
+  // The far samples' coordinates exactly as HeightField::point rounds them.
+  s.local_max = Vec3(Real(field->columns - 1) * field->spacing_x, field->max_height,
+                     Real(field->rows - 1) * field->spacing_z);
   s.bounding_radius = corner_radius(s.local_min, s.local_max);
   s.heightfield = std::move(field);
 }

@@ -54,7 +54,8 @@ void check_vertices(std::span<const Vec3> vertices) {
 
 // The unit normal in double (a float cross product of a thin triangle loses its direction).
 Vec3 unit_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3d n = (b - a).cast<double>().cross((c - a).cast<double>());
+  const Vec3d ad = a.cast<double>();
+  const Vec3d n = (b.cast<double>() - ad).cross(c.cast<double>() - ad);
   return n.normalized().cast<Real>();
 }
 
@@ -160,8 +161,9 @@ TriangleMesh build_triangle_mesh(std::span<const Vec3> vertices,
     const Vec3& c = vertices[tri[2]];
     // Zero area relative to the triangle's size: |cross| is twice the area, the longest edge
     // squared its scale.
-    const Vec3d ab = (b - a).cast<double>(), ac = (c - a).cast<double>();
-    const Vec3d bc = (c - b).cast<double>();
+    // In double from the start: a float difference of far-off corners would round.
+    const Vec3d ad = a.cast<double>(), bd = b.cast<double>(), cd = c.cast<double>();
+    const Vec3d ab = bd - ad, ac = cd - ad, bc = cd - bd;
     const double longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), bc.squaredNorm()});
     const Vec3d cross = ab.cross(ac);
     if (!(cross.norm() > 1e-12 * longest2)) {
@@ -198,17 +200,23 @@ bool ray_triangle(const Vec3& origin, const Vec3& dir, const Vec3& a, const Vec3
   // Moller & Trumbore 1997, in double: the barycentric tests of two triangles sharing an edge
   // then agree closely enough that a ray on the edge hits one of them.
   const Vec3d d = dir.cast<double>();
-  const Vec3d e1 = (b - a).cast<double>(), e2 = (c - a).cast<double>();
+  // Differences taken in double: a float o - a would round by an ulp of the coordinates, and
+  // the triangles around a vertex would then leave a crack that thin.
+  const Vec3d ad = a.cast<double>();
+  const Vec3d e1 = b.cast<double>() - ad, e2 = c.cast<double>() - ad;
   const Vec3d p = d.cross(e2);
   const double det = e1.dot(p);
   if (det == 0 || !std::isfinite(det)) return false;
   const double inv = 1 / det;
-  const Vec3d s = (origin - a).cast<double>();
+  const Vec3d s = origin.cast<double>() - ad;
+  // The barycentric bounds are widened by kBarycentricSlack so that the triangles around an edge
+  // or a vertex overlap by a hair instead of leaving a crack of rounding between them.
+  constexpr double kBarycentricSlack = 1e-12;
   const double u = s.dot(p) * inv;
-  if (u < 0 || u > 1) return false;
+  if (u < -kBarycentricSlack || u > 1 + kBarycentricSlack) return false;
   const Vec3d q = s.cross(e1);
   const double v = d.dot(q) * inv;
-  if (v < 0 || u + v > 1) return false;
+  if (v < -kBarycentricSlack || u + v > 1 + kBarycentricSlack) return false;
   const double hit = e2.dot(q) * inv;
   if (!(hit >= 0 && hit <= double(max_t))) return false;
   t = Real(hit);

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
-// Continuous collision of fast bodies by time of impact.
+// Continuous collision of fast bodies by time of impact (against meshes, heightfields and compounds
+// too: time_of_impact walks their triangles and parts).
 #include "core/world/continuous.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "core/base/compound.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
 #include "narrowphase/collide.hpp"
@@ -19,9 +21,14 @@ namespace {
 constexpr Real kFastFraction = Real(0.5);
 constexpr std::size_t kPairBlock = 256;
 
-// Half the thinnest side of the shape's box in its principal frame, m.
+// Half the thinnest side of the shape's box in its principal frame, m; a compound's thinnest
+// part's, which is what may pass through something in one step.
 Real min_extent(const Shape& s) {
-  return Real(0.5) * (s.local_max - s.local_min).minCoeff();
+  Real extent = Real(0.5) * (s.local_max - s.local_min).minCoeff();
+  if (s.type == ShapeType::Compound) {
+    for (const CompoundPart& p : s.compound->parts) extent = std::min(extent, min_extent(p.shape));
+  }
+  return extent;
 }
 
 Real rotation_angle(const Quat& dq) {

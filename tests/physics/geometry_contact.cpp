@@ -7,9 +7,7 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <vector>
 
@@ -62,9 +60,9 @@ Real rolling_acceleration(World& world, BodyId ball, const Vec3& down) {
 
 // A uniform ball rolling without slipping: m a = m g sin - F, I alpha = F r, a = alpha r,
 // I = 2/5 m r^2 give a = 5/7 g sin(theta) (friction 1 > 2/7 tan 20 deg = 0.10 keeps it rolling).
-// Tolerance 3 %: on a plane ground the same solver measures within 1 %; the soft contact's
-// small penetration and the substeps' rotation make up the rest. A ghost normal at one of the
-// internal edges it crosses (every 0.5 m) would kick the ball and show as a larger error.
+// Tolerance 3 % (the issue's): the soft contact's millimetre penetration and the substeps'
+// discrete rotation err far less on a flat surface; a ghost normal at one of the internal edges
+// it crosses (every 0.5 m) would kick the ball off the surface and cost it much more.
 TEST(GeometryContact, BallRollsDownATiltedMeshAtFiveSevenths) {
   const Real theta = 20 * kPi / 180, r = Real(0.5);
   World world = make_world(Vec3(0, -kG, 0));
@@ -113,7 +111,7 @@ TEST(GeometryContact, BallRollsDownASlopedHeightfieldAtFiveSevenths) {
   EXPECT_NEAR((world.position(ball) - foot).dot(normal), r, Real(0.01));
 }
 
-// A frictionless box sliding at 5 m/s across a flat mesh of 6400 triangles: it crosses an
+// A frictionless box sliding at 5 m/s across a flat mesh of 6272 triangles: it crosses an
 // internal edge every few centimetres of travel. With no friction nothing should change its
 // velocity; a ghost collision would kick it up or sideways. Vertical speed under 5 cm/s (a
 // ghost normal at 5 m/s tilted by even 1 degree gives 9 cm/s); speed and direction within 1 %.
@@ -129,7 +127,6 @@ TEST(GeometryContact, FrictionlessBoxSlidesAcrossInternalEdges) {
   d.linear_velocity = v0;
   const BodyId box = add_body(world, test::box_shape(Vec3(Real(0.5), Real(0.25), Real(0.4))), d);
   Real worst_vy = 0, worst_speed = 0, worst_turn = 0;
-  const auto start = std::chrono::steady_clock::now();
   for (int n = 0; n < 180; ++n) {  // 3 s: 15 m
     world.step(kDt);
     const Vec3 v = world.linear_velocity(box);
@@ -138,9 +135,6 @@ TEST(GeometryContact, FrictionlessBoxSlidesAcrossInternalEdges) {
     worst_speed = std::max(worst_speed, std::abs(flat.norm() - v0.norm()) / v0.norm());
     worst_turn = std::max(worst_turn, (flat.normalized() - v0.normalized()).norm());
   }
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  std::printf("box on a 6272-triangle mesh: %.3f ms a step\n", ms / 180);
   EXPECT_LT(worst_vy, Real(0.05));
   EXPECT_LT(worst_speed, Real(0.01));
   EXPECT_LT(worst_turn, Real(0.01));
@@ -148,7 +142,7 @@ TEST(GeometryContact, FrictionlessBoxSlidesAcrossInternalEdges) {
   EXPECT_NEAR(world.position(box).y(), Real(0.25), Real(0.01));
 }
 
-// A bowl: the lower cap (polar angle up to 40 degrees) of the sphere of radius R centred at
+// A bowl: the lower cap (polar angle up to 39 degrees) of the sphere of radius R centred at
 // (0, R, 0), triangles facing in, rings every 1.5 degrees and 96 segments.
 ShapeDef bowl_mesh(Real radius) {
   ShapeDef d;
@@ -239,6 +233,39 @@ TEST(GeometryContact, FastBallAndSmallBoxDoNotPassAWallOneTriangleThick) {
       }
     }
   }
+}
+
+// A table (a top and four legs, one compound) dropped on a mesh floor lands on its four legs and
+// comes to rest level: its manifold merges the legs' contacts over many triangles into one. Level
+// within 1 degree (the legs' feet sink by the contact's slop, millimetres, equally), at the feet's
+// height within 1 cm, still (under 1 cm/s).
+TEST(GeometryContact, CompoundTableRestsLevelOnAMesh) {
+  World world = make_world(Vec3(0, -kG, 0));
+  add_body(world, grid_mesh(16, 16, Real(0.5), -4, -4), at(Vec3::Zero(), MotionType::Static));
+  ShapeDef table;
+  table.type = ShapeType::Compound;
+  const auto part = [](const Vec3& half, const Vec3& at_pos) {
+    CompoundChild c;
+    c.shape = test::box_shape(half);
+    c.position = at_pos;
+    return c;
+  };
+  table.children.push_back(part(Vec3(Real(0.6), Real(0.05), Real(0.4)), Vec3(0, Real(0.5), 0)));
+  for (const Real x : {Real(-0.5), Real(0.5)}) {
+    for (const Real z : {Real(-0.3), Real(0.3)}) {
+      table.children.push_back(
+          part(Vec3(Real(0.05), Real(0.25), Real(0.05)), Vec3(x, Real(0.2), z)));
+    }
+  }
+  BodyDef d = at(Vec3(Real(0.3), Real(0.35), Real(0.2)));
+  d.orientation = Quat(Eigen::AngleAxis<Real>(Real(0.4), Vec3::UnitY()));
+  const BodyId id = add_body(world, table, d);
+  for (int n = 0; n < 180; ++n) world.step(kDt);
+  const Vec3 up = world.orientation(id) * Vec3::UnitY();
+  EXPECT_GT(up.y(), std::cos(kPi / 180));
+  // The shape frame's origin stands 0.05 m above the legs' feet.
+  EXPECT_NEAR(world.position(id).y(), Real(0.05), Real(0.01));
+  EXPECT_LT(world.linear_velocity(id).norm(), Real(0.01));
 }
 
 }  // namespace geometry_contact_test

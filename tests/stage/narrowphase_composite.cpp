@@ -154,6 +154,19 @@ TEST(Composite, CompoundOfOneBoxMatchesTheBoxAlone) {
     EXPECT_EQ(alone.points[k].separation, part.points[k].separation);
   }
   EXPECT_FALSE(exact_test_is_closed_form(c, ground_plane()));
+  // Two compounds of one box each, one on the other: the box pair's manifold.
+  const Transform top = at(Real(0.1), Real(0.58), Real(0.05), axis_angle(Real(0.3), Vec3::UnitY()));
+  const Transform bottom = at(0, 0, 0);
+  ASSERT_TRUE(collide(b, top, b, bottom, kSpec, alone));
+  ASSERT_TRUE(collide(c, top, c, bottom, kSpec, part));
+  ASSERT_EQ(alone.point_count, part.point_count);
+  EXPECT_EQ(std::memcmp(alone.normal.data(), part.normal.data(), sizeof(Vec3)), 0);
+  for (int k = 0; k < int(alone.point_count); ++k) {
+    EXPECT_EQ(
+        std::memcmp(alone.points[k].anchor_a.data(), part.points[k].anchor_a.data(), sizeof(Vec3)),
+        0);
+    EXPECT_EQ(alone.points[k].separation, part.points[k].separation);
+  }
 }
 
 TEST(Composite, CompoundPartsMergeIntoOneManifold) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "narrowphase/triangle_contact.hpp"
@@ -244,6 +245,46 @@ TEST(TriangleContact, FeatureIdsStayWhileSlidingOnOneTriangle) {
     // Distinct points have distinct ids (warm starting matches by id).
     EXPECT_EQ(std::adjacent_find(a.begin(), a.end()), a.end());
   }
+}
+
+// Random shapes and poses about random triangles (slivers, shapes centred on the plane, touching
+// exactly): the result is always finite, its normal unit, at most four points, each within the
+// speculative distance.
+TEST(TriangleContact, FiniteOnRandomAndDegenerateInput) {
+  const Shape shapes[] = {sphere(Real(0.3)),
+                          capsule(Real(0.2), Real(0.4)),
+                          box(Real(0.3), Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.2)),
+                          test::round_hull(20, Real(0.4)),
+                          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int touching = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    MeshTriangle t;
+    for (int k = 0; k < 3; ++k) t.v[k] = Vec3(u(rng), Real(0.1) * u(rng), u(rng));
+    if (trial % 5 == 0) t.v[2] = t.v[0] + Real(1e-3) * (t.v[1] - t.v[0]) + Vec3(0, 0, Real(1e-4));
+    if (!((t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).norm() > 0)) continue;
+    t.active_edges = uint8_t(trial % 8);
+    t.two_sided = trial % 3 != 0;
+    const Shape& s = shapes[trial % 6];
+    Vec3 p(u(rng), Real(0.5) * u(rng), u(rng));
+    if (trial % 7 == 0) p = (t.v[0] + t.v[1] + t.v[2]) / 3;  // centred on the plane
+    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    TriangleContact c;
+    if (!collide_triangle(s, at(p.x(), p.y(), p.z(), q), t, kSpec, c)) continue;
+    ++touching;
+    ASSERT_TRUE(c.normal.allFinite());
+    ASSERT_NEAR(c.normal.norm(), 1, 1e-3);
+    ASSERT_GE(c.count, 1);
+    ASSERT_LE(c.count, kMaxManifoldPoints);
+    for (int k = 0; k < c.count; ++k) {
+      ASSERT_TRUE(c.points[k].allFinite());
+      ASSERT_TRUE(std::isfinite(c.separation[k]));
+      ASSERT_LE(c.separation[k], kSpec);
+    }
+  }
+  EXPECT_GT(touching, 500);
 }
 
 }  // namespace narrowphase_triangle_contact_test

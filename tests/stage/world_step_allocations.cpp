@@ -110,15 +110,19 @@ namespace elan {
 namespace {
 
 // Steps `warm` steps, then counts the allocations of `steps` more.
-long allocations_once_warm(const std::string& scene, int threads, int warm, int steps) {
-  Real dt = 0;
-  World world = test::load_world(scene, threads, dt);
+long allocations_once_warm(World& world, Real dt, int warm, int steps) {
   for (int i = 0; i < warm; ++i) world.step(dt);
   allocations = 0;
   counting = true;
   for (int i = 0; i < steps; ++i) world.step(dt);
   counting = false;
   return allocations.load();
+}
+
+long allocations_once_warm(const std::string& scene, int threads, int warm, int steps) {
+  Real dt = 0;
+  World world = test::load_world(scene, threads, dt);
+  return allocations_once_warm(world, dt, warm, steps);
 }
 
 // The counts are a property of the optimised build, which the test command's first half checks.
@@ -152,6 +156,49 @@ TEST(StepAllocations, NoneOnceAPyramidIsWarm) {
   for (int threads : thread_counts) {
     EXPECT_EQ(allocations_once_warm("jolt_pyramid.json", threads, 130, 130), 0)
         << threads << " threads";
+  }
+}
+
+// Meshes and compounds: the triangle and part walks and the merge of their contacts use fixed
+// stack buffers. Spheres, boxes and compounds of two boxes dropped on a mesh floor.
+TEST(StepAllocations, NoneOnAMeshOnceWarm) {
+  const std::vector<int> thread_counts = test::kSanitized ? std::vector{2} : std::vector{1, 2};
+  for (int threads : thread_counts) {
+    WorldDef def;
+    def.threads = threads;
+    World world(def);
+    ShapeDef floor;
+    floor.type = ShapeType::Mesh;
+    const int n = 20;
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        floor.vertices.emplace_back(Real(i) * Real(0.5) - 5, Real(0.05) * Real((i * 7 + j * 3) % 5),
+                                    Real(j) * Real(0.5) - 5);
+      }
+    }
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+        floor.triangles.push_back({a, c, d});
+        floor.triangles.push_back({a, d, b});
+      }
+    }
+    test::add_body(world, floor, test::at(Vec3::Zero(), MotionType::Static));
+    ShapeDef pair;
+    pair.type = ShapeType::Compound;
+    pair.children.resize(2);
+    for (int k = 0; k < 2; ++k) {
+      pair.children[k].shape = test::box_shape(Vec3::Constant(Real(0.15)));
+      pair.children[k].position = Vec3(k == 0 ? Real(-0.25) : Real(0.25), 0, 0);
+    }
+    const ShapeDef shapes[] = {test::sphere_shape(Real(0.2)), test::box_shape(Vec3::Constant(0.2f)),
+                               pair};
+    for (int k = 0; k < 60; ++k) {
+      test::add_body(world, shapes[k % 3],
+                     test::at(Vec3(Real(k % 8) - Real(3.5), Real(0.6) + Real(k / 16),
+                                   Real((k / 8) % 2) * Real(1.5) - Real(0.75))));
+    }
+    EXPECT_EQ(allocations_once_warm(world, test::kDt, 300, 120), 0) << threads << " threads";
   }
 }
 

@@ -153,6 +153,29 @@ TEST(HeightField, RayNearestHitEqualsBruteForce) {
   EXPECT_GT(below, 0);
 }
 
+// Rays aimed at every sample and every cell side's midpoint of a flat field 0.37 m apart (not
+// exact in binary): the walk's cell boundaries must be the samples' own rounded coordinates, and
+// the clip to a box of no height must not stop the walk at the hit.
+TEST(HeightField, RaysAtSamplesAndEdgesOfAFlatFieldAlwaysHit) {
+  const uint32_t n = 25;
+  const HeightField f = build_heightfield(std::vector<Real>(n * n, 1.3f), n, 0.37f, 0.37f);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<Real> unit(-1, 1);
+  int misses = 0;
+  for (uint32_t j = 1; j + 1 < n; ++j) {
+    for (uint32_t i = 1; i + 1 < n; ++i) {
+      for (int k = 0; k < 4; ++k) {
+        Vec3 target = f.point(i, j);
+        if (k >= 2) target.x() += 0.185f;
+        const Vec3 d = k % 2 == 0 ? Vec3(0, -1, 0) : Vec3(unit(rng), -1, unit(rng)).normalized();
+        SurfaceHit hit;
+        if (!ray_cast_heightfield(f, target - 5 * d, d, 100, hit)) ++misses;
+      }
+    }
+  }
+  EXPECT_EQ(misses, 0);
+}
+
 TEST(HeightField, AboutFourBytesASample) {
   const uint32_t n = 257;
   const HeightField f = build_heightfield(std::vector<Real>(std::size_t(n) * n, 1), n, 1, 1);
