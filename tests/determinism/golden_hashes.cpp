@@ -43,9 +43,9 @@ const std::map<std::string, uint64_t>& golden() {
       {"pile4k", 0xc1db09a113ae9053ull},           {"pyramid10", 0x3043830915c9b8b9ull},
       {"pyramid20", 0x81f2803d6709df6eull},        {"rain", 0x1e950f7aa4c06425ull},
       {"spheres_in_box", 0x1cc6bdae62762ca1ull},   {"tower20", 0xb04d6f6367a54153ull},
-      {"tumbler", 0x18aee926573c0210ull},          {"compounds", 0x7d87a9f18fdcbed0ull},
-      {"convex_vs_mesh", 0xca8d5f5ab7872ad3ull},   {"geometry_demo", 0xd81b450e28deacf6ull},
-      {"heightfield_rain", 0x68466eae2de7b44bull},
+      {"tumbler", 0x18aee926573c0210ull},          {"compounds", 0xf2e95fc106791fe1ull},
+      {"convex_vs_mesh", 0xa59b26c772140a0dull},   {"geometry_demo", 0x1f9e3f3d5809b96eull},
+      {"heightfield_rain", 0x10ea9bad2530d4a8ull},
   };
   return table;
 }
