@@ -114,9 +114,12 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
     const Transform local{to_q * (xp.position - xq.position), to_q * xp.rotation};
     Vec3 lo, hi;
     box_in(p, local, Transform{}, w.speculative, lo, hi);
-    const auto visit = [&](const MeshTriangle& t) {
-      TriangleContact tc;
-      if (!collide_triangle(p, local, t, w.speculative, tc)) return;
+    // perf: what depends on the piece alone is derived once for all its triangles.
+    TriangleQuery query = make_triangle_query(p, local, w.speculative);
+    TriangleReach reach;
+    TriangleContact tc;
+    const auto contact = [&](const MeshTriangle& t) {
+      if (!collide_reached_triangle(query, t, reach, tc)) return;
       const Vec3 n = xq.rotation * tc.normal;
       for (int k = 0; k < tc.count; ++k) {
         w.out.push({xq.rotation * tc.points[k] + offset, n, tc.separation[k],
@@ -124,9 +127,18 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
       }
     };
     if (q.type == ShapeType::Mesh) {
-      for_each_triangle(*q.mesh, lo, hi, visit);
+      for_each_triangle(*q.mesh, lo, hi, [&](const MeshTriangle& t) {
+        if (reach_triangle(query, t, reach)) contact(t);
+      });
     } else {
-      for_each_triangle(*q.heightfield, lo, hi, visit);
+      // perf: a heightfield triangle's active edges (a normal per neighbour) only where a
+      // contact needs them.
+      const HeightField& field = *q.heightfield;
+      query.field = &field;
+      for_each_triangle_index(field, lo, hi, [&](uint32_t index) {
+        const MeshTriangle t = field.corners(index);
+        if (reach_triangle(query, t, reach)) contact(t);
+      });
     }
     return;
   }

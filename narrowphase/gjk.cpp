@@ -205,7 +205,8 @@ namespace {
 // of the simplex to the origin and GJK searches along -v, which for separated shapes is about
 // the direction from A to B (v ~ a - b), so d seeds the search.
 template <class Support>
-GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s) {
+GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s,
+                  Real reject_beyond = std::numeric_limits<Real>::infinity()) {
   GjkResult result;
   if (!(d.squaredNorm() > 0) || !d.allFinite()) d = Vec3::UnitY();
   s.count = 1;
@@ -227,6 +228,12 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s) {
     const SimplexVertex w = support(Vec3(-v));
     searched_vw = v.dot(w.w);
     searched_vv = vv;
+    // Every point of the difference is at least v.w / |v| from the origin: past reject_beyond
+    // the caller wants no distance.
+    if (searched_vw > 0 && searched_vw * searched_vw > reject_beyond * reject_beyond * vv) {
+      result.beyond = true;
+      return result;
+    }
     if (vv - searched_vw <= kRelTol * vv) break;
     bool repeated = false;
     for (int i = 0; i < s.count; ++i) repeated = repeated || s.v[i].w == w.w;
@@ -266,12 +273,13 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
 }
 
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
-                       const Vec3& initial_direction, Simplex& s) {
+                       const Vec3& initial_direction, Simplex& s, Real reject_beyond) {
   Vec3 d = initial_direction;
   if (!(d.squaredNorm() > 0) || !d.allFinite()) {
     d = (triangle[0] + triangle[1] + triangle[2]) / 3 - a.position;
   }
-  return run_gjk([&](const Vec3& x) { return support_minkowski_triangle(a, triangle, x); }, d, s);
+  return run_gjk([&](const Vec3& x) { return support_minkowski_triangle(a, triangle, x); }, d, s,
+                 reject_beyond);
 }
 
 GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Simplex& s) {

@@ -17,6 +17,9 @@ struct GjkResult {
   // `distance` when GJK converged.
   Real lower_bound = 0;
   int iterations = 0;
+  // The search stopped early: the lower bound passed the distance the caller rejects beyond
+  // (gjk_triangle's `reject_beyond`); distance and points are not set.
+  bool beyond = false;
 };
 
 // `include_radius` false treats spheres as points and capsules as segments (their "core").

@@ -3,6 +3,7 @@
 // full), the simplex GJK hands to EPA, and the core-based penetration query.
 #pragma once
 
+#include <limits>
 #include <span>
 
 #include "core/base/shape.hpp"
@@ -82,9 +83,11 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
 
 // GJK and EPA of a placed shape A against a triangle (B: its corners, in A's placement frame).
 // perf: the same routines as the shape pairs, instantiated on the triangle's support, so a mesh
-// needs no hull per triangle.
+// needs no hull per triangle. GJK stops as soon as its lower bound shows the two farther apart
+// than `reject_beyond` (result.beyond): a caller that rejects such a triangle needs no more.
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
-                       const Vec3& initial_direction, Simplex& s);
+                       const Vec3& initial_direction, Simplex& s,
+                       Real reject_beyond = std::numeric_limits<Real>::infinity());
 EpaResult epa_triangle(const PlacedShape& a, const Vec3 (&triangle)[3], const Simplex& simplex);
 
 }  // namespace elan::detail

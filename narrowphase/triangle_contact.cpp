@@ -20,6 +20,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/base/heightfield.hpp"
 #include "narrowphase/manifold_reduce.hpp"
 #include "narrowphase/minkowski.hpp"
 #include "narrowphase/supporting_feature.hpp"
@@ -95,10 +96,23 @@ uint32_t region_of(const Vec3 (&v)[3], const Vec3& p) {
 // Whether the normal found at the triangle's feature `region` stands: the feature is an active
 // edge, or a vertex with an active edge whose normal leans out past none of its inactive edges.
 // `out_normal`: from the triangle towards A; `face`: the face normal toward A's side.
-bool keeps_normal(uint32_t region, const MeshTriangle& t, const Vec3 (&v)[3], const Vec3& face,
+// A triangle's active edges, read on first use: a heightfield's triangles come without them
+// (TriangleQuery::field), and most contacts are decided before they are needed.
+struct LazyEdges {
+  const MeshTriangle& t;
+  const HeightField* field;
+  int value = -1;
+  uint8_t get() {
+    if (value < 0) value = field != nullptr ? field->active_edges_of(t) : t.active_edges;
+    return uint8_t(value);
+  }
+};
+
+bool keeps_normal(uint32_t region, LazyEdges& lazy, const Vec3 (&v)[3], const Vec3& face,
                   const Vec3& out_normal) {
   if (region == kRegionFace || out_normal.dot(face) < -kLeanTolerance) return false;
-  const auto active = [&](uint32_t k) { return ((t.active_edges >> k) & 1u) != 0; };
+  const uint8_t active_edges = lazy.get();
+  const auto active = [&](uint32_t k) { return ((active_edges >> k) & 1u) != 0; };
   if (region >= kRegionEdge) return active(region - kRegionEdge);
   const uint32_t k = region - kRegionVertex;
   const uint32_t edges[2] = {k, (k + 2) % 3};  // the edges leaving and reaching vertex k
@@ -122,14 +136,14 @@ void add(TriangleContact& out, const Vec3& p, Real s, uint32_t id) {
 }
 
 // The sphere's closed form: its centre (the origin) against the closest point of the triangle.
-bool sphere_triangle(Real r, const MeshTriangle& t, const Vec3 (&v)[3], const Vec3& face,
+bool sphere_triangle(Real r, LazyEdges& edges, const Vec3 (&v)[3], const Vec3& face,
                      Real speculative, TriangleContact& out) {
   uint32_t region = kRegionFace;
   const Vec3 q = closest_on_triangle(v, region);
   const Real dist = q.norm();
   if (dist - r > speculative) return false;
   const Real scale = std::max(r, (v[1] - v[0]).norm());
-  if (dist > 16 * kEps * scale && keeps_normal(region, t, v, face, -q / dist)) {
+  if (dist > 16 * kEps * scale && keeps_normal(region, edges, v, face, -q / dist)) {
     const Vec3 n = q / dist;
     add(out, Real(0.5) * (r * n + q), dist - r, region);
   } else {
@@ -146,11 +160,22 @@ bool sphere_triangle(Real r, const MeshTriangle& t, const Vec3 (&v)[3], const Ve
 
 }  // namespace
 
-bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
-                      Real speculative_distance, TriangleContact& out) {
-  out.count = 0;
+TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real speculative_distance) {
+  TriangleQuery q;
+  q.shape = &a;
+  q.position = xa.position;
+  q.at_origin = Transform{Vec3::Zero(), xa.rotation};
+  q.full = place(a, q.at_origin, true);
+  q.radius = core_radius(a);
+  q.core = q.radius > 0 ? place(a, q.at_origin, false) : q.full;
+  q.speculative = speculative_distance;
+  return q;
+}
+
+bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r) {
   // Working frame: the surface's axes, origin at A's centre, so coordinates stay small.
-  const Vec3 v[3] = {t.v[0] - xa.position, t.v[1] - xa.position, t.v[2] - xa.position};
+  Vec3(&v)[3] = r.v;
+  for (int k = 0; k < 3; ++k) v[k] = t.v[k] - q.position;
   Vec3 geometric = (v[1] - v[0]).cross(v[2] - v[0]);
   const Real area2 = geometric.norm();
   if (!(area2 > 0)) return false;
@@ -159,20 +184,49 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
   // A one-sided triangle collides from the front only: a body whose centre is behind it has
   // passed through (the continuous stage exists to prevent that) and must not be pushed down.
   if (!t.two_sided && centre_height < 0) return false;
-  const Vec3 face = centre_height >= 0 ? geometric : Vec3(-geometric);
-  if (a.type == ShapeType::Sphere) {
-    return sphere_triangle(a.radius, t, v, face, speculative_distance, out);
+  r.geometric = geometric;
+  r.face = centre_height >= 0 ? geometric : Vec3(-geometric);
+  if (q.shape->type == ShapeType::Sphere) {
+    // The sphere's closed form rejects on its centre's distance to the triangle, which its
+    // height above the plane bounds from below; the margin covers that distance's rounding
+    // (coordinates of a few metres round to about 1e-6 m), so nothing it keeps is lost.
+    const Real margin = Real(1e-4) * (q.shape->radius + q.speculative + v[0].cwiseAbs().sum());
+    return !(std::abs(centre_height) - q.shape->radius > q.speculative + margin);
   }
-
-  const Transform at_origin{Vec3::Zero(), xa.rotation};
-  const PlacedShape full = place(a, at_origin, true);
   // A lies on its centre's side of the plane down to its lowest point: when that is above the
   // plane by more than the speculative distance, the triangle is farther still. perf: one
   // support rejects most of the triangles under a body's box.
-  const Vec3 lowest = support_world(full, -face);
-  const Real plane_gap_of_a = face.dot(lowest - v[0]);
-  if (plane_gap_of_a > speculative_distance) return false;
-  const Real radius = core_radius(a);
+  r.lowest = support_world(q.full, -r.face);
+  r.plane_gap = r.face.dot(r.lowest - v[0]);
+  return !(r.plane_gap > q.speculative);
+}
+
+bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
+                      Real speculative_distance, TriangleContact& out) {
+  out.count = 0;
+  const TriangleQuery q = make_triangle_query(a, xa, speculative_distance);
+  TriangleReach r;
+  if (!reach_triangle(q, t, r)) return false;
+  return collide_reached_triangle(q, t, r, out);
+}
+
+bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, const TriangleReach& r,
+                              TriangleContact& out) {
+  out.count = 0;
+  const Shape& a = *q.shape;
+  const Real speculative_distance = q.speculative;
+  const Vec3(&v)[3] = r.v;
+  const Vec3& geometric = r.geometric;
+  const Vec3& face = r.face;
+  LazyEdges edges{t, q.field};
+  if (a.type == ShapeType::Sphere) {
+    return sphere_triangle(a.radius, edges, v, face, speculative_distance, out);
+  }
+  const Transform& at_origin = q.at_origin;
+  const PlacedShape& full = q.full;
+  const Vec3& lowest = r.lowest;
+  const Real plane_gap_of_a = r.plane_gap;
+  const Real radius = q.radius;
   Vec3 n, on_a, on_b;  // A to the triangle; closest (or deepest) points
   Real sep;
   uint32_t region = kRegionFace;
@@ -187,7 +241,7 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
   uint32_t foot_region = kRegionFace;
   closest_on_triangle(from_foot, foot_region);
   const bool foot_on_face = foot_region == kRegionFace;
-  const bool done = (plane_gap_of_a >= 0 && foot_on_face) || t.active_edges == 0;
+  const bool done = (plane_gap_of_a >= 0 && foot_on_face) || edges.get() == 0;
   // Whether the contact takes the face's normal: then it is the face's contact, made only of A's
   // points over the face (see below).
   bool face_normal = done;
@@ -201,9 +255,16 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
     on_b = foot;
   }
   if (!done) {
-    const PlacedShape core = radius > 0 ? place(a, at_origin, false) : full;
     Simplex simplex;
-    const GjkResult g = gjk_triangle(core, v, Vec3(-face), simplex);
+    // GJK may stop once the core is shown farther than the speculative distance plus the radius
+    // (the rejection below); the margin covers the distance's rounding, so that GJK run to the
+    // end would reject those triangles too.
+    const Real reject =
+        speculative_distance + radius +
+        Real(1e-4) * (a.bounding_radius + speculative_distance + v[0].cwiseAbs().sum() +
+                      (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
+    const GjkResult g = gjk_triangle(q.core, v, Vec3(-face), simplex, reject);
+    if (g.beyond) return false;
     if (!g.overlap && g.distance > Real(1e-6) * a.bounding_radius) {
       sep = g.distance - radius;
       // The distance to the triangle bounds the separation along its face normal from above
@@ -224,7 +285,7 @@ bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t
     }
     region = region_of(v, on_b);
   }
-  if (!keeps_normal(region, t, v, face, -n)) {
+  if (!keeps_normal(region, edges, v, face, -n)) {
     // The face's normal; the separation is A's lowest point's height above the face's plane.
     face_normal = true;
     witness = Real(0.5) * (on_a + on_b);

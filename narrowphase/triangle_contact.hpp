@@ -9,8 +9,11 @@
 #include "core/base/contact.hpp"
 #include "core/base/mesh_triangle.hpp"
 #include "core/base/shape.hpp"
+#include "narrowphase/minkowski.hpp"
 
 namespace elan::detail {
+
+struct HeightField;
 
 // A triangle's contact: one normal, at most four points (more are reduced with reduce_to_four).
 struct TriangleContact {
@@ -35,5 +38,40 @@ struct TriangleContact {
 // midway between the closest points.
 bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
                       Real speculative_distance, TriangleContact& out);
+
+// What collide_triangle derives from A, its pose and the distance alone. perf: made once per
+// convex piece and surface, used for each of the triangles under the piece.
+struct TriangleQuery {
+  const Shape* shape = nullptr;
+  Vec3 position = Vec3::Zero();  // A's centre of mass, surface frame
+  Transform at_origin;           // A's rotation, at the working frame's origin (A's centre)
+  PlacedShape full;              // A placed at the origin, radius included
+  PlacedShape core;              // the same without the radius (the same as `full` for radius 0)
+  Real radius = 0;               // core_radius(A)
+  Real speculative = 0;
+  // Set: the triangles are this heightfield's, given without their active edges (corners()),
+  // which are derived only where a contact needs them. Null: each triangle's own are read.
+  const HeightField* field = nullptr;
+};
+TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real speculative_distance);
+
+// The triangle in A's working frame and its plane: collide_triangle's first and cheapest tests.
+struct TriangleReach {
+  Vec3 v[3];         // corners, from A's centre
+  Vec3 geometric;    // unit normal of the corners' winding
+  Vec3 face;         // unit normal toward A's centre's side
+  Vec3 lowest;       // A's support along -face (not for a sphere)
+  Real plane_gap{};  // lowest's height above the plane (not for a sphere)
+};
+
+// Whether triangle `t` (corners and two_sided read; not its active edges) may give a contact:
+// false where collide_triangle gives none. perf: a heightfield derives a triangle's active edges
+// only when it is in reach.
+bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r);
+
+// collide_triangle for a triangle in reach (`r` from reach_triangle for the same triangle; its
+// active edges read from it, or from q.field): the same result.
+bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, const TriangleReach& r,
+                              TriangleContact& out);
 
 }  // namespace elan::detail

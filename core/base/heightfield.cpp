@@ -77,34 +77,42 @@ HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, R
   return f;
 }
 
-MeshTriangle HeightField::triangle(uint32_t t) const {
+MeshTriangle HeightField::corners(uint32_t t) const {
   const uint32_t c = t / 2, cells_x = columns - 1;
   const uint32_t i = c % cells_x, j = c / cells_x;
-  const bool upper = (t & 1) != 0;
-  const Vec3 p00 = point(i, j), p10 = point(i + 1, j);
-  const Vec3 p01 = point(i, j + 1), p11 = point(i + 1, j + 1);
   MeshTriangle m;
   m.index = t;
   m.two_sided = false;
   // Lower (2 c): p00, p11, p10; upper (2 c + 1): p00, p01, p11; both counter-clockwise from +y.
+  m.v[0] = point(i, j);
+  if ((t & 1) == 0) {
+    m.v[1] = point(i + 1, j + 1), m.v[2] = point(i + 1, j);
+  } else {
+    m.v[1] = point(i, j + 1), m.v[2] = point(i + 1, j + 1);
+  }
+  return m;
+}
+
+uint8_t HeightField::active_edges_of(const MeshTriangle& m) const {
+  const uint32_t t = m.index;
+  const uint32_t c = t / 2, cells_x = columns - 1;
+  const uint32_t i = c % cells_x, j = c / cells_x;
   // The neighbour of each edge (other: the cell's other triangle; the rest in adjacent cells) as
   // its far corner, which with the edge spans the neighbour's plane.
   std::array<Vec3, 3> far;
   std::array<bool, 3> border{};
-  if (!upper) {
-    m.v[0] = p00, m.v[1] = p11, m.v[2] = p10;
-    far[0] = p01;                  // diagonal: the upper triangle
+  if ((t & 1) == 0) {
+    far[0] = point(i, j + 1);      // diagonal: the upper triangle
     border[1] = i + 2 >= columns;  // side x = i + 1: the upper triangle of cell (i + 1, j)
     if (!border[1]) far[1] = point(i + 2, j + 1);
     border[2] = j == 0;  // side z = j: the upper triangle of cell (i, j - 1)
     if (!border[2]) far[2] = point(i, j - 1);
   } else {
-    m.v[0] = p00, m.v[1] = p01, m.v[2] = p11;
     border[0] = i == 0;  // side x = i: the lower triangle of cell (i - 1, j)
     if (!border[0]) far[0] = point(i - 1, j);
     border[1] = j + 2 >= rows;  // side z = j + 1: the lower triangle of cell (i, j + 1)
     if (!border[1]) far[1] = point(i + 1, j + 2);
-    far[2] = p10;  // diagonal: the lower triangle
+    far[2] = point(i + 1, j);  // diagonal: the lower triangle
   }
   const Vec3 n1 = m.normal();
   uint8_t active = 0;
@@ -119,7 +127,12 @@ MeshTriangle HeightField::triangle(uint32_t t) const {
     const Vec3 n2 = (a - b).cross(far[k] - b).normalized();
     if (edge_is_active(n1, n2, b - a)) active |= uint8_t(1u << k);
   }
-  m.active_edges = active;
+  return active;
+}
+
+MeshTriangle HeightField::triangle(uint32_t t) const {
+  MeshTriangle m = corners(t);
+  m.active_edges = active_edges_of(m);
   return m;
 }
 

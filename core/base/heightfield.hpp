@@ -30,6 +30,11 @@ struct HeightField {
   // Triangle t (see above) with its active edges: an edge is active on the grid's border, or where
   // the neighbouring triangle meets it at a convex angle past kActiveEdgeCos.
   MeshTriangle triangle(uint32_t t) const;
+  // Triangle t's corners and index alone (active_edges left at its default), and the active edges
+  // of such a triangle: triangle(t) is the two together. perf: the edges cost a normal per
+  // neighbour; a query that rejects most triangles on their corners derives them only for the rest.
+  MeshTriangle corners(uint32_t t) const;
+  uint8_t active_edges_of(const MeshTriangle& m) const;
 };
 
 // Checks and builds. Throws elan::Error: "shape.heights" (fewer than 2 x 2, a row of another
@@ -38,10 +43,10 @@ struct HeightField {
 HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, Real spacing_x,
                               Real spacing_z);
 
-// Calls f(const MeshTriangle&) for each triangle of the cells under [lo, hi] (x and z) whose
-// heights reach the box's y range, row by row, cell by cell, lower triangle first.
+// Calls f(uint32_t t) for each triangle t of the cells under [lo, hi] (x and z) whose heights
+// reach the box's y range, row by row, cell by cell, lower triangle first.
 template <class F>
-void for_each_triangle(const HeightField& field, const Vec3& lo, const Vec3& hi, F&& f) {
+void for_each_triangle_index(const HeightField& field, const Vec3& lo, const Vec3& hi, F&& f) {
   if (lo.y() > field.max_height || hi.y() < field.min_height) return;
   const auto cell_range = [](Real a, Real b, Real spacing, uint32_t samples, uint32_t& first,
                              uint32_t& last) {
@@ -62,10 +67,16 @@ void for_each_triangle(const HeightField& field, const Vec3& lo, const Vec3& hi,
       const Real high = std::max(std::max(h00, h10), std::max(h01, h11));
       if (low > hi.y() || high < lo.y()) continue;
       const uint32_t c = j * (field.columns - 1) + i;
-      f(field.triangle(2 * c));
-      f(field.triangle(2 * c + 1));
+      f(2 * c);
+      f(2 * c + 1);
     }
   }
+}
+
+// Calls f(const MeshTriangle&) for the same triangles in the same order, active edges included.
+template <class F>
+void for_each_triangle(const HeightField& field, const Vec3& lo, const Vec3& hi, F&& f) {
+  for_each_triangle_index(field, lo, hi, [&](uint32_t t) { f(field.triangle(t)); });
 }
 
 // The nearest hit of the ray (shape frame) with the surface, from above or below, walking the

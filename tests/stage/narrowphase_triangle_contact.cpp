@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "core/base/heightfield.hpp"
+#include "narrowphase/minkowski.hpp"
 #include "narrowphase/triangle_contact.hpp"
 #include "narrowphase_test_shapes.hpp"
 
@@ -299,6 +301,93 @@ TEST(TriangleContact, FiniteOnRandomAndDegenerateInput) {
     }
   }
   EXPECT_GT(touching, 500);
+}
+
+// GJK against a triangle told to stop past a distance: when it stops early, the search run to the
+// end finds the shapes at least that far apart; when it does not, it is the search run to the end,
+// bit for bit. 1e-5 relative: GJK's own tolerance on the distance it converges to.
+TEST(TriangleContact, GjkStopsEarlyOnlyPastTheRejectDistance) {
+  const Shape shapes[] = {capsule(Real(0.2), Real(0.4)), box(Real(0.3), Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.2)), test::round_hull(20, Real(0.4))};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int stopped = 0, ran = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    Vec3 v[3];
+    for (int k = 0; k < 3; ++k) v[k] = Vec3(u(rng), Real(0.2) * u(rng), u(rng));
+    const Shape& s = shapes[trial % 4];
+    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const PlacedShape a = place(s, at(u(rng), Real(0.6) * u(rng), u(rng), q), false);
+    const Real reject = Real(0.05) + Real(0.1) * (u(rng) + 1);
+    Simplex s0, s1;
+    const GjkResult full = gjk_triangle(a, v, Vec3::UnitY(), s0);
+    const GjkResult cut = gjk_triangle(a, v, Vec3::UnitY(), s1, reject);
+    ASSERT_FALSE(full.beyond);
+    if (cut.beyond) {
+      ++stopped;
+      ASSERT_FALSE(full.overlap);
+      ASSERT_GT(full.distance, reject * (1 - Real(1e-5))) << trial;
+      continue;
+    }
+    ++ran;
+    ASSERT_EQ(cut.overlap, full.overlap);
+    ASSERT_EQ(cut.distance, full.distance);
+    ASSERT_EQ(cut.point_a, full.point_a);
+    ASSERT_EQ(cut.point_b, full.point_b);
+  }
+  EXPECT_GT(stopped, 500);
+  EXPECT_GT(ran, 500);
+}
+
+// A heightfield's triangles walked as the composite pairs walk them (corners first, the query's
+// reach, active edges derived only where a contact reads them) give what the whole triangle
+// gives, bit for bit, for every shape over a bumpy field.
+TEST(TriangleContact, HeightfieldQueryMatchesWholeTriangles) {
+  constexpr uint32_t kColumns = 9;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<Real> heights(kColumns * kColumns);
+  for (Real& h : heights) h = Real(0.15) * u(rng);
+  const HeightField field = build_heightfield(heights, kColumns, Real(0.5), Real(0.5));
+  const Shape shapes[] = {sphere(Real(0.3)),
+                          capsule(Real(0.2), Real(0.4)),
+                          box(Real(0.3), Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.2)),
+                          test::round_hull(20, Real(0.4)),
+                          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+  int contacts = 0, rejected = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const Shape& s = shapes[trial % 6];
+    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    // Over the field's middle, from well clear of it to half sunk.
+    const Transform xa =
+        at(2 + Real(1.2) * u(rng), Real(0.35) + Real(0.3) * u(rng), 2 + Real(1.2) * u(rng), q);
+    TriangleQuery query = make_triangle_query(s, xa, kSpec);
+    query.field = &field;
+    for (uint32_t t = 0; t < 2 * (kColumns - 1) * (kColumns - 1); ++t) {
+      TriangleContact whole, walked;
+      const bool want = collide_triangle(s, xa, field.triangle(t), kSpec, whole);
+      TriangleReach reach;
+      const MeshTriangle corners = field.corners(t);
+      const bool got = reach_triangle(query, corners, reach) &&
+                       collide_reached_triangle(query, corners, reach, walked);
+      ASSERT_EQ(got, want) << "trial " << trial << " triangle " << t;
+      if (!want) {
+        ++rejected;
+        continue;
+      }
+      ++contacts;
+      ASSERT_EQ(walked.count, whole.count);
+      ASSERT_EQ(walked.normal, whole.normal);
+      for (int k = 0; k < whole.count; ++k) {
+        ASSERT_EQ(walked.points[k], whole.points[k]);
+        ASSERT_EQ(walked.separation[k], whole.separation[k]);
+        ASSERT_EQ(walked.feature[k], whole.feature[k]);
+      }
+    }
+  }
+  EXPECT_GT(contacts, 1000);
+  EXPECT_GT(rejected, 1000);
 }
 
 }  // namespace narrowphase_triangle_contact_test
