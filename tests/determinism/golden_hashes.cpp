@@ -44,8 +44,8 @@ const std::map<std::string, uint64_t>& golden() {
       {"pyramid20", 0x81f2803d6709df6eull},      {"rain", 0x22abd5eb204595f9ull},
       {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xa8cc299c289aaff4ull},
       {"towers", 0x2bf36a6237bc0cd8ull},         {"tumbler", 0xf9407c7474ffb131ull},
-      {"compounds", 0x7d87a9f18fdcbed0ull},     {"convex_vs_mesh", 0xca8d5f5ab7872ad3ull},
-      {"geometry_demo", 0xd81b450e28deacf6ull}, {"heightfield_rain", 0x68466eae2de7b44bull},
+      {"compounds", 0xa3e0f169805f301aull},      {"convex_vs_mesh", 0x3cefde4c7364d619ull},
+      {"geometry_demo", 0xb690630bc4c80eadull},  {"heightfield_rain", 0x02fc85a30cdeb20dull},
   };
   return table;
 }

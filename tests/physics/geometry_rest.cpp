@@ -22,7 +22,7 @@ struct Dropped {
 };
 
 // Drops a 4 x 3 array of bodies of every shape (sphere, box, capsule, cylinder, hull, compounds),
-// turned every which way, from 1.5 m above the surface, and lets them settle for 10 s.
+// turned every which way, from 1.5 m above the surface, and lets them settle for 12 s.
 void drop_and_settle(bool as_mesh) {
   const test::Terrain terrain;
   WorldDef def;
@@ -63,7 +63,7 @@ void drop_and_settle(bool as_mesh) {
       dropped.push_back({test::add_body(world, kind.shape, d), kind.reach, kind.name});
     }
   }
-  for (int n = 0; n < 600; ++n) world.step(kDt);
+  for (int n = 0; n < 720; ++n) world.step(kDt);
   for (const Dropped& b : dropped) {
     SCOPED_TRACE(b.what);
     const Vec3 c = world.center_of_mass(b.id);
