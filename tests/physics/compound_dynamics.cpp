@@ -14,14 +14,7 @@ namespace compound_dynamics_test {
 using test::add_body;
 using test::at;
 using test::kDt;
-
-World zero_gravity_world() {
-  WorldDef def;
-  def.gravity = Vec3::Zero();
-  def.allow_sleep = false;
-  def.threads = 1;
-  return World(def);
-}
+using test::zero_gravity_world;
 
 // An L with a sphere off to one side: three principal moments that differ, and a centre of mass
 // off the compound's frame, so the body turns about a point that is none of its children's.

@@ -16,15 +16,7 @@ using test::add_body;
 using test::at;
 using test::kDt;
 using test::kEps;
-
-World zero_gravity_world(int substeps = 4) {
-  WorldDef def;
-  def.gravity = Vec3::Zero();
-  def.substeps = substeps;
-  def.allow_sleep = false;
-  def.threads = 1;
-  return World(def);
-}
+using test::zero_gravity_world;
 
 Vec3 body_frame(const World& world, BodyId id, const Vec3& v_world) {
   return world.orientation(id).conjugate() * v_world;

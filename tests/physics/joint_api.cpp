@@ -17,14 +17,7 @@ namespace joint_api_test {
 using test::add_body;
 using test::at;
 using test::kDt;
-
-World zero_gravity_world() {
-  WorldDef def;
-  def.gravity = Vec3::Zero();
-  def.allow_sleep = false;
-  def.threads = 1;
-  return World(def);
-}
+using test::zero_gravity_world;
 
 // Two unit spheres 0.8 m apart (overlapping 0.2 m) on a slack rope: without collide_connected
 // no contact acts and they stay at rest; with it the contact pushes them apart, conserving their

@@ -74,6 +74,16 @@ inline BodyDef at(const Vec3& position, MotionType motion = MotionType::Dynamic)
   return d;
 }
 
+/// A world without gravity or sleep, on one thread: free flight, spin and joints alone.
+inline World zero_gravity_world(int substeps = 4) {
+  WorldDef def;
+  def.gravity = Vec3::Zero();
+  def.substeps = substeps;
+  def.allow_sleep = false;
+  def.threads = 1;
+  return World(def);
+}
+
 /// The static ground of the standard scenes: the top face is the plane y = 0.
 inline BodyId add_ground(World& world, Real friction = Real(0.5)) {
   BodyDef d = at(Vec3(0, -1, 0), MotionType::Static);

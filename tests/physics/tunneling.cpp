@@ -11,14 +11,7 @@ namespace tunneling_test {
 using test::add_body;
 using test::at;
 using test::kDt;
-
-World zero_gravity_world() {
-  WorldDef def;
-  def.gravity = Vec3::Zero();
-  def.allow_sleep = false;
-  def.threads = 1;
-  return World(def);
-}
+using test::zero_gravity_world;
 
 // 150 m/s is 2.5 m per step against a 4 cm wall: without continuous handling the sphere
 // (5 cm radius) jumps over it in one step. The centre must stay before the wall's mid-plane,
