@@ -12,7 +12,6 @@
 namespace elan::detail {
 namespace {
 
-constexpr Real kEps = std::numeric_limits<Real>::epsilon();
 // Relative gap ||v||^2 - v.w <= kRelTol ||v||^2 bounds the distance's relative error by kRelTol
 // (van den Bergen 2003, 4.3.4); a few hundred ulps above the rounding of the dot products.
 constexpr Real kRelTol = sizeof(Real) == 4 ? Real(1e-5) : Real(1e-10);

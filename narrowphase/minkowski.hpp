@@ -11,6 +11,9 @@
 
 namespace elan::detail {
 
+// Machine epsilon of Real: the narrowphase's relative tolerances are multiples of it.
+inline constexpr Real kEps = std::numeric_limits<Real>::epsilon();
+
 // A shape placed in the world, rotation as a matrix so each support costs two mat-vec products.
 struct PlacedShape {
   const Shape* shape;

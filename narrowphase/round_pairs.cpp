@@ -13,7 +13,6 @@
 namespace elan::detail {
 namespace {
 
-constexpr Real kEps = std::numeric_limits<Real>::epsilon();
 // Segments within this sine of parallel get the two-point manifold (about 0.57 degrees).
 constexpr Real kParallelSegmentsSine = Real(0.01);
 // perf: stack buffer of plane-contact candidates; beyond it the shallowest is replaced.

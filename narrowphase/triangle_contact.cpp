@@ -28,7 +28,6 @@
 namespace elan::detail {
 namespace {
 
-constexpr Real kEps = std::numeric_limits<Real>::epsilon();
 // The triangle's features: its face, vertex k, or edge k (v[k] to v[k + 1]).
 constexpr uint32_t kRegionFace = 0;
 constexpr uint32_t kRegionVertex = 1;  // + k
