@@ -145,6 +145,8 @@ bool collide_segment_polyhedron(const Vec3& s0, const Vec3& s1, Real radius, con
     return true;
   }
 
+  // Non-finite input compares false everywhere and picks no face: no contact, not face -1.
+  if (fq.face < 0) return false;
   return segment_face_contact(s0, s1, radius, b, fq.face, speculative_distance, out);
 }
 

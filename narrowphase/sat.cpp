@@ -414,6 +414,9 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
     return false;
   }
 
+  // Non-finite input (a pose far past the supported range overflows) compares false everywhere,
+  // so no face is picked: no contact, rather than reading face -1.
+  if (fa.face < 0 || fb.face < 0) return false;
   const bool use_b = beats(fb.separation, fa.separation, kFaceRelTol);
   const Real face_sep = use_b ? fb.separation : fa.separation;
   if (ee.edge_a >= 0 && beats(ee.separation, face_sep, kEdgeRelTol)) {
