@@ -49,18 +49,7 @@ struct Candidates {
   Candidate c[kMaxCandidates];
   int count = 0;
 
-  void push(const Candidate& x) {
-    if (count < kMaxCandidates) {
-      c[count++] = x;
-      return;
-    }
-    // determinism: the first of equally shallow candidates is replaced.
-    int worst = 0;
-    for (int i = 1; i < count; ++i) {
-      if (c[i].separation > c[worst].separation) worst = i;
-    }
-    if (x.separation < c[worst].separation) c[worst] = x;
-  }
+  void push(const Candidate& x) { push_keeping_deepest(c, count, kMaxCandidates, x); }
 };
 
 // 32 bits from the pieces (parts of A and B, 0 for none), the triangle and the piece's own id:

@@ -103,19 +103,6 @@ struct Candidate {
   uint32_t id;
 };
 
-// Keeps the candidate set bounded: when full, a deeper point replaces the shallowest.
-void push_candidate(Candidate* c, int& count, const Candidate& x) {
-  if (count < kMaxPlaneCandidates) {
-    c[count++] = x;
-    return;
-  }
-  int worst = 0;
-  for (int i = 1; i < count; ++i) {
-    if (c[i].separation > c[worst].separation) worst = i;
-  }
-  if (x.separation < c[worst].separation) c[worst] = x;
-}
-
 }  // namespace
 
 // |cb - ca| - ra - rb along the centre line.
@@ -308,7 +295,8 @@ bool collide_convex_plane(const Shape& a, const Transform& xa, const Shape& b, c
     const Real s = nl.dot(local) + centre_height - r;
     lowest = std::min(lowest, s);
     if (s > speculative_distance) return;
-    push_candidate(cand, count, {xa.position + ra * local - r * n, s, id});
+    push_keeping_deepest(cand, count, kMaxPlaneCandidates,
+                         Candidate{xa.position + ra * local - r * n, s, id});
   };
   switch (a.type) {
     case ShapeType::Sphere:
