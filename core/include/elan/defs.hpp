@@ -30,7 +30,9 @@ enum class ShapeType : uint8_t {
 
 struct CompoundChild;
 
-enum class BroadphaseType : uint8_t { SweepAndPrune, AllPairs };
+/// The pair finder. All give the same sorted pair list, so the same bits. Tree keeps a dynamic
+/// bounding-volume tree (the one the queries use) and wins on large, mostly static worlds.
+enum class BroadphaseType : uint8_t { SweepAndPrune, AllPairs, Tree };
 
 /// A shape in its own frame. Capsule and cylinder axes are local Y.
 struct ShapeDef {
@@ -58,6 +60,8 @@ struct ShapeDef {
   /// Compound: convex children (not plane, mesh, heightfield or compound), each placed in the
   /// compound's shape frame. Mass properties are the children's summed.
   std::vector<CompoundChild> children;
+
+  uint64_t user_data = 0;  ///< the caller's value, kept through snapshots; never read by elan
 };
 
 /// One child of a compound shape.
@@ -85,6 +89,11 @@ struct BodyDef {
   uint32_t category_bits = 1;            ///< collision filter: what this body is
   uint32_t mask_bits = UINT32_MAX;       ///< collision filter: what it collides with
   bool awake = true;                     ///< start awake (dynamic bodies)
+  /// A sensor reports overlap begin/end events (World::sensor_begin_events) with other bodies'
+  /// shapes and takes no part in contact response. Static, kinematic or dynamic.
+  bool sensor = false;
+  Real gravity_scale = 1;  ///< multiplies the world's gravity for this body (finite)
+  uint64_t user_data = 0;  ///< the caller's value, kept through snapshots; never read by elan
 };
 
 /// The ranges WorldDef, World's setters and ThreadPool accept: substeps and iterations in

@@ -2,6 +2,7 @@
 // The whole public API of elan in one include.
 #pragma once
 
+#include "elan/debug_draw.hpp"
 #include "elan/defs.hpp"
 #include "elan/error.hpp"
 #include "elan/events.hpp"

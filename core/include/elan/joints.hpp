@@ -89,6 +89,7 @@ struct JointDef {
   bool collide_connected = false;     ///< false: the two bodies do not collide with each other
   /// N, > 0: the joint is removed in the step in which its constraint force exceeds this.
   Real break_force = std::numeric_limits<Real>::infinity();
+  uint64_t user_data = 0;  ///< the caller's value, kept through snapshots; never read by elan
 };
 
 /// Why a joint left the world.

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "elan/debug_draw.hpp"
 #include "elan/defs.hpp"
 #include "elan/error.hpp"
 #include "elan/events.hpp"
@@ -155,6 +156,35 @@ class World {
   /// Collision filter bits (see BodyDef); takes effect in the next step's broadphase.
   void set_collision_filter(BodyId id, uint32_t category_bits, uint32_t mask_bits);
 
+  // ---- Body state and changes users reach for (issue 39).
+  ShapeId shape(BodyId id) const;
+  /// The definition a shape was made with (with its user_data as last set).
+  const ShapeDef& shape_def(ShapeId id) const;
+  /// kg m^2, world frame, about the centre of mass (zero for static and kinematic bodies).
+  Mat3 inertia(BodyId id) const;
+  Aabb bounds(BodyId id) const;  ///< the bounding box the broadphase and queries use
+  bool is_sensor(BodyId id) const;
+  Real gravity_scale(BodyId id) const;
+  Real linear_damping(BodyId id) const;
+  Real angular_damping(BodyId id) const;
+  /// Static <-> kinematic <-> dynamic between steps: a body made dynamic gets its mass from its
+  /// shape's density of creation (or its last set mass) and wakes; a body made static or
+  /// kinematic keeps (kinematic) or zeroes (static) its velocities; its contacts are rebuilt.
+  void set_motion_type(BodyId id, MotionType type);
+  void set_gravity_scale(BodyId id, Real scale);           ///< finite
+  void set_damping(BodyId id, Real linear, Real angular);  ///< 1/s, >= 0
+  /// Swaps a body's shape between steps (mass and inertia follow at the body's density; a
+  /// static-only shape on a non-static body is an elan::Error "shape"). Wakes the body.
+  void set_shape(BodyId id, ShapeId shape);
+  void set_sensor(BodyId id, bool sensor);
+  void set_gravity(const Vec3& gravity);  ///< m/s^2, world; wakes every body
+  uint64_t user_data(BodyId id) const;
+  void set_user_data(BodyId id, uint64_t value);
+  uint64_t user_data(ShapeId id) const;
+  void set_user_data(ShapeId id, uint64_t value);
+  uint64_t user_data(JointId id) const;
+  void set_user_data(JointId id, uint64_t value);
+
   /// Bulk, zero-copy views of the body columns in dense index order; element i belongs to
   /// body_ids()[i]. Positions are those of the centre of mass and orientations those of the
   /// principal axes (the store's own pose): for every shape but the convex hull this is the
@@ -184,22 +214,73 @@ class World {
   /// end events of destroy_body calls since. Cleared when the next step starts.
   std::span<const ContactBeginEvent> contact_begin_events() const;
   std::span<const ContactEndEvent> contact_end_events() const;
+  /// Sensor overlap events of the last step (plus end events of destroy_body calls since).
+  std::span<const SensorBeginEvent> sensor_begin_events() const;
+  std::span<const SensorEndEvent> sensor_end_events() const;
+  /// Contacts that began in the last step with an approach speed >= the hit threshold.
+  std::span<const ContactHitEvent> contact_hit_events() const;
+  void set_hit_event_threshold(Real speed);  ///< m/s, >= 0; default 1 (Box2D's)
+  /// The current contact manifolds (touching or speculative), in pair-key order, between steps.
+  std::size_t contact_count() const;
+  ContactView contact(std::size_t index) const;
+  /// The manifolds that involve `body`, into `out` (cleared), in pair-key order.
+  void contacts_of(BodyId body, std::vector<ContactView>& out) const;
+  /// Calls the drawer for what `what` (DebugDrawFlags) selects; see DebugDrawer.
+  void debug_draw(DebugDrawer& drawer, uint32_t what) const;
   /// Installs (or, with an empty function, removes) the pair filter; see PairFilter.
   void set_pair_filter(PairFilter filter);
 
+  // ---- Queries (issue 39). All const in fact: they read the world and its query tree (kept in
+  // step at the end of each step and by every change between steps) and change nothing, so any
+  // number of threads may query at once between steps. Filters: see QueryFilter.
+
   /// Closest body the ray from `origin` (m, world) along `direction` (any non-zero length)
-  /// enters within `max_distance` (m); ties go to the lower dense index. Tests every body's
-  /// exact shape; candidates come from a brute-force pass over cached bounding boxes (rebuilt
-  /// after a step or change, O(bodies)), so a cast costs O(bodies).
-  std::optional<RayHit> cast_ray(const Vec3& origin, const Vec3& direction,
-                                 Real max_distance) const;
+  /// enters within `max_distance` (m); ties go to the lower dense index.
+  std::optional<RayHit> cast_ray(const Vec3& origin, const Vec3& direction, Real max_distance,
+                                 const QueryFilter& filter = {}) const;
+  /// Some body the ray enters within max_distance (the first the tree walk finds; deterministic),
+  /// cheaper than the closest: for line-of-sight tests.
+  std::optional<RayHit> cast_ray_any(const Vec3& origin, const Vec3& direction, Real max_distance,
+                                     const QueryFilter& filter = {}) const;
   /// Every body the ray enters within max_distance, into `out` (cleared), sorted by distance
   /// then dense index.
   void cast_ray_all(const Vec3& origin, const Vec3& direction, Real max_distance,
-                    std::vector<RayHit>& out) const;
-  /// Bodies whose bounding box overlaps the box [lo, hi] (m, world), in dense index order, into
-  /// `out` (cleared). Boxes are conservative: a body listed may not touch the box exactly.
-  void overlap_box(const Vec3& lo, const Vec3& hi, std::vector<BodyId>& out) const;
+                    std::vector<RayHit>& out, const QueryFilter& filter = {}) const;
+  /// Closest hits of many rays, in parallel on the world's pool: hits[i] for rays[i] (a null
+  /// body when it hits nothing). elan::Error "hits" when the spans' sizes differ.
+  void cast_rays(std::span<const Ray> rays, std::span<RayHit> hits,
+                 const QueryFilter& filter = {}) const;
+  /// Sweeps `shape` (any shape this world made, but plane, mesh and heightfield) from `start`
+  /// (shape frame to world) along `translation` (m, world); the first body it touches.
+  std::optional<ShapeCastHit> cast_shape(ShapeId shape, const Transform& start,
+                                         const Vec3& translation,
+                                         const QueryFilter& filter = {}) const;
+  /// Every body the sweep touches, into `out` (cleared), sorted by fraction then dense index.
+  void cast_shape_all(ShapeId shape, const Transform& start, const Vec3& translation,
+                      std::vector<ShapeCastHit>& out, const QueryFilter& filter = {}) const;
+  /// Bodies whose exact shape overlaps `shape` at `pose` (touching counts), in dense index
+  /// order, into `out` (cleared).
+  void overlap_shape(ShapeId shape, const Transform& pose, std::vector<BodyId>& out,
+                     const QueryFilter& filter = {}) const;
+  /// Bodies whose bounding box overlaps the box (m, world), in dense index order, into `out`
+  /// (cleared). Boxes are conservative: a body listed may not touch the box exactly.
+  void overlap_box(const Vec3& lo, const Vec3& hi, std::vector<BodyId>& out,
+                   const QueryFilter& filter = {}) const;
+  /// Bodies whose solid contains `point` (m, world; meshes and heightfields contain nothing),
+  /// in dense index order, into `out` (cleared).
+  void overlap_point(const Vec3& point, std::vector<BodyId>& out,
+                     const QueryFilter& filter = {}) const;
+  /// The closest point of one body's surface to `point` (distance negative inside).
+  PointHit closest_point(BodyId body, const Vec3& point) const;
+  /// The closest body surface point within `max_distance` of `point`, if any.
+  std::optional<PointHit> closest_point(const Vec3& point, Real max_distance,
+                                        const QueryFilter& filter = {}) const;
+  /// Moves a vertical capsule whose centre is at `position` by `displacement` (m, world),
+  /// sliding along walls, climbing steps up to def.step_height and not climbing ground steeper
+  /// than def.max_slope. Reads the world only; the caller moves its own kinematic body (and
+  /// leaves it out with def.filter). Deterministic.
+  CharacterMoveResult move_character(const Vec3& position, const Vec3& displacement,
+                                     const CharacterMoveDef& def) const;
 
   /// Settings that may change between steps.
   const WorldDef& settings() const;
