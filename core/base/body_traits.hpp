@@ -23,7 +23,13 @@ struct BodyTraits {
   Real angular_damping = 0;  // 1/s
   uint32_t category = 0;  // collision filter: a pair passes if (cat_a & mask_b) && (cat_b & mask_a)
   uint32_t mask = 0;
+  uint32_t flags = 0;  // kTraitSensor
+  uint32_t spare = 0;  // keeps the struct free of padding in both builds: same_bits is a memcmp
 };
+
+// BodyTraits::flags: the body is a sensor (overlap events, no contact response, unseen by queries
+// unless they ask).
+inline constexpr uint32_t kTraitSensor = 1u << 0;
 
 // Bit for bit: a body given -0 friction must not read another's +0 (the solver's bits differ).
 bool same_bits(const BodyTraits& a, const BodyTraits& b);
