@@ -295,7 +295,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     // every contact under the load it reaches; so it is taken on its first step. Only then: a
     // pile's new contacts come from bodies landing, whose rows the passes settle well.
     auto placed = give < zero;  // all false
-    for (int l = 0; l < lane_count; ++l) {
+    for (int l = 0; ctx.bodies_placed && l < lane_count; ++l) {
       const ManifoldHead& m = manifolds[lanes[l]];
       if ((bodies.flags[m.body_a] | bodies.flags[m.body_b]) & kPlaced) placed[l] = ~placed[l];
     }

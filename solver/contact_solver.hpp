@@ -68,6 +68,10 @@ struct ContactSolverContext {
   // wanted. The give per impulse of each softness (give_per_impulse), s/kg.
   std::span<uint32_t> loaded_lanes;
   Real contact_give = 0, static_give = 0;
+  // Some body carries kPlaced: its new face supports are loaded rows, and the direct solve's
+  // active set starts with the rows closing at no speed (direct_solve.cpp). Else neither is
+  // looked for, at no cost.
+  bool bodies_placed = false;
 
   // Bundle j's points: as many as the most points of its lanes, the first in the bundle
   // (ContactBundle::first), the others rows_of(j)[0, point_count(j) - 1).

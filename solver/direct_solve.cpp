@@ -352,6 +352,8 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
 void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool use_bias,
                   DirectState& ds) {
   const double max_push = double(ctx.max_push_velocity);
+  // A normal row joins the first active set when its closing speed is above this (see below).
+  const double open_below = ctx.bodies_placed ? -kVelocityTolerance : 0.0;
   // The largest system's buffers, once (a system has at most kDirectMaxRows rows and
   // kDirectMaxBodies packets).
   constexpr std::size_t rows_max = kDirectMaxRows, slots_max = 2 * kDirectMaxBodies;
@@ -474,14 +476,14 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
       ds.lambda[i] = lambda;
       ds.delta[i] = 0;
       // The first set: every row but the normal rows that neither push nor are being closed,
-      // which are held at zero. Rows closing at no speed join: a column placed at rest falls as
-      // one under gravity, so its upper rows close only once the rows below them push, which the
-      // set would otherwise find one round each.
+      // which are held at zero. After bodies were placed, rows closing at no speed join too: a
+      // column placed at rest falls as one under gravity, so its upper rows close only once the
+      // rows below them push, which the set would otherwise find one round each.
       ds.in_set[i] = 1;
       ds.fixed[i] = 0;
       if (r.kind == kDirectNormal) {
         const double closing = ds.target[i] - row_velocity(ds, r, i, ds.velocity.data());
-        ds.in_set[i] = uint8_t(lambda > 0 || closing > -kVelocityTolerance);
+        ds.in_set[i] = uint8_t(lambda > 0 || closing > open_below);
       }
     }
     // The biased targets of a manifold of three or more points, fitted by one plane: -beta s_k
@@ -532,9 +534,9 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
       }
       for (uint32_t i = 0; i < n; ++i) {
         if (rows[i].kind != kDirectNormal) continue;
-        ds.in_set[i] = uint8_t(ds.lambda[i] > 0 ||
-                               ds.target[i] - row_velocity(ds, rows[i], i, ds.velocity.data()) >
-                                   -kVelocityTolerance);
+        ds.in_set[i] =
+            uint8_t(ds.lambda[i] > 0 ||
+                    ds.target[i] - row_velocity(ds, rows[i], i, ds.velocity.data()) > open_below);
       }
     }
     // Adds each row's impulse change from its current impulse to `v` (6 a slot): the active

@@ -53,6 +53,7 @@ ContactSolverContext make_solver_context(const SolveSettings& settings, SolverSt
   ctx.loaded_lanes = state.direct.loaded_lanes;
   ctx.contact_give = give_per_impulse(ctx.contact_softness);
   ctx.static_give = give_per_impulse(ctx.static_softness);
+  ctx.bodies_placed = settings.bodies_placed;
   ctx.max_push_velocity = settings.max_push_velocity;
   ctx.restitution_threshold = settings.restitution_threshold;
   return ctx;
@@ -192,7 +193,6 @@ uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
       bodies.set_orientation(i, q);
       bodies.set_linear_velocity(i, b.v);
       bodies.set_angular_velocity(i, b.w);
-      bodies.flags[i] &= uint8_t(~kPlaced);
     }
   });
   // The forces applied for this step are spent on the bodies it moved (a quarantined one's too).

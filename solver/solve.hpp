@@ -48,7 +48,8 @@ struct SolveSettings {
   Real restitution_threshold = 1;     // m/s
   Real sleep_threshold = Real(0.05);  // m/s
   Real time_to_sleep = Real(0.5);     // s
-  int participants = 1;  // threads that may take part in the solve (at most kHalves are used)
+  int participants = 1;        // threads that may take part in the solve (at most kHalves are used)
+  bool bodies_placed = false;  // some body carries kPlaced (body_store.hpp)
 };
 
 // The solver's groups of contact constraints: those within half 0, within half 1 (both bodies

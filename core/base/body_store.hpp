@@ -18,7 +18,7 @@ enum BodyFlags : uint8_t {
   kFrozen = 1u << 1,  // went non-finite and was quarantined
   // Dynamic, placed by the API (created or teleported) and not simulated since: its face contacts
   // have nothing to warm start, so the direct solve takes its supports on that first step
-  // (prepare_bundle). Cleared when a step moves the body (finalize_bodies).
+  // (prepare_bundle). The step clears it on every body (WorldState::bodies_placed).
   kPlaced = 1u << 2,
 };
 

@@ -733,6 +733,8 @@ void forget_api_caches(WorldState& s) {
   s.api.joint_events.clear();
   s.api.body_ids.clear();
   ++s.api.mutations;
+  s.bodies_placed = false;
+  for (uint8_t f : s.bodies.flags) s.bodies_placed |= (f & detail::kPlaced) != 0;
 }
 
 // Replaces the world's state with `d`. Scratch of the step (bounds, pairs, the sweep's kept

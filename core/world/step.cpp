@@ -75,6 +75,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve_settings.gravity = w.def.gravity;
   solve_settings.allow_sleep = w.def.allow_sleep;
   solve_settings.participants = w.threads;
+  solve_settings.bodies_placed = w.bodies_placed;
   // The solver's phase of the scratch. Each stage takes and gives back its own buffers, but for
   // the bundles and their rows: build_bundles takes them, release_bundles gives them back.
   w.scratch.begin_phase();
@@ -134,6 +135,11 @@ uint32_t run_step(WorldState& w, Real dt) {
   p.ccd = ms_between(t5, t6);
   p.finalize = ms_between(t6, t7);
   p.total = ms_between(t0, t7);
+  if (w.bodies_placed) {
+    // Placed before this step: from now on their contacts have warm impulses.
+    for (uint8_t& f : bodies.flags) f &= uint8_t(~kPlaced);
+    w.bodies_placed = false;
+  }
   ++w.step_count;
   return status;
 }

@@ -72,6 +72,9 @@ struct WorldState {
   std::vector<uint64_t> unconnected_pairs;
   uint64_t unconnected_version = UINT64_MAX;
   std::vector<uint32_t> broken_joints;
+  // Some body carries kPlaced (placed by the API since the last step): the next step's solver
+  // looks for their supports (prepare_bundle) and then clears every kPlaced.
+  bool bodies_placed = false;
 
   SolverState solver;
   ApiState api;
