@@ -98,7 +98,10 @@ void World::reserve(std::size_t bodies, std::size_t shapes) {
 }
 
 ShapeId World::create_shape(const ShapeDef& def) {
-  state_->shapes.push_back(detail::make_shape(def));
+  WorldState& s = *state_;
+  s.shapes.push_back(detail::make_shape(def));
+  s.api.shape_user_data.resize(s.shapes.size() - 1);
+  s.api.shape_user_data.push_back(def.user_data);
   return ShapeId{uint32_t(state_->shapes.size() - 1)};
 }
 
@@ -112,6 +115,7 @@ void World::destroy_shape(ShapeId id) {
   s.api.shape_destroyed.resize(s.shapes.size(), 0);
   s.api.shape_destroyed[id.index] = 1;
   s.shapes[id.index] = detail::Shape{};
+  if (id.index < s.api.shape_defs.size()) s.api.shape_defs[id.index].reset();
 }
 
 bool World::is_valid(ShapeId id) const {
@@ -142,6 +146,9 @@ BodyId World::create_body(const BodyDef& def) {
             "must be finite and >= 0");
   check_arg(std::isfinite(def.angular_damping) && def.angular_damping >= 0, "angular_damping",
             "must be finite and >= 0");
+  check_arg(std::isfinite(def.gravity_scale), "gravity_scale", "must be finite");
+  check_range(def.gravity_scale, -limits::kMaxGravityScale, limits::kMaxGravityScale,
+              "gravity_scale", "");
   if (def.mass) {
     check_arg(std::isfinite(*def.mass) && *def.mass > 0, "mass", "must be finite and positive");
     check_range(*def.mass, limits::kMinMass, limits::kMaxMass, "mass", "kg");
@@ -183,8 +190,16 @@ BodyId World::create_body(const BodyDef& def) {
     b.inv_iy[i] = inv_inertia.y();
     b.inv_iz[i] = inv_inertia.z();
   }
-  b.set_traits(i, {def.friction, def.restitution, def.linear_damping, def.angular_damping,
-                   def.category_bits, def.mask_bits});
+  detail::BodyTraits traits;
+  traits.friction = def.friction;
+  traits.restitution = def.restitution;
+  traits.linear_damping = def.linear_damping;
+  traits.angular_damping = def.angular_damping;
+  traits.gravity_scale = def.gravity_scale;
+  traits.category = def.category_bits;
+  traits.mask = def.mask_bits;
+  traits.flags = def.sensor ? detail::kTraitSensor : 0;
+  b.set_traits(i, traits);
   b.shape[i] = def.shape.index;
   b.motion[i] = uint8_t(def.motion);
   b.flags[i] =
@@ -195,7 +210,11 @@ BodyId World::create_body(const BodyDef& def) {
   const uint32_t slot =
       detail::take_slot(s.slot_index, s.slot_generation, s.free_slots, uint32_t(i));
   b.slot[i] = slot;
-  ++s.api.mutations;
+  detail::BodyExtra& extra = detail::body_extra(s, slot);
+  extra.user_data = def.user_data;
+  extra.density = def.density;
+  extra.given_mass = def.mass ? *def.mass : 0;
+  ++s.api.mutations;  // query caches: a body joined
   return BodyId{slot, s.slot_generation[slot]};
 }
 
