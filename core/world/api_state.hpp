@@ -52,8 +52,13 @@ struct ApiState {
   // or heightfield's copy would double its memory in every world that never draws it). Filled
   // from const calls: World is used from one thread at a time (queries do not read it).
   mutable std::vector<std::unique_ptr<ShapeDef>> shape_defs;
-  std::vector<BodyExtra> body_extra;  // per id slot; shorter than the slots = defaults
-  std::vector<SensorOverlap> sensor_overlaps;
+  std::vector<BodyExtra> body_extra;           // per id slot; shorter than the slots = defaults
+  std::vector<SensorOverlap> sensor_overlaps;  // after the last step, sorted
+  // The step's pairs with a sensor (sorted keys), their overlap flags and the new overlap list:
+  // kept from step to step so that a warm step allocates nothing.
+  std::vector<uint64_t> sensor_pairs;
+  std::vector<uint8_t> sensor_hit;
+  std::vector<SensorOverlap> sensor_scratch;
   std::vector<SensorBeginEvent> sensor_begin_events;
   std::vector<SensorEndEvent> sensor_end_events;
   std::vector<ContactHitEvent> hit_events;

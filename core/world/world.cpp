@@ -14,6 +14,7 @@
 #include "core/base/state_hash.hpp"
 #include "core/world/events.hpp"
 #include "core/world/joints.hpp"
+#include "core/world/sensors.hpp"
 #include "core/world/step.hpp"
 #include "core/world/thread_pool_access.hpp"
 #include "core/world/world_access.hpp"
@@ -48,19 +49,6 @@ void validate(const WorldDef& def) {
   check_arg(def.iterations >= 1 && def.iterations <= kMaxIterations, "iterations",
             in_range(1, kMaxIterations));
   check_arg(def.threads >= 0 && def.threads <= kMaxThreads, "threads", in_range(0, kMaxThreads));
-}
-
-// density x volume, refused unless within the mass range. In double, so that an overflow of the
-// float product is reported as the mass it is; the product of two floats is exact in double, so
-// its rounding to Real is the float product.
-Real computed_mass(Real density, Real volume) {
-  const double m = double(density) * double(volume);
-  check_arg(m >= double(Real(limits::kMinMass)) && m <= double(Real(limits::kMaxMass)), "mass",
-            "computed mass is out of range: density " + detail::show_value(density) +
-                " kg/m^3 x volume " + detail::show_value(volume) + " m^3 = " +
-                detail::show_value(m) + " kg, outside [" + detail::show_value(limits::kMinMass) +
-                ", " + detail::show_value(limits::kMaxMass) + "] kg");
-  return Real(m);
 }
 
 int resolve_threads(int threads) {
@@ -170,7 +158,7 @@ BodyId World::create_body(const BodyDef& def) {
   Real inv_mass = 0;
   Vec3 inv_inertia = Vec3::Zero();
   if (def.motion == MotionType::Dynamic) {
-    const Real mass = def.mass ? *def.mass : computed_mass(def.density, shape.volume);
+    const Real mass = def.mass ? *def.mass : detail::checked_mass(def.density, shape.volume);
     inv_mass = 1 / mass;
     inv_inertia = detail::inverse_inertia(mass, shape.unit_inertia);
   }
@@ -238,12 +226,14 @@ void World::destroy_body(BodyId id) {
     const uint32_t other = m.body_a == i ? m.body_b : m.body_a;
     if (s.bodies.is_dynamic(other)) detail::wake_index(s, other);
   });
+  // Sensor overlaps: the body's end (an event each), the last body's are renamed.
+  detail::sensor_remove_body(s, i, last);
   // The sweep-and-prune's kept order is a permutation of 0..n-1 re-sorted every update (a full
   // sort when the count changes), and its output is canonical, so it needs no fix-up.
   s.bodies.swap_remove(i);
   if (i != last) s.slot_index[s.bodies.slot[i]] = i;
   detail::release_slot(s.slot_index, s.slot_generation, s.free_slots, id.slot);
-  ++s.api.mutations;
+  ++s.api.mutations;  // query caches: a body left
 }
 
 uint32_t World::step(Real dt) {
