@@ -15,15 +15,18 @@ namespace {
 // The view of one manifold. Points: A's centre of mass now plus the arm the step's solve used
 // (an arm is world-aligned, so a body that turned since is off by the arm's turn: |w| dt |r|).
 // Friction acts once per manifold at its centre (contact.hpp); each point is given the share of
-// its magnitude that its normal impulse is of the manifold's.
+// its magnitude that its normal impulse is of the manifold's. The store keeps the impulses each
+// substep accumulates (the next step's warm start), so the step's are those times the substep
+// count: exact for a steady load (a resting box: m g dt).
 ContactView view_of(const detail::WorldState& s, const detail::Manifold& m) {
+  const Real substeps = Real(s.def.substeps);
   ContactView v;
   v.body_a = detail::body_id_at(s, m.body_a);
   v.body_b = detail::body_id_at(s, m.body_b);
   v.normal = m.normal;
   v.point_count = int(m.point_count);
   const Vec3 centre_a = s.bodies.position(m.body_a);
-  const Real tangent = std::hypot(m.tangent_impulse[0], m.tangent_impulse[1]);
+  const Real tangent = substeps * std::hypot(m.tangent_impulse[0], m.tangent_impulse[1]);
   Real normal_sum = 0;
   for (uint32_t k = 0; k < m.point_count; ++k) normal_sum += m.points[k].normal_impulse;
   for (uint32_t k = 0; k < m.point_count; ++k) {
@@ -31,7 +34,7 @@ ContactView view_of(const detail::WorldState& s, const detail::Manifold& m) {
     ContactPointView& out = v.points[k];
     out.point = centre_a + p.anchor_a;
     out.separation = p.separation;
-    out.normal_impulse = p.normal_impulse;
+    out.normal_impulse = substeps * p.normal_impulse;
     out.tangent_impulse =
         normal_sum > 0 ? tangent * (p.normal_impulse / normal_sum) : tangent / Real(m.point_count);
   }
