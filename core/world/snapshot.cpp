@@ -53,7 +53,8 @@ void seal(std::vector<uint8_t>& out) {
 // Checks magic, version, Real size and checksum, in that order (a future version may seal
 // differently, so the version is read before the checksum is trusted). Returns the payload.
 std::span<const uint8_t> open(std::span<const uint8_t> bytes, const uint8_t (&magic)[8],
-                              const char* field, const char* what) {
+                              const char* field, const char* what, uint32_t oldest,
+                              uint32_t* version_out = nullptr) {
   const std::size_t seen = std::min<std::size_t>(bytes.size(), 8);
   if (bytes.empty() || !std::equal(bytes.begin(), bytes.begin() + seen, magic)) {
     throw Error(field, std::string("not an elan ") + what + " (the magic bytes do not match)");
@@ -65,11 +66,16 @@ std::span<const uint8_t> open(std::span<const uint8_t> bytes, const uint8_t (&ma
   ByteReader header(bytes.subspan(8, 8), field);
   const uint32_t version = header.u32();
   const uint32_t real_bytes = header.u32();
-  if (version != kSnapshotVersion) {
-    throw Error(field, std::string("unsupported ") + what + " format version " +
-                           std::to_string(version) + " (this build reads version " +
-                           std::to_string(kSnapshotVersion) + ")");
+  if (version < oldest || version > kSnapshotVersion) {
+    throw Error(field,
+                std::string("unsupported ") + what + " format version " + std::to_string(version) +
+                    " (this build reads " +
+                    (oldest == kSnapshotVersion ? "version " + std::to_string(kSnapshotVersion)
+                                                : "versions " + std::to_string(oldest) + " to " +
+                                                      std::to_string(kSnapshotVersion)) +
+                    ")");
   }
+  if (version_out != nullptr) *version_out = version;
   if (real_bytes != sizeof(Real)) {
     throw Error(field, std::string(what) + " saved with " + std::to_string(real_bytes * 8) +
                            "-bit Real, this build uses " + std::to_string(sizeof(Real) * 8) +
@@ -446,6 +452,31 @@ bool read_friction(ByteReader& r, Manifold& m, PairCache& c) {
   return true;
 }
 
+// The sensor overlaps (version 10): u32 count, each u32 sensor, u32 visitor (dense indices).
+void write_overlaps(ByteWriter& w, std::span<const detail::SensorOverlap> overlaps) {
+  w.u32(uint32_t(overlaps.size()));
+  for (const detail::SensorOverlap& o : overlaps) {
+    w.u32(o.sensor);
+    w.u32(o.visitor);
+  }
+}
+
+// Checked against the bodies: indices in range, sorted and unique. (A rollback may come back to
+// a body whose sensor flag changed since: the next step ends such an overlap.)
+std::vector<detail::SensorOverlap> read_overlaps(ByteReader& r, const BodyStore& b) {
+  std::vector<detail::SensorOverlap> list(r.count(8, "sensor overlap"));
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    detail::SensorOverlap& o = list[k];
+    o.sensor = r.u32();
+    o.visitor = r.u32();
+    if (o.sensor >= b.size() || o.visitor >= b.size() || o.sensor == o.visitor) {
+      r.fail("sensor overlap body index out of range");
+    }
+    if (k > 0 && !(list[k - 1] < o)) r.fail("sensor overlaps are not sorted");
+  }
+  return list;
+}
+
 // Everything a snapshot holds, decoded and checked before any of it reaches a world.
 // --- joints ------------------------------------------------------------------------------
 
@@ -484,6 +515,7 @@ void write_joints(ByteWriter& w, const detail::JointStore& js) {
     for (Real v : {im.axial, im.spring, im.motor, im.lower, im.upper, im.swing}) w.real(v);
     w.vec3(j.force);
     w.vec3(j.torque);
+    w.u64(d.user_data);
   }
   w.u32(uint32_t(js.slot_index.size()));
   for (uint32_t v : js.slot_index) w.u32(v);
@@ -494,7 +526,8 @@ void write_joints(ByteWriter& w, const detail::JointStore& js) {
 
 // Reads a joint section and checks it against the bodies' id slots: every joint names live
 // bodies (or the world), not the same one twice, and the joint slots point back at the joints.
-detail::JointStore read_joints(ByteReader& r, std::span<const uint32_t> body_slot_index) {
+detail::JointStore read_joints(ByteReader& r, std::span<const uint32_t> body_slot_index,
+                               uint32_t version) {
   detail::JointStore js;
   constexpr std::size_t kJointBytes = 14 + 64 * sizeof(Real);
   js.joints.resize(r.count(kJointBytes, "joint"));
@@ -550,6 +583,7 @@ detail::JointStore read_joints(ByteReader& r, std::span<const uint32_t> body_slo
     }
     j.force = r.vec3();
     j.torque = r.vec3();
+    if (version >= 10) d.user_data = r.u64();
   }
   const uint32_t slots = r.count(8, "joint slot");
   js.slot_index.resize(slots);
@@ -589,6 +623,12 @@ struct Decoded {
   std::vector<Manifold> contacts;
   std::vector<PairCache> pair_cache;
   detail::JointStore joints;
+  // Version 10: the API's values (user data per shape and per body in index order, the bodies'
+  // density and given mass, the hit threshold, the sensor overlaps).
+  std::vector<uint64_t> shape_user_data;
+  std::vector<detail::BodyExtra> body_extra;
+  Real hit_threshold = 1;
+  std::vector<detail::SensorOverlap> sensor_overlaps;
 };
 
 void check_def(ByteReader& r, const WorldDef& d) {
@@ -643,7 +683,10 @@ void check_manifold(ByteReader& r, uint32_t body_a, uint32_t body_b, uint32_t po
 }
 
 Decoded decode_snapshot(std::span<const uint8_t> bytes) {
-  ByteReader r(open(bytes, kSnapshotMagic, "snapshot", "snapshot"), "snapshot");
+  uint32_t version = 0;
+  ByteReader r(
+      open(bytes, kSnapshotMagic, "snapshot", "snapshot", kOldestSnapshotVersion, &version),
+      "snapshot");
   Decoded d;
   d.def.gravity = r.vec3();
   d.def.substeps = int32_t(r.u32());
@@ -659,10 +702,12 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
 
   d.shapes.resize(r.count(2, "shape"));
   d.shape_destroyed.resize(d.shapes.size());
+  d.shape_user_data.assign(d.shapes.size(), 0);
   for (std::size_t k = 0; k < d.shapes.size(); ++k) {
     d.shapes[k] = read_shape(r, false);
     d.shape_destroyed[k] = r.u8();
     if (d.shape_destroyed[k] > 1) r.fail("bad shape destroyed flag");
+    if (version >= 10) d.shape_user_data[k] = r.u64();
   }
 
   const uint32_t n = r.count(detail::BodyStore{}.bytes_per_body(), "body");
@@ -686,6 +731,12 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
     t.angular_damping = r.real();
     t.category = r.u32();
     t.mask = r.u32();
+    if (version >= 10) {
+      t.gravity_scale = r.real();
+      t.flags = r.u32();
+      if (!std::isfinite(t.gravity_scale)) r.fail("body traits: gravity scale is not finite");
+      if (t.flags & ~detail::kTraitSensor) r.fail("body traits: unknown flags");
+    }
   }
   std::vector<uint32_t> free_traits(r.count(4, "free body traits"));
   for (uint32_t& k : free_traits) k = r.u32();
@@ -719,7 +770,28 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
     PairCache c;
     if (read_friction(r, m, c)) d.pair_cache.push_back(c);
   }
-  d.joints = read_joints(r, d.slot_index);
+  d.joints = read_joints(r, d.slot_index, version);
+  d.body_extra.resize(n);
+  if (version >= 10) {
+    for (detail::BodyExtra& e : d.body_extra) {
+      e.user_data = r.u64();
+      e.density = r.real();
+      e.given_mass = r.real();
+      if (!(e.density > 0) || !std::isfinite(e.density) || !(e.given_mass >= 0) ||
+          !std::isfinite(e.given_mass)) {
+        r.fail("body density or mass out of range");
+      }
+    }
+    d.hit_threshold = r.real();
+    if (!(d.hit_threshold >= 0) || !std::isfinite(d.hit_threshold)) r.fail("bad hit threshold");
+    d.sensor_overlaps = read_overlaps(r, d.bodies);
+  } else {
+    // Before version 10 a body kept no density: a dynamic body keeps the mass it has.
+    for (std::size_t i = 0; i < n; ++i) {
+      const Real inv = d.bodies.inv_mass[i];
+      if (inv > 0) d.body_extra[i].given_mass = 1 / inv;
+    }
+  }
   if (r.remaining() != 0) r.fail("trailing bytes after the joints");
   return d;
 }
@@ -732,7 +804,10 @@ void forget_api_caches(WorldState& s) {
   s.api.end_events.clear();
   s.api.joint_events.clear();
   s.api.body_ids.clear();
-  ++s.api.mutations;
+  s.api.sensor_begin_events.clear();
+  s.api.sensor_end_events.clear();
+  s.api.hit_events.clear();
+  ++s.api.mutations;  // query caches: everything changed
   s.bodies_placed = false;
   for (uint8_t f : s.bodies.flags) s.bodies_placed |= (f & detail::kPlaced) != 0;
 }
@@ -760,6 +835,13 @@ void commit(WorldState& s, Decoded&& d) {
   s.all_pairs = detail::AllPairs{};
   s.stats = StepStats{};
   s.api.shape_destroyed = std::move(d.shape_destroyed);
+  s.api.shape_defs.clear();
+  s.api.shape_user_data = std::move(d.shape_user_data);
+  s.api.body_extra.assign(s.slot_index.size(), detail::BodyExtra{});
+  for (std::size_t i = 0; i < s.bodies.size(); ++i)
+    s.api.body_extra[s.bodies.slot[i]] = d.body_extra[i];
+  s.api.hit_threshold = d.hit_threshold;
+  s.api.sensor_overlaps = std::move(d.sensor_overlaps);
   forget_api_caches(s);
 }
 
@@ -836,11 +918,13 @@ void read_rollback(ByteReader& r, WorldState& s) {
     const bool cached = read_friction(r, m, c);
     if constexpr (Apply) s.contacts.restore_manifold(k, m, cached ? &c : nullptr);
   }
-  detail::JointStore joints = read_joints(r, s.slot_index);
-  if (r.remaining() != 0) r.fail("trailing bytes after the joints");
+  detail::JointStore joints = read_joints(r, s.slot_index, kSnapshotVersion);
+  std::vector<detail::SensorOverlap> overlaps = read_overlaps(r, b);
+  if (r.remaining() != 0) r.fail("trailing bytes after the sensor overlaps");
   if constexpr (Apply) {
     s.joints = std::move(joints);
     ++s.joints.version;
+    s.api.sensor_overlaps = std::move(overlaps);
   }
 }
 
@@ -866,6 +950,7 @@ std::vector<uint8_t> save_snapshot(const World& world) {
   for (std::size_t k = 0; k < s.shapes.size(); ++k) {
     write_shape(w, s.shapes[k]);
     w.u8(k < s.api.shape_destroyed.size() ? s.api.shape_destroyed[k] : 0);
+    w.u64(detail::shape_user_data(s, uint32_t(k)));
   }
 
   w.u32(uint32_t(s.bodies.size()));
@@ -886,6 +971,8 @@ std::vector<uint8_t> save_snapshot(const World& world) {
     w.real(t.angular_damping);
     w.u32(t.category);
     w.u32(t.mask);
+    w.real(t.gravity_scale);
+    w.u32(t.flags);
   }
   w.u32(uint32_t(s.bodies.trait_table.free_entries().size()));
   for (uint32_t k : s.bodies.trait_table.free_entries()) w.u32(k);
@@ -907,6 +994,14 @@ std::vector<uint8_t> save_snapshot(const World& world) {
     write_friction(w, m, cache);
   });
   write_joints(w, s.joints);
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const detail::BodyExtra e = detail::body_extra(s, s.bodies.slot[i]);
+    w.u64(e.user_data);
+    w.real(e.density);
+    w.real(e.given_mass);
+  }
+  w.real(s.api.hit_threshold);
+  write_overlaps(w, s.api.sensor_overlaps);
   seal(out);
   return out;
 }
@@ -952,6 +1047,7 @@ void save_rollback(const World& world, std::vector<uint8_t>& out) {
     write_friction(w, m, cache);
   });
   write_joints(w, s.joints);
+  write_overlaps(w, s.api.sensor_overlaps);
   seal(out);
 }
 
@@ -963,7 +1059,7 @@ std::vector<uint8_t> save_rollback(const World& world) {
 
 void restore_rollback(World& world, std::span<const uint8_t> bytes) {
   const std::span<const uint8_t> payload =
-      open(bytes, kRollbackMagic, "rollback", "rollback state");
+      open(bytes, kRollbackMagic, "rollback", "rollback state", kSnapshotVersion);
   WorldState& s = detail::state_of(world);
   ByteReader check(payload, "rollback");
   read_rollback<false>(check, s);

@@ -14,8 +14,11 @@
 
 namespace elan {
 
-/// Format version written by save_snapshot and save_rollback; other versions are refused.
-inline constexpr uint32_t kSnapshotVersion = 9;
+/// Format version written by save_snapshot and save_rollback. A snapshot of any version from
+/// kOldestSnapshotVersion on is read (version 9 has no user data, gravity scales, sensor flags or
+/// overlaps: they load as their defaults); a rollback state of another version is refused.
+inline constexpr uint32_t kSnapshotVersion = 10;
+inline constexpr uint32_t kOldestSnapshotVersion = 9;
 
 /// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built
 /// (hull vertices, faces and edges in the principal frame, frames, mass properties), every body
@@ -32,12 +35,14 @@ inline constexpr uint32_t kSnapshotVersion = 9;
 ///       R plane offset, 3R frame position, 4R frame rotation (w x y z), R volume,
 ///       3R unit inertia, 3R local min, 3R local max, R bounding radius, u8 has hull
 ///       [u32 n, n x 3R vertices | u32 n, n x (3R normal, R offset, u32 first, u32 count) faces
-///        | u32 n, n x u32 face vertices | u32 n, n x 2 u32 edges], u8 destroyed
+///        | u32 n, n x u32 face vertices | u32 n, n x 2 u32 edges], u8 destroyed,
+///       u64 user data (version 10)
 ///     | u32 bodies n, then each BodyStore column in declaration order, n values each
 ///     | u32 applied forces, each: u32 body, 3R force, 3R torque (the force and torque applied
 ///       for the next step; the body's `applied` column holds its entry's index)
 ///     | u32 body traits t, each: R friction, R restitution, R linear damping, R angular damping,
-///       u32 category bits, u32 mask bits | u32 free traits, each u32 (the body's `traits`
+///       u32 category bits, u32 mask bits, (version 10) R gravity scale, u32 flags (1: sensor)
+///       | u32 free traits, each u32 (the body's `traits`
 ///       column holds its entry's index; entries no body uses are listed as free)
 ///     | u32 slots m, m x u32 slot index, m x u32 generation | u32 f, f x u32 free slots
 ///     | u32 manifolds, each: u64 key, u32 body a, u32 body b, 3R normal, u8 point count,
@@ -58,8 +63,11 @@ inline constexpr uint32_t kSnapshotVersion = 9;
 ///       3R anchor a and 3R anchor b in the bodies'
 ///       frames, 4R frame a, 4R frame b, R min, max and rest length as resolved, impulses
 ///       (3R point, 3R angular, 3R linear, 3R friction, R axial, spring, motor, lower, upper,
-///       swing), 3R force, 3R torque | u32 joint slots m, m x u32 index, m x u32 generation | u32
-///       f, f x u32 free joint slots
+///       swing), 3R force, 3R torque, (version 10) u64 user data | u32 joint slots m, m x u32
+///       index, m x u32 generation | u32 f, f x u32 free joint slots
+///     | (version 10) per body in index order: u64 user data, R density, R given mass (0: none)
+///       | R hit event threshold | u32 sensor overlaps, each: u32 sensor, u32 visitor (body
+///       indices, sorted)
 ///     | u64 checksum: 64-bit FNV-1a over 8-byte little-endian words of every byte before it
 ///       (the tail zero-padded), so any single changed byte changes it.
 ///
@@ -96,7 +104,8 @@ World load_snapshot(std::span<const uint8_t> bytes);
 /// u8 point count, per point: 3R anchor a, R separation, u32 feature id,
 /// R normal impulse; then 2R tangent impulses, R twist impulse, u8 has poses and, if 1,
 /// 4R orientation a, 4R orientation b, 3R relative position, 3R exact position, 7-byte exact
-/// rotation (as in the snapshot) | joints as in the snapshot | u64 checksum as above.
+/// rotation (as in the snapshot) | joints as in the snapshot | sensor overlaps as in the snapshot
+/// | u64 checksum as above.
 std::vector<uint8_t> save_rollback(const World& world);
 /// As above, into `out` (cleared first), reusing its capacity: no allocation once warm.
 void save_rollback(const World& world, std::vector<uint8_t>& out);
