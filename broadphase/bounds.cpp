@@ -211,4 +211,44 @@ void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real
   fill_bounds(bodies, shapes, dt, margin, out, &kinds);
 }
 
+void shape_bounds(const Shape& shape, const Vec3& position, const Quat& rotation, Vec3& lo,
+                  Vec3& hi) {
+  if (shape.type == ShapeType::Plane) {
+    BoundsColumns one;
+    one.resize(1);
+    plane_bounds(shape, rotation, position, 0, one, 0);
+    lo = Vec3(one.min_x[0], one.min_y[0], one.min_z[0]);
+    hi = Vec3(one.max_x[0], one.max_y[0], one.max_z[0]);
+    return;
+  }
+  Vec3 h = Vec3::Zero(), c = Vec3::Zero();
+  Real sphere_r = 0, cyl_r = 0;
+  switch (shape.type) {
+    case ShapeType::Sphere:
+      sphere_r = shape.radius;
+      break;
+    case ShapeType::Box:
+      h = shape.half_extents;
+      break;
+    case ShapeType::Capsule:
+      h.y() = shape.half_height;
+      sphere_r = shape.radius;
+      break;
+    case ShapeType::Cylinder:
+      h.y() = shape.half_height;
+      cyl_r = shape.radius;
+      break;
+    default:
+      c = Real(0.5) * (shape.local_max + shape.local_min);
+      h = Real(0.5) * (shape.local_max - shape.local_min);
+      break;
+  }
+  const Mat3 r = rotation.toRotationMatrix();
+  const Vec3 centre = position + r * c;
+  Vec3 e = r.cwiseAbs() * h + Vec3::Constant(sphere_r);
+  for (int a = 0; a < 3; ++a) e[a] += cyl_r * std::sqrt(std::max(Real(0), 1 - r(a, 1) * r(a, 1)));
+  lo = centre - e;
+  hi = centre + e;
+}
+
 }  // namespace elan::detail

@@ -51,4 +51,9 @@ struct BodyKindColumns {
 void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
                     BoundsColumns& out, const BodyKindColumns& kinds);
 
+// The exact box (no motion, no margin) of `shape` at principal-frame pose (position, rotation),
+// by the same formula as compute_bounds; planes get their infinite box. For the query tree.
+void shape_bounds(const Shape& shape, const Vec3& position, const Quat& rotation, Vec3& lo,
+                  Vec3& hi);
+
 }  // namespace elan::detail

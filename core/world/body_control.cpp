@@ -55,7 +55,7 @@ void store_pose(WorldState& s, std::size_t i, const Vec3& position, const Quat& 
   s.bodies.set_position(i, position + rotation * shape.frame_position);
   s.bodies.set_orientation(i, (rotation * shape.frame_rotation).normalized());
   detail::wake_index(s, i);
-  ++s.api.mutations;
+  detail::query_tree_update(s, uint32_t(i));
 }
 
 }  // namespace

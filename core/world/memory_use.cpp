@@ -91,7 +91,7 @@ MemoryUse memory_use(const WorldState& w) {
   const ApiState& a = w.api;
   m.api = heap_bytes(a.begin_events) + heap_bytes(a.end_events) + heap_bytes(a.pair_keep) +
           heap_bytes(a.pair_scratch) + heap_bytes(a.shape_destroyed) + heap_bytes(a.body_ids) +
-          bounds_bytes(a.query_bounds);
+          bounds_bytes(w.query.boxes) + w.query.tree.heap_bytes() + heap_bytes(w.query.planes);
   m.scratch = w.scratch.heap_bytes();
   return m;
 }

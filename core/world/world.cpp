@@ -195,7 +195,7 @@ BodyId World::create_body(const BodyDef& def) {
   const uint32_t slot =
       detail::take_slot(s.slot_index, s.slot_generation, s.free_slots, uint32_t(i));
   b.slot[i] = slot;
-  ++s.api.mutations;
+  detail::query_tree_update(s, uint32_t(i));
   return BodyId{slot, s.slot_generation[slot]};
 }
 
@@ -221,10 +221,10 @@ void World::destroy_body(BodyId id) {
   });
   // The sweep-and-prune's kept order is a permutation of 0..n-1 re-sorted every update (a full
   // sort when the count changes), and its output is canonical, so it needs no fix-up.
+  detail::query_tree_remove(s, i);
   s.bodies.swap_remove(i);
   if (i != last) s.slot_index[s.bodies.slot[i]] = i;
   detail::release_slot(s.slot_index, s.slot_generation, s.free_slots, id.slot);
-  ++s.api.mutations;
 }
 
 uint32_t World::step(Real dt) {
