@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Pair finding on a settled pile of boxes, N = 1k..256k, sweep-and-prune vs all-pairs at 1 and 2
-// threads. Each update sees a small motion of every box, so SAP runs its incremental re-sort.
+// Pair finding on a settled pile of boxes, N = 1k..256k, sweep-and-prune vs all-pairs vs the tree
+// at 1 and 2 threads. Each update sees a small motion of every box, so SAP runs its incremental
+// re-sort. "static_world": the same boxes, all static but one in a hundred (a large level with a
+// few movers).
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
 
@@ -102,11 +104,25 @@ const Pile& pile(std::size_t n) {
   return cached;
 }
 
-template <class Method>
+// The pile with every body static but one in a hundred.
+const Pile& static_world(std::size_t n) {
+  static std::size_t cached_n = 0;
+  static Pile cached;
+  if (cached_n != n) {
+    cached = make_pile(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i % 100 != 0) cached.kind[i] = uint8_t(BroadKind::Static);
+    }
+    cached_n = n;
+  }
+  return cached;
+}
+
+template <class Method, bool kStatic = false>
 void run(benchmark::State& state) {
   const std::size_t n = std::size_t(state.range(0));
   const int threads = int(state.range(1));
-  const Pile& p = pile(n);
+  const Pile& p = kStatic ? static_world(n) : pile(n);
   Method method;
   std::vector<uint64_t> pairs;
   tbb::task_arena arena(threads);
@@ -138,6 +154,23 @@ int main(int argc, char** argv) {
           ->UseRealTime();
     }
     if (n > 65536) continue;
+    for (int64_t t : {1, 2}) {
+      benchmark::RegisterBenchmark("tree", run<TreePairs>)
+          ->Args({n, t})
+          ->ArgNames({"n", "threads"})
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+      benchmark::RegisterBenchmark("static_world_sap", run<SweepAndPrune, true>)
+          ->Args({n, t})
+          ->ArgNames({"n", "threads"})
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+      benchmark::RegisterBenchmark("static_world_tree", run<TreePairs, true>)
+          ->Args({n, t})
+          ->ArgNames({"n", "threads"})
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
     for (int64_t t : {1, 2}) {
       benchmark::RegisterBenchmark("all_pairs", run<AllPairs>)
           ->Args({n, t})

@@ -52,9 +52,15 @@ struct BodyKindColumns {
 void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
                     BoundsColumns& out, const BodyKindColumns& kinds);
 
-// The box of one shape at a pose (principal frame to world) by the formula above, with no motion
-// and no margin: the box the broadphase grows and sweeps, as World::bounds and the debug drawer
-// report it. A plane's box is infinite on its unbounded axes.
-Aabb shape_box(const Shape& shape, const Vec3& position, const Quat& orientation);
+// The exact box (no motion, no margin) of `shape` at principal-frame pose (position, rotation),
+// by the same formula as compute_bounds; planes get their infinite box. For the query tree.
+void shape_bounds(const Shape& shape, const Vec3& position, const Quat& rotation, Vec3& lo,
+                  Vec3& hi);
+// The same box as an Aabb: what World::bounds and the debug drawer report.
+inline Aabb shape_box(const Shape& shape, const Vec3& position, const Quat& rotation) {
+  Aabb box;
+  shape_bounds(shape, position, rotation, box.lo, box.hi);
+  return box;
+}
 
 }  // namespace elan::detail

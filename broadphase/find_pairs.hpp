@@ -13,6 +13,7 @@
 
 #include "broadphase/bounds.hpp"
 #include "broadphase/broad_kind.hpp"
+#include "broadphase/dynamic_tree.hpp"
 #include "core/base/body_traits.hpp"
 #include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
@@ -130,6 +131,30 @@ class SweepAndPrune {
   std::vector<double> range_partials_;  // per block: smallest and largest finite sweep key
   KeySortScratch key_sort_, pair_sort_;
   uint32_t skip_incremental_ = 0;  // updates left before the insertion sort is tried again
+};
+
+// A dynamic tree over the boxes (dynamic_tree.hpp), kept from update to update: each body's
+// leaf is the box grown by kFatMargin and is re-inserted only when the body's box leaves it, so
+// a mostly static world costs a containment test per body. Each awake or kinematic body (the only
+// ones that pair: should_pair) then queries the tree with its own box in parallel blocks, and
+// tests the planes and other unbounded boxes, which are kept out of the tree. The candidates are
+// tested on the exact boxes with the shared rule (pair_test.hpp), so the list is the canonical one.
+class TreePairs {
+ public:
+  // m: how far a box may move within its leaf before the leaf is rebuilt. perf: Box2D's 0.1 m;
+  // a pile's bodies move millimetres a step, a falling body a few centimetres.
+  static constexpr Real kFatMargin = Real(0.1);
+  template <class Pairs>
+  void find_pairs(const BroadphaseInput& in, Pairs& out_pairs);
+  std::size_t heap_bytes() const;
+  const DynamicTree& tree() const { return tree_; }
+
+ private:
+  void refit(const BroadphaseInput& in);
+  DynamicTree tree_;
+  std::vector<uint32_t> outside_;  // unbounded boxes (planes), by index
+  std::vector<ScratchVector<uint64_t>> block_pairs_;
+  KeySortScratch pair_sort_;
 };
 
 }  // namespace elan::detail

@@ -39,7 +39,7 @@ const char* const kRunUsage =
     "  --iterations K       solver iterations per substep, 1..64 (default: the scene's, else\n"
     "                       the engine's)\n"
     "  --threads T          worker threads, at most the cores (default: all cores)\n"
-    "  --broadphase B       sap or all-pairs (default sap)\n"
+    "  --broadphase B       sap, all-pairs or tree (default sap)\n"
     "  --trajectory F.csv   write every non-static body's state at step 0, every K-th and the "
     "last\n"
     "  --every K            trajectory interval in steps (default 1)\n"
@@ -54,7 +54,7 @@ const char* const kReplayUsage =
     "usage: elan replay FILE [options]\n"
     "\n"
     "  --threads T          worker threads, at most the cores (default: all cores)\n"
-    "  --broadphase B       sap or all-pairs (default: the recorded one)\n"
+    "  --broadphase B       sap, all-pairs or tree (default: the recorded one)\n"
     "  --perturb BODY:STEP  testing aid: nudge body BODY's x position up by one ulp after STEP\n"
     "                       steps, to check that the divergence is found\n"
     "\n"
@@ -73,7 +73,7 @@ const char* const kDivergeUsage =
     "  --b OPTIONS          settings of world b, e.g. \"--threads 2 --broadphase all-pairs\"\n"
     "\n"
     "OPTIONS (default --threads 1 --broadphase sap, the scene's substeps and iterations):\n"
-    "  --threads T, --broadphase sap|all-pairs, --substeps K, --iterations K,\n"
+    "  --threads T, --broadphase sap|all-pairs|tree, --substeps K, --iterations K,\n"
     "  --perturb BODY:STEP (testing aid: nudge BODY's x position by one ulp after STEP steps)\n"
     "\n"
     "Steps both worlds side by side, compares every body's stored pose, velocities, sleep timer\n"
@@ -120,7 +120,8 @@ double parse_seconds(const std::string& option, const std::string& text) {
 BroadphaseType parse_broadphase(const std::string& option, const std::string& text) {
   if (text == "sap") return BroadphaseType::SweepAndPrune;
   if (text == "all-pairs") return BroadphaseType::AllPairs;
-  throw UsageError(option + ": expected sap or all-pairs, got '" + text + "'");
+  if (text == "tree") return BroadphaseType::Tree;
+  throw UsageError(option + ": expected sap, all-pairs or tree, got '" + text + "'");
 }
 
 Perturbation parse_perturbation(const std::string& option, const std::string& text) {
@@ -300,7 +301,15 @@ DivergeOptions parse_diverge_options(std::span<const std::string> args) {
 }
 
 const char* broadphase_name(BroadphaseType type) {
-  return type == BroadphaseType::AllPairs ? "all-pairs" : "sap";
+  switch (type) {
+    case BroadphaseType::AllPairs:
+      return "all-pairs";
+    case BroadphaseType::Tree:
+      return "tree";
+    case BroadphaseType::SweepAndPrune:
+      break;
+  }
+  return "sap";
 }
 
 int resolve_threads(int threads) {

@@ -157,7 +157,7 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
   r.iterations = int32_t(in.u32("iterations"));
   r.threads = in.u32("threads");
   r.broadphase = in.u32("broadphase");
-  if (!(r.timestep > 0) || !std::isfinite(r.timestep) || r.broadphase > 1) {
+  if (!(r.timestep > 0) || !std::isfinite(r.timestep) || r.broadphase > 2) {
     throw RecordingError(file + ": corrupt recording: invalid settings");
   }
   // The library's own ranges (elan/defs.hpp): a value no world accepts is a corrupt recording,

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // ApiState: what the embedding API keeps beside the step's own data: events, the pair filter,
-// destroyed shapes, and the cached bounds used by scene queries.
+// destroyed shapes. (The scene queries read the query tree: core/world/query_tree.hpp.)
 #pragma once
 
 #include <compare>
@@ -8,7 +8,6 @@
 #include <memory>
 #include <vector>
 
-#include "broadphase/bounds.hpp"
 #include "core/base/grow.hpp"
 #include "elan/defs.hpp"
 #include "elan/events.hpp"
@@ -43,8 +42,6 @@ struct ApiState {
   std::vector<uint64_t> pair_scratch;
   std::vector<uint8_t> shape_destroyed;  // per shape index; shorter than the shape list = live
   std::vector<BodyId> body_ids;          // dense index -> id, rebuilt on request
-  // Query bounds: exact (no margin, no motion) boxes, rebuilt when stale.
-  BoundsColumns query_bounds;
   // Issue 39: the caller's value per shape index; per-slot body extras; sensor overlaps and
   // events; hit events.
   std::vector<uint64_t> shape_user_data;
@@ -63,9 +60,6 @@ struct ApiState {
   std::vector<SensorEndEvent> sensor_end_events;
   std::vector<ContactHitEvent> hit_events;
   Real hit_threshold = 1;  // m/s
-  uint64_t mutations = 0;  // bumped by every API call that changes a pose or the body set
-  uint64_t query_mutations = UINT64_MAX;  // `mutations` and step count the cache was built at
-  uint64_t query_step = UINT64_MAX;
 };
 
 }  // namespace elan::detail

@@ -61,7 +61,7 @@ void store_pose(WorldState& s, std::size_t i, const Vec3& position, const Quat& 
   }
   detail::wake_index(s, i);
   detail::wake_sensor_partners(s, uint32_t(i));
-  ++s.api.mutations;  // query caches: a pose changed
+  detail::query_tree_update(s, uint32_t(i));
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "broadphase/bounds.hpp"
 #include "core/base/range_checks.hpp"
 #include "core/world/events.hpp"
+#include "core/world/query_tree.hpp"
 #include "core/world/sensors.hpp"
 #include "core/world/shape_defs.hpp"
 #include "core/world/world_access.hpp"
@@ -175,7 +176,7 @@ void World::set_sensor(BodyId id, bool sensor) {
   detail::sensor_remove_body(s, i, i);
   s.bodies.set_traits(i, t);
   if (s.bodies.is_dynamic(i)) detail::wake_index(s, i);
-  ++s.api.mutations;  // query caches: what queries see changed
+  detail::query_tree_update(s, uint32_t(i));
 }
 
 void World::set_motion_type(BodyId id, MotionType type) {
@@ -225,7 +226,7 @@ void World::set_motion_type(BodyId id, MotionType type) {
   b.sleep_time[i] = 0;
   // Forces wait for a dynamic body's next step; other bodies take none.
   if (type != MotionType::Dynamic) b.drop_forces_if([i](uint32_t body) { return body == i; });
-  ++s.api.mutations;  // query caches: a motion type changed
+  detail::query_tree_update(s, uint32_t(i));
 }
 
 void World::set_shape(BodyId id, ShapeId shape_id) {
@@ -275,7 +276,7 @@ void World::set_shape(BodyId id, ShapeId shape_id) {
     }
   }
   detail::wake_index(s, i);
-  ++s.api.mutations;  // query caches: a shape changed
+  detail::query_tree_update(s, uint32_t(i));
 }
 
 }  // namespace elan

@@ -91,10 +91,10 @@ MemoryUse memory_use(const WorldState& w) {
   const ApiState& a = w.api;
   m.api = heap_bytes(a.begin_events) + heap_bytes(a.end_events) + heap_bytes(a.pair_keep) +
           heap_bytes(a.pair_scratch) + heap_bytes(a.shape_destroyed) + heap_bytes(a.body_ids) +
-          bounds_bytes(a.query_bounds) + heap_bytes(a.shape_user_data) + heap_bytes(a.shape_defs) +
-          heap_bytes(a.body_extra) + heap_bytes(a.sensor_overlaps) +
-          heap_bytes(a.sensor_begin_events) + heap_bytes(a.sensor_end_events) +
-          heap_bytes(a.hit_events);
+          heap_bytes(a.shape_user_data) + heap_bytes(a.shape_defs) + heap_bytes(a.body_extra) +
+          heap_bytes(a.sensor_overlaps) + heap_bytes(a.sensor_begin_events) +
+          heap_bytes(a.sensor_end_events) + heap_bytes(a.hit_events) + bounds_bytes(w.query.boxes) +
+          w.query.tree.heap_bytes() + heap_bytes(w.query.planes);
   // A derived definition's own arrays (meshes, heightfields: their size again).
   for (const auto& d : a.shape_defs) {
     if (!d) continue;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Scene queries: ray against each shape type in its principal frame (closed forms; hulls by
-// their face planes), and the world-level ray cast and box overlap over cached bounds.
+// The ray kernel of the scene queries: a ray against each shape type in its principal frame
+// (closed forms; hulls by their face planes; meshes, heightfields and compounds by their trees).
 #include "core/world/queries.hpp"
 
 #include <algorithm>
@@ -10,9 +10,6 @@
 #include "core/base/compound.hpp"
 #include "core/base/heightfield.hpp"
 #include "core/base/triangle_mesh.hpp"
-#include "core/world/events.hpp"
-#include "core/world/world_access.hpp"
-#include "elan/world.hpp"
 
 namespace elan::detail {
 
@@ -219,51 +216,6 @@ bool ray_box(const Vec3& o, const Vec3& d, const Vec3& inv_d, const Real* lo, co
   return true;
 }
 
-const BoundsColumns& query_bounds(WorldState& s) {
-  ApiState& api = s.api;
-  if (api.query_mutations != api.mutations || api.query_step != s.step_count ||
-      api.query_bounds.size() != s.bodies.size()) {
-    compute_bounds(s.bodies, s.shapes, 0, 0, api.query_bounds);
-    api.query_mutations = api.mutations;
-    api.query_step = s.step_count;
-  }
-  return api.query_bounds;
-}
-
-Vec3 checked_direction(const Vec3& origin, const Vec3& direction, Real max_distance) {
-  check_arg(origin.allFinite(), "origin", "must be finite");
-  check_arg(direction.allFinite() && direction.norm() > 0, "direction",
-            "must be finite and non-zero");
-  check_arg(!std::isnan(max_distance) && max_distance >= 0, "max_distance", "must be >= 0");
-  return direction.normalized();
-}
-
-// Box2D's query filter rule, then the caller's own test.
-bool passes(const WorldState& s, const QueryFilter& filter, std::size_t i) {
-  const auto& t = s.bodies.traits_of(i);
-  if ((t.category & filter.mask_bits) == 0 || (t.mask & filter.category_bits) == 0) return false;
-  return !filter.accept || filter.accept(body_id_at(s, uint32_t(i)));
-}
-
-// Calls f(index, hit) for every body the ray enters within max_t(), in index order; max_t is
-// re-read per body so the closest-hit search can shrink it.
-template <class MaxT, class F>
-void for_each_ray_hit(WorldState& s, const Vec3& o, const Vec3& d, const QueryFilter& filter,
-                      MaxT&& max_t, F&& f) {
-  const BoundsColumns& b = query_bounds(s);
-  const Vec3 inv_d = d.cwiseInverse();
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    const Real lo[3] = {b.min_x[i], b.min_y[i], b.min_z[i]};
-    const Real hi[3] = {b.max_x[i], b.max_y[i], b.max_z[i]};
-    const Shape& shape = s.shapes[s.bodies.shape[i]];
-    if (shape.type != ShapeType::Plane && !ray_box(o, d, inv_d, lo, hi, max_t())) continue;
-    if (!passes(s, filter, i)) continue;
-    ShapeRayHit hit;
-    const Transform pose{s.bodies.position(i), s.bodies.orientation(i)};
-    if (ray_shape(shape, pose, o, d, max_t(), hit)) f(i, hit);
-  }
-}
-
 }  // namespace
 
 bool ray_shape(const Shape& shape, const Transform& pose, const Vec3& origin, const Vec3& dir,
@@ -279,61 +231,3 @@ bool ray_shape(const Shape& shape, const Transform& pose, const Vec3& origin, co
 }
 
 }  // namespace elan::detail
-
-namespace elan {
-
-std::optional<RayHit> World::cast_ray(const Vec3& origin, const Vec3& direction, Real max_distance,
-                                      const QueryFilter& filter) const {
-  const Vec3 d = detail::checked_direction(origin, direction, max_distance);
-  detail::WorldState& s = *state_;
-  std::optional<RayHit> best;
-  Real best_t = max_distance;
-  // Strictly closer replaces: among equal distances the lower index, visited first, stays.
-  detail::for_each_ray_hit(
-      s, origin, d, filter, [&] { return best_t; },
-      [&](std::size_t i, const detail::ShapeRayHit& h) {
-        if (best && !(h.distance < best_t)) return;
-        best_t = h.distance;
-        best = RayHit{detail::body_id_at(s, uint32_t(i)), h.distance, origin + h.distance * d,
-                      h.normal};
-      });
-  return best;
-}
-
-void World::cast_ray_all(const Vec3& origin, const Vec3& direction, Real max_distance,
-                         std::vector<RayHit>& out, const QueryFilter& filter) const {
-  const Vec3 d = detail::checked_direction(origin, direction, max_distance);
-  detail::WorldState& s = *state_;
-  out.clear();
-  std::vector<std::pair<Real, uint32_t>> order;
-  std::vector<RayHit> hits;
-  detail::for_each_ray_hit(
-      s, origin, d, filter, [&] { return max_distance; },
-      [&](std::size_t i, const detail::ShapeRayHit& h) {
-        order.emplace_back(h.distance, uint32_t(hits.size()));
-        hits.push_back(RayHit{detail::body_id_at(s, uint32_t(i)), h.distance,
-                              origin + h.distance * d, h.normal});
-      });
-  // Hits were found in index order, so (distance, position) is (distance, index).
-  std::sort(order.begin(), order.end());
-  out.reserve(hits.size());
-  for (const auto& [t, k] : order) out.push_back(hits[k]);
-}
-
-void World::overlap_box(const Vec3& lo, const Vec3& hi, std::vector<BodyId>& out,
-                        const QueryFilter& filter) const {
-  detail::check_arg(lo.allFinite() && hi.allFinite() && (lo.array() <= hi.array()).all(), "box",
-                    "corners must be finite with lo <= hi");
-  detail::WorldState& s = *state_;
-  const detail::BoundsColumns& b = detail::query_bounds(s);
-  out.clear();
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    if (b.min_x[i] <= hi.x() && lo.x() <= b.max_x[i] && b.min_y[i] <= hi.y() &&
-        lo.y() <= b.max_y[i] && b.min_z[i] <= hi.z() && lo.z() <= b.max_z[i] &&
-        detail::passes(s, filter, i)) {
-      out.push_back(detail::body_id_at(s, uint32_t(i)));
-    }
-  }
-}
-
-}  // namespace elan

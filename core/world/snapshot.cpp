@@ -694,7 +694,7 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
   d.def.allow_sleep = r.u8() != 0;
   d.def.threads = int32_t(r.u32());
   const uint8_t broadphase = r.u8();
-  if (broadphase > uint8_t(BroadphaseType::AllPairs)) r.fail("unknown broadphase");
+  if (broadphase > uint8_t(BroadphaseType::Tree)) r.fail("unknown broadphase");
   d.def.broadphase = BroadphaseType(broadphase);
   check_def(r, d.def);
   d.step_count = r.u64();
@@ -796,9 +796,8 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
   return d;
 }
 
-// The last step's events belong to the timeline left behind; the query cache is keyed on the
-// mutation count and step count, and the restored step count may equal the cached one. The
-// pair filter is the caller's code, not state: the world keeps its own.
+// The last step's events belong to the timeline left behind; the query tree is rebuilt for the
+// restored bodies. The pair filter is the caller's code, not state: the world keeps its own.
 void forget_api_caches(WorldState& s) {
   s.api.begin_events.clear();
   s.api.end_events.clear();
@@ -807,9 +806,9 @@ void forget_api_caches(WorldState& s) {
   s.api.sensor_begin_events.clear();
   s.api.sensor_end_events.clear();
   s.api.hit_events.clear();
-  ++s.api.mutations;  // query caches: everything changed
   s.bodies_placed = false;
   for (uint8_t f : s.bodies.flags) s.bodies_placed |= (f & detail::kPlaced) != 0;
+  detail::query_tree_rebuild(s);
 }
 
 // Replaces the world's state with `d`. Scratch of the step (bounds, pairs, the sweep's kept

@@ -49,6 +49,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   take_from_back(w.pairs, w.scratch);
   if (w.def.broadphase == BroadphaseType::AllPairs) {
     w.all_pairs.find_pairs(input, w.pairs);
+  } else if (w.def.broadphase == BroadphaseType::Tree) {
+    w.tree_pairs.find_pairs(input, w.pairs);
   } else {
     w.sap.find_pairs(input, w.pairs, w.scratch);
   }
@@ -116,6 +118,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   if (!w.broken_joints.empty()) remove_broken_joints(w);
   update_sensors(w);
+  query_tree_after_step(w);
   const auto t7 = clock::now();
 
   stats.manifolds = w.contacts.size();

@@ -206,7 +206,7 @@ BodyId World::create_body(const BodyDef& def) {
   extra.user_data = def.user_data;
   extra.density = def.density;
   extra.given_mass = def.mass ? *def.mass : 0;
-  ++s.api.mutations;  // query caches: a body joined
+  detail::query_tree_update(s, uint32_t(i));
   return BodyId{slot, s.slot_generation[slot]};
 }
 
@@ -234,10 +234,10 @@ void World::destroy_body(BodyId id) {
   detail::sensor_remove_body(s, i, last);
   // The sweep-and-prune's kept order is a permutation of 0..n-1 re-sorted every update (a full
   // sort when the count changes), and its output is canonical, so it needs no fix-up.
+  detail::query_tree_remove(s, i);
   s.bodies.swap_remove(i);
   if (i != last) s.slot_index[s.bodies.slot[i]] = i;
   detail::release_slot(s.slot_index, s.slot_generation, s.free_slots, id.slot);
-  ++s.api.mutations;  // query caches: a body left
 }
 
 uint32_t World::step(Real dt) {

@@ -15,6 +15,7 @@
 #include "core/base/shape.hpp"
 #include "core/base/step_scratch.hpp"
 #include "core/world/api_state.hpp"
+#include "core/world/query_tree.hpp"
 #include "elan/defs.hpp"
 #include "elan/profile.hpp"
 #include "narrowphase/collide.hpp"
@@ -55,6 +56,7 @@ struct WorldState {
   std::vector<uint8_t> idle;  // static or asleep: contacts carried (collide_pairs)
   AllPairs all_pairs;
   SweepAndPrune sap;
+  TreePairs tree_pairs;
   // This step's pairs, sorted: the scratch's from the broadphase to the end of the collide stage,
   // which leaves the continuous stage its candidates in the separation list. memory: no pair list
   // is kept between steps.
@@ -78,6 +80,8 @@ struct WorldState {
 
   SolverState solver;
   ApiState api;
+  // Every body's box for the scene queries, kept in step by the step's last stage and the API.
+  QueryTree query;
   StepStats stats;
   uint32_t reported_status = 0;  // flags already reported once
   uint64_t step_count = 0;

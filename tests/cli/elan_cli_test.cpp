@@ -297,6 +297,10 @@ TEST(Cli, StateHashIndependentOfThreadsAndBroadphase) {
   const Json two = Json::parse(
       run_elan({"run", scene, "--steps", "30", "--threads", "2", "--broadphase", "all-pairs"}).out);
   EXPECT_EQ(one["state_hash"], two["state_hash"]);
+  const Json tree = Json::parse(
+      run_elan({"run", scene, "--steps", "30", "--threads", "2", "--broadphase", "tree"}).out);
+  EXPECT_EQ(one["state_hash"], tree["state_hash"]);
+  EXPECT_EQ(tree["broadphase"], "tree");
 }
 
 TEST(Cli, TrajectoryHasHeaderAndOneRowPerMovingBodyPerSample) {

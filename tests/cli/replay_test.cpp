@@ -80,8 +80,10 @@ class Replay : public ::testing::Test {
 };
 
 TEST_F(Replay, MatchesWithAnyThreadsAndBroadphase) {
-  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
-           {"--threads", "1"}, {"--threads", "2", "--broadphase", "all-pairs"}}) {
+  for (const std::vector<std::string>& extra :
+       std::vector<std::vector<std::string>>{{"--threads", "1"},
+                                             {"--threads", "2", "--broadphase", "all-pairs"},
+                                             {"--threads", "2", "--broadphase", "tree"}}) {
     const Json j = replay(extra, 0);
     EXPECT_EQ(j["match"], true);
     EXPECT_EQ(j["keyframes"], 3);  // steps 0, 5, 10

@@ -92,6 +92,7 @@ TEST(WorldApi, MutationsAreDeterministicAcrossThreadsAndBroadphases) {
   const std::vector<uint64_t> base = run_mutating(1, BroadphaseType::SweepAndPrune);
   EXPECT_EQ(run_mutating(2, BroadphaseType::SweepAndPrune), base);
   EXPECT_EQ(run_mutating(2, BroadphaseType::AllPairs), base);
+  EXPECT_EQ(run_mutating(2, BroadphaseType::Tree), base);
   EXPECT_EQ(run_mutating(1, BroadphaseType::SweepAndPrune), base);  // twice in one process
 }
 

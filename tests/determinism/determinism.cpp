@@ -38,12 +38,15 @@ int first_difference(const std::vector<uint64_t>& a, const std::vector<uint64_t>
 
 TEST(Determinism, HashEqualEveryStepForAnyThreadCountAndBroadphase) {
   const std::vector<uint64_t> reference = hashes("pile1k.json", 1, BroadphaseType::SweepAndPrune);
-  for (const BroadphaseType bp : {BroadphaseType::SweepAndPrune, BroadphaseType::AllPairs}) {
+  for (const BroadphaseType bp :
+       {BroadphaseType::SweepAndPrune, BroadphaseType::AllPairs, BroadphaseType::Tree}) {
     for (int threads = 1; threads <= 4; ++threads) {
       if (threads == 1 && bp == BroadphaseType::SweepAndPrune) continue;
       EXPECT_EQ(first_difference(reference, hashes("pile1k.json", threads, bp)), 0)
           << "first differing step with " << threads << " threads, "
-          << (bp == BroadphaseType::AllPairs ? "all-pairs" : "sap");
+          << (bp == BroadphaseType::AllPairs ? "all-pairs"
+              : bp == BroadphaseType::Tree   ? "tree"
+                                             : "sap");
     }
   }
 }

@@ -101,6 +101,7 @@ TEST(GeometryDeterminism, HashEqualEveryStepForOneAndTwoThreadsAndBothBroadphase
   const std::vector<uint64_t> reference = hashes(1, BroadphaseType::SweepAndPrune);
   EXPECT_EQ(reference, hashes(2, BroadphaseType::SweepAndPrune));
   EXPECT_EQ(reference, hashes(2, BroadphaseType::AllPairs));
+  EXPECT_EQ(reference, hashes(2, BroadphaseType::Tree));
   EXPECT_EQ(reference, hashes(1, BroadphaseType::SweepAndPrune)) << "rerun in process";
 }
 

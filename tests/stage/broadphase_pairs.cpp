@@ -166,8 +166,12 @@ std::size_t expect_all_methods_match(const BoxSet& s, const std::string& what) {
   for (int threads : {1, 2}) {
     SweepAndPrune sap;
     AllPairs all;
+    TreePairs tree;
     const auto sap_pairs = run_in_arena(threads, [&](auto& out) { sap.find_pairs(in, out); });
     const auto all_pairs = run_in_arena(threads, [&](auto& out) { all.find_pairs(in, out); });
+    const auto tree_pairs = run_in_arena(threads, [&](auto& out) { tree.find_pairs(in, out); });
+    EXPECT_TRUE(tree_pairs == oracle) << what << ", tree, threads " << threads << ": "
+                                      << tree_pairs.size() << " vs " << oracle.size() << " pairs";
     EXPECT_TRUE(sap_pairs == oracle) << what << ", SAP, threads " << threads << ": "
                                      << sap_pairs.size() << " vs " << oracle.size() << " pairs";
     EXPECT_TRUE(all_pairs == oracle) << what << ", all-pairs, threads " << threads << ": "
@@ -254,6 +258,7 @@ TEST(SweepAndPrune, MatchesBruteForceEveryUpdateOfMovingScene) {
 
   SweepAndPrune sap1, sap2;
   AllPairs all;
+  TreePairs tree1, tree2;
   std::vector<uint64_t> oracle, got;
   Vec3 stretch = Vec3::Ones();
   for (int update = 0; update < 80; ++update) {
@@ -297,6 +302,12 @@ TEST(SweepAndPrune, MatchesBruteForceEveryUpdateOfMovingScene) {
     ASSERT_TRUE(got == oracle) << "SAP 2 threads, update " << update;
     got = run_in_arena(2, [&](auto& out) { all.find_pairs(in, out); });
     ASSERT_TRUE(got == oracle) << "all-pairs 2 threads, update " << update;
+    // The trees keep their leaves from update to update: refits, re-inserts, count changes.
+    got = run_in_arena(1, [&](auto& out) { tree1.find_pairs(in, out); });
+    ASSERT_TRUE(got == oracle) << "tree 1 thread, update " << update;
+    got = run_in_arena(2, [&](auto& out) { tree2.find_pairs(in, out); });
+    ASSERT_TRUE(got == oracle) << "tree 2 threads, update " << update;
+    ASSERT_TRUE(tree1.tree().valid()) << "update " << update;
   }
 }
 

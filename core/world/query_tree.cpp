@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+// Upkeep of the query tree: per-body refits between steps, the end-of-step pass, rebuilds.
+#include "core/world/query_tree.hpp"
+
+#include <algorithm>
+
+#include "core/base/parallel.hpp"
+#include "core/world/world_state.hpp"
+
+namespace elan::detail {
+
+namespace {
+
+constexpr std::size_t kQueryGrain = 256;
+
+void drop_plane(std::vector<uint32_t>& planes, uint32_t index) {
+  const auto it = std::lower_bound(planes.begin(), planes.end(), index);
+  if (it != planes.end() && *it == index) planes.erase(it);
+}
+
+// Files body i by its exact box: a plane to the plane list, a finite box to the tree, a
+// non-finite one (a quarantined body) nowhere.
+void place(QueryTree& q, uint32_t i, bool plane, const Vec3& lo, const Vec3& hi) {
+  if (plane) {
+    q.tree.remove(i);
+    const auto it = std::lower_bound(q.planes.begin(), q.planes.end(), i);
+    if (it == q.planes.end() || *it != i) q.planes.insert(it, i);
+    return;
+  }
+  if (!lo.allFinite() || !hi.allFinite()) {
+    q.tree.remove(i);
+    return;
+  }
+  q.tree.update(i, {lo, hi}, kQueryFatMargin);
+}
+
+}  // namespace
+
+void query_tree_update(WorldState& s, uint32_t index) {
+  QueryTree& q = s.query;
+  if (q.tree.item_count() < s.bodies.size()) q.tree.resize_items(s.bodies.size());
+  const Shape& shape = s.shapes[s.bodies.shape[index]];
+  Vec3 lo, hi;
+  shape_bounds(shape, s.bodies.position(index), s.bodies.orientation(index), lo, hi);
+  if (shape.type != ShapeType::Plane) drop_plane(q.planes, index);
+  place(q, index, shape.type == ShapeType::Plane, lo, hi);
+}
+
+void query_tree_remove(WorldState& s, uint32_t index) {
+  QueryTree& q = s.query;
+  const uint32_t last = uint32_t(s.bodies.size() - 1);
+  q.tree.remove(index);
+  drop_plane(q.planes, index);
+  if (index != last) {
+    q.tree.rename(last, index);
+    const auto it = std::lower_bound(q.planes.begin(), q.planes.end(), last);
+    if (it != q.planes.end() && *it == last) {
+      q.planes.erase(it);
+      q.planes.insert(std::lower_bound(q.planes.begin(), q.planes.end(), index), index);
+    }
+  }
+  q.tree.resize_items(last);
+}
+
+void query_tree_rebuild(WorldState& s) {
+  QueryTree& q = s.query;
+  q.tree.clear();
+  q.planes.clear();
+  const uint32_t n = uint32_t(s.bodies.size());
+  q.tree.resize_items(n);
+  for (uint32_t i = 0; i < n; ++i) query_tree_update(s, i);
+}
+
+void query_tree_after_step(WorldState& s) {
+  QueryTree& q = s.query;
+  const BodyStore& b = s.bodies;
+  const std::size_t n = b.size();
+  if (q.tree.item_count() != n) {
+    query_tree_rebuild(s);
+    return;
+  }
+  // What the step may have moved: static bodies move only through the API (which refits them),
+  // and a sleeping body keeps its pose; a body frozen this step left its pose non-finite.
+  const auto moved = [&](std::size_t i) {
+    return MotionType(b.motion[i]) != MotionType::Static && (b.flags[i] & (kAwake | kFrozen));
+  };
+  q.boxes.resize(n);
+  // determinism: fixed blocks, each body writes its own slots (rules 1, 2); the tree is then
+  // refitted serially in index order, so its shape is the same for any thread count.
+  for_blocks(n, kQueryGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (!moved(i)) continue;
+      Vec3 lo, hi;
+      shape_bounds(s.shapes[b.shape[i]], b.position(i), b.orientation(i), lo, hi);
+      q.boxes.min_x[i] = lo.x();
+      q.boxes.min_y[i] = lo.y();
+      q.boxes.min_z[i] = lo.z();
+      q.boxes.max_x[i] = hi.x();
+      q.boxes.max_y[i] = hi.y();
+      q.boxes.max_z[i] = hi.z();
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!moved(i)) continue;
+    const Vec3 lo(q.boxes.min_x[i], q.boxes.min_y[i], q.boxes.min_z[i]);
+    const Vec3 hi(q.boxes.max_x[i], q.boxes.max_y[i], q.boxes.max_z[i]);
+    place(q, uint32_t(i), false, lo, hi);
+  }
+}
+
+}  // namespace elan::detail

@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: MIT
+// The dynamic tree: through random inserts, moves, removals and renames it stays a valid,
+// balanced tree, and its box and ray queries find exactly what testing every item finds.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "broadphase/dynamic_tree.hpp"
+
+namespace elan::detail {
+namespace broadphase_dynamic_tree_test {
+
+Real uniform(std::mt19937& rng, Real lo, Real hi) {
+  return std::uniform_real_distribution<Real>(lo, hi)(rng);
+}
+
+TreeBox random_box(std::mt19937& rng) {
+  const Vec3 c(uniform(rng, -20, 20), uniform(rng, -20, 20), uniform(rng, -20, 20));
+  const Vec3 h(uniform(rng, 0.1f, 1.5f), uniform(rng, 0.1f, 1.5f), uniform(rng, 0.1f, 1.5f));
+  return {c - h, c + h};
+}
+
+TEST(DynamicTree, StaysValidAndQueriesMatchTestingEveryItem) {
+  std::mt19937 rng(11);
+  DynamicTree tree;
+  const uint32_t n = 2000;
+  tree.resize_items(n);
+  std::vector<TreeBox> boxes(n);
+  std::vector<bool> in(n, false);
+  for (uint32_t i = 0; i < n; ++i) {
+    boxes[i] = random_box(rng);
+    tree.update(i, boxes[i], Real(0.1));
+    in[i] = true;
+  }
+  ASSERT_TRUE(tree.valid());
+  // The rotations keep the tree near balanced: within twice the height of a perfect tree.
+  EXPECT_LE(tree.height(), 2 * int(std::ceil(std::log2(double(n)))));
+  for (int round = 0; round < 20; ++round) {
+    for (int k = 0; k < 300; ++k) {
+      const uint32_t i = rng() % n;
+      const int op = int(rng() % 4);
+      if (op == 0) {
+        tree.remove(i);
+        in[i] = false;
+      } else if (op == 1) {
+        boxes[i].lo += Vec3::Constant(uniform(rng, -0.2f, 0.2f));
+        boxes[i].hi = boxes[i].lo + Vec3::Constant(1);
+        tree.update(i, boxes[i], Real(0.1));
+        in[i] = true;
+      } else {
+        boxes[i] = random_box(rng);
+        tree.update(i, boxes[i], Real(0.1));
+        in[i] = true;
+      }
+    }
+    ASSERT_TRUE(tree.valid()) << "round " << round;
+    for (uint32_t i = 0; i < n; ++i) {
+      ASSERT_EQ(tree.contains(i), bool(in[i]));
+      if (in[i]) {
+        ASSERT_TRUE(tree.fat_box(i).contains(boxes[i]));
+      }
+    }
+    // Box queries: every item whose fat leaf overlaps, and at least every item whose own box does.
+    for (int q = 0; q < 20; ++q) {
+      const TreeBox probe = random_box(rng);
+      std::vector<uint32_t> got, want;
+      tree.query(probe, [&](uint32_t i) {
+        got.push_back(i);
+        return true;
+      });
+      for (uint32_t i = 0; i < n; ++i) {
+        if (in[i] && tree.fat_box(i).overlaps(probe)) want.push_back(i);
+      }
+      std::sort(got.begin(), got.end());
+      ASSERT_EQ(got, want);
+    }
+    // Rays: the leaves entered within the limit, each found once.
+    for (int q = 0; q < 20; ++q) {
+      const Vec3 o(uniform(rng, -25, 25), uniform(rng, -25, 25), uniform(rng, -25, 25));
+      Vec3 d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+      if (q % 5 == 0) d.y() = 0;  // parallel to a slab
+      d.normalize();
+      std::vector<uint32_t> got, want;
+      tree.ray(o, d, 30, [&](uint32_t i, Real limit) {
+        got.push_back(i);
+        return limit;
+      });
+      for (uint32_t i = 0; i < n; ++i) {
+        Real t;
+        if (in[i] && DynamicTree::enters(tree.fat_box(i), o, d.cwiseInverse(), 30, t)) {
+          want.push_back(i);
+        }
+      }
+      std::sort(got.begin(), got.end());
+      ASSERT_EQ(got, want);
+    }
+  }
+  // Rename: the world's swap-remove.
+  tree.remove(5);
+  tree.rename(n - 1, 5);
+  tree.resize_items(n - 1);
+  EXPECT_TRUE(tree.valid());
+}
+
+}  // namespace broadphase_dynamic_tree_test
+}  // namespace elan::detail
