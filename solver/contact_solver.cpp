@@ -289,13 +289,28 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     // Face contacts only (three points or more): the resting support of a stack or a load. The
     // contacts of round shapes roll and spin, and their rows are left to the passes.
     const auto face = point_count > splat(Real(2));
+    Wide warm = zero;
+    auto resting = point_count > zero;
     for (int k = 0; k < points; ++k) {
       const WideNormalRow& p = row_of(c, rows, k);
       // or already pressed in that deep (a tower placed at rest sinks while Gauss-Seidel
       // carries the load up from the bottom, before its rows carry it).
       loaded = loaded | (give * p.normal_impulse > limit * p.normal_mass) |
                ((p.separation < splat(-kDirectDepth)) & (p.normal_mass > zero));
+      warm = warm + p.normal_impulse;
+      resting = resting & (bounce.relative_velocity[k] > splat(-kDirectRestSpeed));
     }
+    // or placed: a face of a body the API has just placed (kPlaced), met slowly, is a support
+    // about to take its load with nothing to warm start from. Gauss-Seidel would carry a tower's
+    // weight up from the ground over many steps, and the tower sink meanwhile by the soft give of
+    // every contact under the load it reaches; so it is taken on its first step. Only then: a
+    // pile's new contacts come from bodies landing, whose rows the passes settle well.
+    auto placed = give < zero;  // all false
+    for (int l = 0; l < lane_count; ++l) {
+      const ManifoldHead& m = manifolds[lanes[l]];
+      if ((bodies.flags[m.body_a] | bodies.flags[m.body_b]) & kPlaced) placed[l] = ~placed[l];
+    }
+    loaded = loaded | ((warm == zero) & resting & placed);
     loaded = loaded & face;
     uint32_t bits = 0;
     for (int l = 0; l < lane_count; ++l) bits |= loaded[l] ? 1u << l : 0u;

@@ -213,6 +213,13 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
       }
     }
   }
+  // Reserved every step, as the contact store grows, not on the first step with a system: a
+  // new face contact may bring a pile's first system on any step (prepare_bundle).
+  reserve_for(ds.items, 2 * item_bound);
+  reserve_for(ds.systems, item_bound);
+  reserve_for(ds.rows, (3 + kMaxManifoldPoints) * ctx.lane_manifolds.size() + 3 * joints.size());
+  reserve_for(ds.packets, ctx.bodies.size());
+  reserve_for(ds.active, std::max<std::size_t>(item_bound, kDirectMaxRows));
   if (ds.item_source.empty()) return false;
   auto packets_of = [&](uint64_t item, uint32_t& a, uint32_t& b) {
     if (item >> 32) {
@@ -227,11 +234,6 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     if (!written_packet(a, written_end)) a = 0;
     if (!written_packet(b, written_end)) b = 0;
   };
-  reserve_for(ds.items, 2 * item_bound);
-  reserve_for(ds.systems, item_bound);
-  reserve_for(ds.rows, (3 + kMaxManifoldPoints) * ctx.lane_manifolds.size() + 3 * joints.size());
-  reserve_for(ds.packets, ctx.bodies.size());
-  reserve_for(ds.active, std::max<std::size_t>(item_bound, kDirectMaxRows));
   // Systems: the loaded rows linked through their written bodies (union-find over packets).
   if (ds.parent.size() < ctx.bodies.size()) {
     reserve_for(ds.parent, ctx.bodies.size());
@@ -472,12 +474,14 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
       ds.lambda[i] = lambda;
       ds.delta[i] = 0;
       // The first set: every row but the normal rows that neither push nor are being closed,
-      // which are held at zero.
+      // which are held at zero. Rows closing at no speed join: a column placed at rest falls as
+      // one under gravity, so its upper rows close only once the rows below them push, which the
+      // set would otherwise find one round each.
       ds.in_set[i] = 1;
       ds.fixed[i] = 0;
       if (r.kind == kDirectNormal) {
         const double closing = ds.target[i] - row_velocity(ds, r, i, ds.velocity.data());
-        ds.in_set[i] = uint8_t(lambda > 0 || closing > 0);
+        ds.in_set[i] = uint8_t(lambda > 0 || closing > -kVelocityTolerance);
       }
     }
     // The biased targets of a manifold of three or more points, fitted by one plane: -beta s_k
@@ -529,7 +533,8 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
       for (uint32_t i = 0; i < n; ++i) {
         if (rows[i].kind != kDirectNormal) continue;
         ds.in_set[i] = uint8_t(ds.lambda[i] > 0 ||
-                               ds.target[i] - row_velocity(ds, rows[i], i, ds.velocity.data()) > 0);
+                               ds.target[i] - row_velocity(ds, rows[i], i, ds.velocity.data()) >
+                                   -kVelocityTolerance);
       }
     }
     // Adds each row's impulse change from its current impulse to `v` (6 a slot): the active

@@ -59,6 +59,10 @@ inline constexpr Real kDirectGive = Real(0.0005);  // m
 inline constexpr Real kDirectJointGive = Real(0.001);  // m
 // Rows pressed in deeper than this are solved directly too (prepare_bundle).
 inline constexpr Real kDirectDepth = Real(0.0001);  // m
+// A face contact of a body just placed (kPlaced), with no warm impulse, is solved directly if its
+// bodies approach slower than this (prepare_bundle): a resting support, not an impact; about a
+// step of gravity at 60 Hz and half the restitution threshold.
+inline constexpr Real kDirectRestSpeed = Real(0.5);  // m/s
 // Systems with more rows are left to Gauss-Seidel: the envelope of a large pile is dense, and
 // its factor would cost more than the passes it replaces.
 inline constexpr uint32_t kDirectMaxRows = 640;

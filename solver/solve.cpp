@@ -79,6 +79,11 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
   // pass. The halves integrate their own packets in the stage before the pass that needs it.
   std::vector<StageSpec>& stages = st.stages;
   stages.clear();
+  // The most stages a step can have (every pass cut, kinematic packets, a direct system), so
+  // that a step bringing the first of these allocates nothing: per substep two kinematic
+  // stages, the warm-start, solve and relax passes of two stages each, and two direct stages;
+  // then the restitution pass.
+  stages.reserve(std::size_t(settings.substeps) * (2 + 2 * (settings.iterations + 2) + 2) + 2);
   const bool cut = st.bundle_start[kSegments] > st.bundle_start[kCutGroup * kSegmentsPerGroup] ||
                    st.joint_group_start[kGroups] > st.joint_group_start[kCutGroup];
   const uint32_t packet_count = uint32_t(st.packets.size());
@@ -198,6 +203,7 @@ uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
       bodies.set_orientation(i, q);
       bodies.set_linear_velocity(i, b.v);
       bodies.set_angular_velocity(i, b.w);
+      bodies.flags[i] &= uint8_t(~kPlaced);
     }
   });
   // The forces applied for this step are spent on the bodies it moved (a quarantined one's too).

@@ -16,6 +16,10 @@ namespace elan::detail {
 enum BodyFlags : uint8_t {
   kAwake = 1u << 0,   // dynamic body being simulated (static/kinematic: unused)
   kFrozen = 1u << 1,  // went non-finite and was quarantined
+  // Dynamic, placed by the API (created or teleported) and not simulated since: its face contacts
+  // have nothing to warm start, so the direct solve takes its supports on that first step
+  // (prepare_bundle). Cleared when a step moves the body (finalize_bodies).
+  kPlaced = 1u << 2,
 };
 
 // A force and torque applied to one body for the next step. Few bodies have one at a time (a game

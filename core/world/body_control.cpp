@@ -54,6 +54,7 @@ void store_pose(WorldState& s, std::size_t i, const Vec3& position, const Quat& 
   const detail::Shape& shape = s.shapes[s.bodies.shape[i]];
   s.bodies.set_position(i, position + rotation * shape.frame_position);
   s.bodies.set_orientation(i, (rotation * shape.frame_rotation).normalized());
+  if (s.bodies.is_dynamic(i)) s.bodies.flags[i] |= detail::kPlaced;
   detail::wake_index(s, i);
   ++s.api.mutations;
 }

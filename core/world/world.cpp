@@ -191,6 +191,7 @@ BodyId World::create_body(const BodyDef& def) {
       (def.motion == MotionType::Static || (def.motion == MotionType::Dynamic && !def.awake))
           ? 0
           : detail::kAwake;
+  if (def.motion == MotionType::Dynamic) b.flags[i] |= detail::kPlaced;
 
   const uint32_t slot =
       detail::take_slot(s.slot_index, s.slot_generation, s.free_slots, uint32_t(i));
