@@ -112,7 +112,7 @@ PairFn pick(const Shape& a, const Shape& b) {
   if (ta == ShapeType::Capsule && tb == ShapeType::Capsule) return collide_capsule_capsule;
   if (ta == ShapeType::Capsule && is_sat_polyhedron(b)) return collide_capsule_poly;
   if (tb == ShapeType::Capsule && is_sat_polyhedron(a)) return nullptr;
-  if (is_sat_polyhedron(a) && is_sat_polyhedron(b)) return collide_sat;
+  if (sat_is_affordable(a, b)) return collide_sat;
   return collide_general;
 }
 
@@ -153,7 +153,7 @@ bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transfo
 bool edge_pair_separates(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                          int edge_a, int edge_b, Real speculative_distance,
                          PolyhedronCache& cache) {
-  if (!is_sat_polyhedron(a) || !is_sat_polyhedron(b)) return false;
+  if (!sat_is_affordable(a, b)) return false;
   // The polyhedra as collide_sat_cached places them, so the gap has the SAT's bits.
   const Polyhedron& pa = polyhedron_of_a(a, xa, cache);
   Polyhedron pb;

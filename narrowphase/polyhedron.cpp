@@ -82,6 +82,15 @@ bool is_sat_polyhedron(const Shape& shape) {
          h.face_vertices.size() <= kMaxPolyLoop && h.edges.size() <= kMaxPolyEdges;
 }
 
+bool sat_is_affordable(const Shape& a, const Shape& b) {
+  if (!is_sat_polyhedron(a) || !is_sat_polyhedron(b)) return false;
+  // A box has 12 edges (the edge query of two boxes takes nine axes, but counting 144 is safe).
+  auto edges = [](const Shape& s) -> std::size_t {
+    return s.type == ShapeType::Box ? 12 : s.hull->edges.size();
+  };
+  return edges(a) * edges(b) <= kMaxSatEdgePairs;
+}
+
 void make_polyhedron(const Shape& shape, const Quat& rotation, const Vec3& centre,
                      Polyhedron& out) {
   const Mat3 r = rotation.toRotationMatrix();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "core/base/shape.hpp"
@@ -54,6 +55,18 @@ bool foot_on_face(const Vertices& vertices, const uint32_t* loop, uint32_t count
 
 // True when `shape` is a box or a hull that fits the buffers above.
 bool is_sat_polyhedron(const Shape& shape);
+
+// The SAT's edge query visits every pair of edges (E_a x E_b, each through the Gauss-map test,
+// Gregorius GDC 2013), so its cost grows with the product; GJK/EPA's with the vertices visited
+// by the support search, far fewer. Above this many edge pairs a polyhedron pair goes to
+// GJK/EPA: 40,000 keeps two hulls of 64 vertices (about 186 edges each) and any box against any
+// hull on the SAT, whose face clipping gives the better manifold, and sends two hulls of 200
+// vertices (594 edges each, 353,000 pairs, about 20 times the GJK/EPA time) to GJK/EPA.
+inline constexpr std::size_t kMaxSatEdgePairs = 40000;
+
+// True when a and b both pass is_sat_polyhedron and their edge query is within
+// kMaxSatEdgePairs.
+bool sat_is_affordable(const Shape& a, const Shape& b);
 
 // Fills `out` with the shape (box or hull) at rotation `rotation`, centre of mass at `centre`.
 void make_polyhedron(const Shape& shape, const Quat& rotation, const Vec3& centre, Polyhedron& out);

@@ -63,6 +63,12 @@ void prepare_contacts(const BodyStore& bodies, std::span<const ManifoldHead> con
   };
   // determinism: group g writes only its own bundles and their rows (and loaded lanes).
   grow_to(st.direct.loaded_lanes, st.bundles.size());
+  // The push-out share's caps, only while some body has more than one deep manifold.
+  if (st.most_deep > kPushShare) {
+    grow_to(st.push_cap, st.bundles.size());
+  } else {
+    st.push_cap.clear();
+  }
   std::vector<StageSpec>& stages = st.stages;
   stages.assign({{kGroups, 0, 0}});
   st.executor.run(stages, std::min(settings.participants, int(kHalves)),

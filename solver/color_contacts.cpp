@@ -11,7 +11,7 @@ namespace elan::detail {
 
 ColorStats color_contacts(const BodyStore& bodies, std::span<ManifoldHead> contacts,
                           [[maybe_unused]] std::span<const ManifoldTail> tails, SolverState& st,
-                          StepScratch& scratch, int participants) {
+                          StepScratch& scratch, int participants, Real deep_separation) {
   const std::size_t count = st.packets.size();
   auto half_of = [&](uint32_t packet) { return packet >= st.half_start[1] ? 1u : 0u; };
   auto group_of = [&](const ManifoldHead& mf, ColorInput& in) {
@@ -26,16 +26,24 @@ ColorStats color_contacts(const BodyStore& bodies, std::span<ManifoldHead> conta
   uint32_t group_size[kGroups + 1] = {};
   std::size_t points = 0;
   uint32_t next_tail = 0;
+  st.deep_count.assign(count, 0);
+  uint32_t most_deep = 0;
   for (ManifoldHead& mf : contacts) {
     ColorInput in;
-    ++group_size[group_of(mf, in)];
+    const uint32_t g = group_of(mf, in);
+    ++group_size[g];
     points += mf.point_count;
+    if (g != kGroups && mf.first.separation < deep_separation) {
+      if (in.dynamic_a) most_deep = std::max(most_deep, ++st.deep_count[in.packet_a]);
+      if (in.dynamic_b) most_deep = std::max(most_deep, ++st.deep_count[in.packet_b]);
+    }
     if (mf.point_count > 1) {
       assert(next_tail < tails.size() && tails[next_tail].key == mf.key() && "its tail is next");
       mf.tail = next_tail++;
     }
   }
   assert(next_tail == tails.size() && "every tail has its head");
+  st.most_deep = most_deep;
   st.group_start[0] = 0;
   for (uint32_t g = 0; g < kGroups; ++g) st.group_start[g + 1] = st.group_start[g] + group_size[g];
   const uint32_t candidate_count = st.group_start[kGroups];

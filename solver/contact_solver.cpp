@@ -197,6 +197,17 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   // B's centre from A's: the bodies are where the collide stage left them, so B's arm to a
   // point is A's arm minus this.
   WideVec3 b_from_a;
+  if (!ctx.push_cap.empty()) {
+    // The push-out share (color_contacts.hpp): the cap over the larger deep count of the two.
+    Wide& cap = ctx.push_cap[bundle];
+    cap = splat(ctx.max_push_velocity);
+    for (int l = 0; l < lane_count; ++l) {
+      const ManifoldHead& m = manifolds[lanes[l]];
+      const uint32_t n =
+          std::max(ctx.deep_count[packet_of[m.body_a]], ctx.deep_count[packet_of[m.body_b]]);
+      if (n > kPushShare) cap[l] = ctx.max_push_velocity * (Real(kPushShare) / Real(n));
+    }
+  }
   for (int l = 0; l < kLanes; ++l) {
     if (l >= lane_count) {
       c.packet_a[l] = c.packet_b[l] = 0;
@@ -498,7 +509,8 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
       c.twist_impulse = twist;
     }
     const Wide inv_h = splat(ctx.inv_h);
-    const Wide max_push = splat(-ctx.max_push_velocity);
+    const Wide max_push =
+        ctx.push_cap.empty() ? splat(-ctx.max_push_velocity) : Wide{} - ctx.push_cap[i];
     const auto fixed_b = mb.inv_mass == zero;
     const Wide bias_rate = fixed_b ? splat(fix.bias_rate) : splat(dyn.bias_rate);
     const Wide soft_mass = fixed_b ? splat(fix.mass_scale) : splat(dyn.mass_scale);

@@ -45,6 +45,10 @@ inline WideTangents tangents_of(const WideVec3& n) {
   return {{one + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}};
 }
 
+// The push-out share's free count (color_contacts.hpp): a body with up to this many deep
+// manifolds keeps the whole push-out cap on each.
+inline constexpr uint32_t kPushShare = 4;
+
 struct ContactSolverContext {
   std::span<SolverBody> bodies;  // packets (0 = static dummy)
   std::span<const SolverBodyMass> masses;
@@ -59,9 +63,13 @@ struct ContactSolverContext {
   uint32_t written_end = 1;                  // packets [1, written_end) are written back
   Real h = 0;                                // s, substep
   Real inv_h = 0;
-  Softness contact_softness;       // dynamic vs dynamic
-  Softness static_softness;        // against a static or kinematic body (stiffer)
-  Real max_push_velocity = 3;      // m/s: cap of the position-correction speed
+  Softness contact_softness;   // dynamic vs dynamic
+  Softness static_softness;    // against a static or kinematic body (stiffer)
+  Real max_push_velocity = 3;  // m/s: cap of the position-correction speed
+  // The push-out share (color_contacts.hpp): per packet its deep manifolds; per bundle the
+  // lanes' caps (written by prepare_bundle), empty when every lane has max_push_velocity.
+  std::span<const uint32_t> deep_count;
+  std::span<Wide> push_cap;
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
   // Per bundle, written by prepare_bundle: the lanes whose rows carry a load their soft spring
   // would give under by more than kDirectGive (direct_solve.hpp), a bit a lane. Empty: not

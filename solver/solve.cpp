@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 #include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
@@ -56,7 +57,17 @@ ContactSolverContext make_solver_context(const SolveSettings& settings, SolverSt
   ctx.bodies_placed = settings.bodies_placed;
   ctx.max_push_velocity = settings.max_push_velocity;
   ctx.restitution_threshold = settings.restitution_threshold;
+  ctx.deep_count = state.deep_count;
+  ctx.push_cap = state.push_cap;
   return ctx;
+}
+
+Real deep_contact_separation(const SolveSettings& settings) {
+  const Real h = settings.dt / Real(settings.substeps);
+  const Real hertz = std::min(settings.contact_hertz, Real(0.25) / h);
+  const Softness soft = make_softness(hertz, settings.contact_damping_ratio, h);
+  if (!(soft.bias_rate > 0)) return -std::numeric_limits<Real>::infinity();
+  return -settings.max_push_velocity / soft.bias_rate;
 }
 
 void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<ManifoldTail> tails,

@@ -111,7 +111,17 @@ struct SolverState {
   std::vector<uint8_t> fast;         // per packet: moved far for its size (continuous stage)
   std::vector<std::vector<Impact>> impacts;  // per thread (continuous stage)
   std::vector<Real> earliest_toi;
+  // The push-out share (push_share in color_contacts.hpp): per packet, how many of its
+  // manifolds are deep enough for the push-out cap to bind, and the most of any packet; per
+  // bundle, its lanes' caps, m/s, kept only while some body has more than one such manifold.
+  std::vector<uint32_t> deep_count;
+  uint32_t most_deep = 0;
+  std::vector<Wide> push_cap;
 };
+
+// The separation below which a manifold between dynamic bodies pushes out at the cap,
+// settings.max_push_velocity: where the soft spring's bias_rate * (-s) reaches it, m (negative).
+Real deep_contact_separation(const SolveSettings& settings);
 
 // The context the contact solver's functions read: the packets, bundles and rows of `state`.
 ContactSolverContext make_solver_context(const SolveSettings& settings, SolverState& state);

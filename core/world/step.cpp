@@ -93,8 +93,9 @@ uint32_t run_step(WorldState& w, Real dt) {
   const auto t_split = clock::now();
   load_packets(bodies, w.solver, solve_settings.participants);
   const auto t_packets = clock::now();
-  const ColorStats colors = color_contacts(bodies, w.contacts.heads(), w.contacts.tails(), w.solver,
-                                           w.scratch, solve_settings.participants);
+  const ColorStats colors =
+      color_contacts(bodies, w.contacts.heads(), w.contacts.tails(), w.solver, w.scratch,
+                     solve_settings.participants, deep_contact_separation(solve_settings));
   const auto t_color = clock::now();
   // Restitution inputs are kept only in a world that has something to bounce: on a pile of
   // inelastic bodies they would be read by a pass that finds nothing to do.

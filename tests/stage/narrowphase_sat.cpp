@@ -7,6 +7,7 @@
 
 #include "narrowphase/capsule_polyhedron.hpp"
 #include "narrowphase/gjk.hpp"
+#include "narrowphase/polyhedron.hpp"
 #include "narrowphase/sat.hpp"
 #include "narrowphase_test_shapes.hpp"
 
@@ -166,6 +167,40 @@ TEST(SatPolyhedra, RoundHullOnBoxMatchesItsLowestVertex) {
       EXPECT_NEAR(m.normal.y(), 1, 1e-5);
     }
   }
+}
+
+// The reproducer perf_20_hulls_200pts.json: the SAT's edge query costs E_a x E_b, so a pair of
+// 200-point hulls (about 594 edges each, 353,000 edge pairs) goes to GJK/EPA, while boxes, and
+// hulls of up to 64 points against each other (186 edges: 34,600 pairs), keep the SAT's
+// clipped manifold. The pair that changed route still finds its contact: a round hull of 200
+// points pressed 2 cm into another meets it, along the line of their centres.
+TEST(SatPolyhedra, LargeHullPairsTakeGjkByTheirEdgeCount) {
+  const Shape box = test::box(Real(0.5), Real(0.5), Real(0.5));
+  const Shape h64 = test::round_hull(64, Real(0.5));
+  const Shape h200 = test::round_hull(200, Real(0.5));
+  const Shape h256 = test::round_hull(256, Real(0.5));
+  EXPECT_TRUE(sat_is_affordable(box, box));
+  EXPECT_TRUE(sat_is_affordable(box, h256));
+  EXPECT_TRUE(sat_is_affordable(h64, h64));
+  EXPECT_FALSE(sat_is_affordable(h200, h200));
+  EXPECT_FALSE(sat_is_affordable(h64, h256));
+  Real top = -1e9, bottom = 1e9;
+  for (const Vec3& v : h200.hull->vertices) {
+    top = std::max(top, v.y());
+    bottom = std::min(bottom, v.y());
+  }
+  const Transform xa = pose(Vec3(0, 0, 0)), xb = pose(Vec3(0, top - bottom - Real(0.02), 0));
+  Manifold m;
+  ASSERT_TRUE(collide(h200, xa, h200, xb, Real(0.02), m));
+  test::expect_sane(m, xa, xb);
+  ASSERT_GE(m.point_count, 1);
+  Real deepest = 1;
+  for (int k = 0; k < m.point_count; ++k) deepest = std::min(deepest, m.points[k].separation);
+  // The top and bottom vertices lie off the y axis (by up to 0.5 sqrt(2 / 200) = 5 cm), so the
+  // contact is that of the facets there: penetrating, by no more than the 2 cm pressed in.
+  EXPECT_LT(deepest, Real(0));
+  EXPECT_GT(deepest, Real(-0.02) - Real(1e-4));
+  EXPECT_GT(m.normal.y(), Real(0.95));
 }
 
 TEST(SatPolyhedra, DegenerateInputStaysFinite) {

@@ -69,13 +69,24 @@ Reference reference_step(const SolverBody& b, const SolverBodyMass& p, const Bod
   const Vec3d d = principal_moments(store, p.body).cast<double>();
   const Quatd before = dq * q0;
   const Vec3d l_world = before * d.cwiseProduct(before.conjugate() * w);
-  const Quatd mid = (exact_exp(w, h / 2) * before).normalized();
-  const Vec3d w_mid = mid * (mid.conjugate() * l_world).cwiseQuotient(d);
-  const Quatd turned = (exact_exp(w_mid, h) * dq).normalized();
-  const Quatd after = turned * q0;
+  // A body turning more than 0.25 rad in the substep takes the rule in pieces of at most that
+  // angle (integrate.cpp), and never ends with more energy w . L / 2 than it started with.
+  const int pieces = std::max(1, int(std::ceil(w.norm() * h / 0.25)));
+  const double hp = h / pieces;
+  Quatd turned = dq, after = before;
+  Vec3d wc = w;
+  for (int k = 0; k < pieces; ++k) {
+    const Quatd mid = (exact_exp(wc, hp / 2) * after).normalized();
+    const Vec3d w_mid = mid * (mid.conjugate() * l_world).cwiseQuotient(d);
+    turned = (exact_exp(w_mid, hp) * turned).normalized();
+    after = turned * q0;
+    wc = after * (after.conjugate() * l_world).cwiseQuotient(d);
+  }
+  if (pieces > 1 && wc.dot(l_world) > w.dot(l_world)) {
+    wc *= std::sqrt(w.dot(l_world) / wc.dot(l_world));
+  }
   const Eigen::Matrix3d r = after.toRotationMatrix();
-  return {turned, after * (after.conjugate() * l_world).cwiseQuotient(d),
-          r * d.cwiseInverse().asDiagonal() * r.transpose()};
+  return {turned, wc, r * d.cwiseInverse().asDiagonal() * r.transpose()};
 }
 
 struct Bodies {
