@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "core/base/heap_bytes.hpp"
+#include "core/base/tbb_hand_off.hpp"
 
 namespace elan::detail {
 
@@ -93,11 +94,29 @@ void ContactStore::finish_step() {
     }
   }
   // determinism: the lists are joined apart (disjoint data), each in part order.
-  tbb::parallel_invoke([&] { join(mu, heads_, parts, step_scratch); },
-                       [&] { join(u.tails, tails_, parts, step_scratch); },
-                       [&] { join(u.separated, separated_, parts, step_scratch); },
-                       [&] { join(u.apart_keys, apart_keys_, parts, step_scratch); },
-                       [&] { join(u.cache, cache_, parts, step_scratch); });
+  TbbHandOff hand_off;
+  tbb::parallel_invoke(
+      [&] {
+        TbbHandOff::TaskScope task(hand_off);
+        join(mu, heads_, parts, step_scratch);
+      },
+      [&] {
+        TbbHandOff::TaskScope task(hand_off);
+        join(u.tails, tails_, parts, step_scratch);
+      },
+      [&] {
+        TbbHandOff::TaskScope task(hand_off);
+        join(u.separated, separated_, parts, step_scratch);
+      },
+      [&] {
+        TbbHandOff::TaskScope task(hand_off);
+        join(u.apart_keys, apart_keys_, parts, step_scratch);
+      },
+      [&] {
+        TbbHandOff::TaskScope task(hand_off);
+        join(u.cache, cache_, parts, step_scratch);
+      });
+  hand_off.joined();
   end_update(mu);
   end_update(u.tails);
   end_update(u.separated);
