@@ -380,6 +380,14 @@ ConvexHull build_convex_hull(std::span<const Vec3> points) {
     hull.faces.push_back(face);
   }
   for (const auto& e : edges) hull.edges.push_back({e.first.first, e.first.second});
+  // A closed convex polyhedron has at least a tetrahedron's features and V - E + F = 2. A cloud
+  // whose coordinates span many orders of magnitude (1e-30 beside 1e30) has its small
+  // differences inside the relative tolerance, and quickhull can then return fewer faces than a
+  // solid: refused as flat rather than handed to the narrowphase (found by fuzz_hull).
+  const std::size_t nv = hull.vertices.size(), ne = hull.edges.size(), nf = hull.faces.size();
+  if (nv < 4 || nf < 4 || nv + nf != ne + 2) {
+    fail("the points are coplanar or collinear within the tolerance of their magnitude");
+  }
   compute_edge_faces(hull);
   return hull;
 }

@@ -15,6 +15,7 @@
 #include "core/world/byte_io.hpp"
 #include "core/world/world_access.hpp"
 #include "core/world/world_state.hpp"
+#include "elan/limits.hpp"
 
 namespace elan {
 
@@ -609,12 +610,48 @@ void check_bodies(ByteReader& r, const Decoded& d) {
     if (b.slot[i] >= d.slot_index.size() || d.slot_index[b.slot[i]] != i) {
       r.fail("body " + std::to_string(i) + ": id slot does not point back at it");
     }
+    // The values the API would accept (elan/limits.hpp), so that nothing derived from a loaded
+    // world (its energy, momentum, the first step) is non-finite: found by fuzz_snapshot, a body
+    // of finite state whose kinetic energy was infinite.
+    const auto within = [](Real x, double bound) { return std::abs(double(x)) <= bound; };
+    const std::string body = "body " + std::to_string(i) + ": ";
+    if (!(within(b.px[i], limits::kMaxPosition) && within(b.py[i], limits::kMaxPosition) &&
+          within(b.pz[i], limits::kMaxPosition))) {
+      r.fail(body + "position outside the supported range");
+    }
+    const double q2 = double(b.qw[i]) * b.qw[i] + double(b.qx[i]) * b.qx[i] +
+                      double(b.qy[i]) * b.qy[i] + double(b.qz[i]) * b.qz[i];
+    if (!(std::abs(q2 - 1) <= 1e-3)) r.fail(body + "orientation is not a unit quaternion");
+    const auto length = [](Real x, Real y, Real z) {
+      return std::sqrt(double(x) * x + double(y) * y + double(z) * z);
+    };
+    if (!(length(b.vx[i], b.vy[i], b.vz[i]) <= limits::kMaxLinearSpeed) ||
+        !(length(b.wx[i], b.wy[i], b.wz[i]) <= limits::kMaxAngularSpeed)) {
+      r.fail(body + "velocity outside the supported range");
+    }
+    const bool dynamic = b.motion[i] == uint8_t(MotionType::Dynamic);
+    // 1/m for m in the mass range, with a float rounding's slack.
+    const double inv_mass = b.inv_mass[i];
+    if (dynamic ? !(inv_mass >= (1 - 1e-6) / limits::kMaxMass &&
+                    inv_mass <= (1 + 1e-6) / limits::kMinMass)
+                : inv_mass != 0) {
+      r.fail(body + "inverse mass outside the supported range");
+    }
+    for (const Real inv : {b.inv_ix[i], b.inv_iy[i], b.inv_iz[i]}) {
+      if (!(std::isfinite(inv) && inv >= 0 && (!dynamic || inv > 0))) {
+        r.fail(body + "inverse inertia is not finite and positive");
+      }
+    }
+    if (!(std::isfinite(b.sleep_time[i]) && b.sleep_time[i] >= 0)) r.fail(body + "bad sleep time");
     const uint32_t k = b.applied[i];
     if (k != detail::kNoForce && (k >= b.applied_forces.size() || b.applied_forces[k].body != i)) {
       r.fail("body " + std::to_string(i) + ": applied force slot does not point back at it");
     }
   }
   for (std::size_t k = 0; k < b.applied_forces.size(); ++k) {
+    if (!(b.applied_forces[k].force.allFinite() && b.applied_forces[k].torque.allFinite())) {
+      r.fail("applied force is not finite");
+    }
     const uint32_t body = b.applied_forces[k].body;
     if (body >= n || b.applied[body] != k) r.fail("applied force of a body that does not hold it");
   }
