@@ -10,6 +10,7 @@
 #include <string>
 
 #include "elan/error.hpp"
+#include "elan/limits.hpp"
 
 namespace elan::detail {
 namespace {
@@ -324,6 +325,12 @@ ConvexHull build_convex_hull(std::span<const Vec3> points) {
   p.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     if (!points[i].allFinite()) fail("point " + std::to_string(i) + " is not finite");
+    // No point of a supported shape lies past the supported positions (elan/limits.hpp); past
+    // them, clouds spanning 1e-40 to 1e30 defeated the relative tolerance (found by fuzz_hull).
+    if (!(points[i].cwiseAbs().maxCoeff() <= Real(limits::kMaxPosition))) {
+      fail("point " + std::to_string(i) + " is farther than " +
+           std::to_string(int(limits::kMaxPosition)) + " m from the origin");
+    }
     p.push_back(points[i].cast<double>());
   }
   // Tolerance relative to the cloud's magnitude (as in qhull): rounding of Real coordinates is
