@@ -94,28 +94,31 @@ void ContactStore::finish_step() {
     }
   }
   // determinism: the lists are joined apart (disjoint data), each in part order.
+  // threading: parallel_invoke runs the callables in place, so they are built before the
+  // hand-off's release (tbb_hand_off.hpp).
   TbbHandOff hand_off;
-  tbb::parallel_invoke(
-      [&] {
-        TbbHandOff::TaskScope task(hand_off);
-        join(mu, heads_, parts, step_scratch);
-      },
-      [&] {
-        TbbHandOff::TaskScope task(hand_off);
-        join(u.tails, tails_, parts, step_scratch);
-      },
-      [&] {
-        TbbHandOff::TaskScope task(hand_off);
-        join(u.separated, separated_, parts, step_scratch);
-      },
-      [&] {
-        TbbHandOff::TaskScope task(hand_off);
-        join(u.apart_keys, apart_keys_, parts, step_scratch);
-      },
-      [&] {
-        TbbHandOff::TaskScope task(hand_off);
-        join(u.cache, cache_, parts, step_scratch);
-      });
+  const auto heads = [&] {
+    TbbHandOff::TaskScope task(hand_off);
+    join(mu, heads_, parts, step_scratch);
+  };
+  const auto tails = [&] {
+    TbbHandOff::TaskScope task(hand_off);
+    join(u.tails, tails_, parts, step_scratch);
+  };
+  const auto separated = [&] {
+    TbbHandOff::TaskScope task(hand_off);
+    join(u.separated, separated_, parts, step_scratch);
+  };
+  const auto apart_keys = [&] {
+    TbbHandOff::TaskScope task(hand_off);
+    join(u.apart_keys, apart_keys_, parts, step_scratch);
+  };
+  const auto cache = [&] {
+    TbbHandOff::TaskScope task(hand_off);
+    join(u.cache, cache_, parts, step_scratch);
+  };
+  hand_off.spawn();
+  tbb::parallel_invoke(heads, tails, separated, apart_keys, cache);
   hand_off.joined();
   end_update(mu);
   end_update(u.tails);

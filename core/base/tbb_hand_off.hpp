@@ -3,8 +3,10 @@
 // libtbb is not instrumented, so TSan cannot see that a task starts after its spawner's writes
 // and that the joiner resumes after the task's. Compiled to nothing without TSan.
 //
-// threading: a `TbbHandOff` lives on the spawning thread's stack for one parallel call. Its
-// constructor releases (the spawner's writes so far), every task acquires it on entry
+// threading: a `TbbHandOff` lives on the spawning thread's stack for one parallel call.
+// `spawn()`, called just before the call and after the callables TBB is given are built (a task
+// may read them in place, as parallel_invoke's and task_arena::execute's do), releases the
+// spawner's writes so far; every task acquires them on entry
 // (`TaskScope`) and releases into a second address on exit, and `joined()` acquires that one
 // after the call returns. TSan's release joins the releasing thread's clock into the address's
 // clock, so the joiner acquires every task's. These are exactly the edges TBB itself provides
@@ -31,7 +33,7 @@ namespace elan::detail {
 
 class TbbHandOff {
  public:
-  TbbHandOff() { release(&spawn_); }
+  TbbHandOff() = default;
   TbbHandOff(const TbbHandOff&) = delete;
   TbbHandOff& operator=(const TbbHandOff&) = delete;
 
@@ -46,6 +48,9 @@ class TbbHandOff {
    private:
     TbbHandOff& h_;
   };
+
+  // Just before the parallel call: what this thread wrote so far is visible to every task.
+  void spawn() { release(&spawn_); }
 
   // After the parallel call has returned: every task's writes are visible to the caller.
   void joined() { acquire(&join_); }

@@ -239,10 +239,12 @@ uint32_t World::step(Real dt) {
   // threading: the arena runs the step on this thread when it has a free slot, else on a worker
   // while this thread waits; the hand-off tells TSan of the second case's ordering.
   detail::TbbHandOff hand_off;
-  arena.execute([&] {
+  const auto step = [&] {
     detail::TbbHandOff::TaskScope task(hand_off);
     status = detail::run_step(s, dt);
-  });
+  };
+  hand_off.spawn();
+  arena.execute(step);
   hand_off.joined();
   return status;
 }

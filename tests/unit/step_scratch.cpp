@@ -204,12 +204,14 @@ TEST(StepScratch, BuffersGrownInParallelNeverShareBytes) {
     for (auto& b : blocks) take_from(b, s);
     // The hand-off to TBB annotated for ThreadSanitizer, as the engine's own (tbb_hand_off.hpp).
     TbbHandOff hand_off;
-    arena.execute([&] {
+    const auto fill = [&] {
       tbb::parallel_for(std::size_t{0}, kBlocks, [&](std::size_t k) {
         TbbHandOff::TaskScope task(hand_off);
         for (uint64_t i = 0; i < 500 + 37 * k; ++i) blocks[k].push_back(k << 32 | i);
       });
-    });
+    };
+    hand_off.spawn();
+    arena.execute(fill);
     hand_off.joined();
     for (std::size_t k = 0; k < kBlocks; ++k) {
       ASSERT_EQ(blocks[k].size(), 500 + 37 * k);
