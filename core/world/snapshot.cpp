@@ -356,6 +356,18 @@ Shape read_shape(ByteReader& r, bool in_compound) {
   s.local_min = r.vec3();
   s.local_max = r.vec3();
   s.bounding_radius = r.real();
+  // Every size and frame finite, every size not negative: a body's reported pose is derived
+  // through the frame, and the step through the sizes (found by fuzz_snapshot: a body loaded
+  // with a non-finite position).
+  const bool finite = std::isfinite(s.plane_offset) && s.plane_normal.allFinite() &&
+                      s.frame_position.allFinite() && s.local_min.allFinite() &&
+                      s.local_max.allFinite();
+  const bool sizes =
+      s.radius >= 0 && s.half_height >= 0 && s.volume >= 0 && s.bounding_radius >= 0 &&
+      (s.half_extents.array() >= 0).all() && (s.unit_inertia.array() >= 0).all() &&
+      std::isfinite(s.radius) && std::isfinite(s.half_height) && std::isfinite(s.volume) &&
+      std::isfinite(s.bounding_radius) && s.half_extents.allFinite() && s.unit_inertia.allFinite();
+  if (!finite || !sizes) r.fail("shape sizes or frame are not finite and non-negative");
   const uint8_t has_hull = r.u8();
   if (has_hull > 1 || (has_hull == 1) != (s.type == ShapeType::ConvexHull)) {
     r.fail("hull data does not match the shape type");
