@@ -93,7 +93,7 @@ void StageExecutor::run_parallel(const std::vector<StageSpec>& stages, int parti
 
   TbbHandOff hand_off;
   tbb::task_group group;
-  hand_off.spawn();
+  hand_off.spawn(participate);
   for (int t = 1; t < participants; ++t) {
     group.run([&participate, &hand_off, t] {
       TbbHandOff::TaskScope task(hand_off);

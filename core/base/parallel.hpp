@@ -37,7 +37,7 @@ void for_blocks(std::size_t count, std::size_t grain, F&& f) {
     return;
   }
   TbbHandOff hand_off;
-  hand_off.spawn();
+  hand_off.spawn(f);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, blocks, 1),
       [&](const tbb::blocked_range<std::size_t>& r) {

@@ -50,7 +50,14 @@ class TbbHandOff {
   };
 
   // Just before the parallel call: what this thread wrote so far is visible to every task.
-  void spawn() { release(&spawn_); }
+  // `callables` are what the tasks will read in place: their addresses are passed to TSan so
+  // that the compiler builds them before the release, not after (a local whose address has not
+  // escaped may be built later than written).
+  template <class... T>
+  void spawn(const T&... callables) {
+    (release(const_cast<char*>(reinterpret_cast<const char*>(&callables))), ...);
+    release(&spawn_);
+  }
 
   // After the parallel call has returned: every task's writes are visible to the caller.
   void joined() { acquire(&join_); }

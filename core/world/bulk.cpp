@@ -141,7 +141,7 @@ uint32_t step_all(std::span<World* const> worlds, Real dt, ThreadPool* pool) {
                         }
                       });
   };
-  hand_off.spawn();
+  hand_off.spawn(step_worlds);
   if (pool) {
     detail::arena_of(*pool).execute(step_worlds);
   } else {

@@ -243,7 +243,7 @@ uint32_t World::step(Real dt) {
     detail::TbbHandOff::TaskScope task(hand_off);
     status = detail::run_step(s, dt);
   };
-  hand_off.spawn();
+  hand_off.spawn(step);
   arena.execute(step);
   hand_off.joined();
   return status;

@@ -210,7 +210,7 @@ TEST(StepScratch, BuffersGrownInParallelNeverShareBytes) {
         for (uint64_t i = 0; i < 500 + 37 * k; ++i) blocks[k].push_back(k << 32 | i);
       });
     };
-    hand_off.spawn();
+    hand_off.spawn(fill);
     arena.execute(fill);
     hand_off.joined();
     for (std::size_t k = 0; k < kBlocks; ++k) {
