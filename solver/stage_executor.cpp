@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <thread>
 
+#include "core/base/tbb_hand_off.hpp"
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #define ELAN_PAUSE() _mm_pause()
@@ -37,7 +39,17 @@ void StageExecutor::reset(const std::vector<StageSpec>& stages) {
     run_ = 0;
   }
   ++run_;
-  std::atomic_thread_fence(std::memory_order_release);
+  // threading: no fence is needed here. These relaxed stores, and run_, are made by the caller
+  // before run_parallel spawns the workers' tasks, and a task spawn is a release by the spawner
+  // and an acquire by the thread that runs the task (TBB's task queues), so every participant
+  // sees the cleared counters and the new run number before its first claim. Within a run the
+  // atomics carry their own ordering: a block's writes happen before its claimer's
+  // fetch_add(release) on the stage's counter, and every participant leaves the stage only
+  // after a load(acquire) that reads the final count, which is in the release sequence of every
+  // fetch_add, so it sees every block's writes. The claims themselves need only atomicity
+  // (relaxed): a block claimed twice is impossible because exchange is one read-modify-write.
+  // TBB's spawn and join are invisible to ThreadSanitizer (libtbb is not instrumented):
+  // run_parallel annotates them (TbbHandOff).
 }
 
 void StageExecutor::run_parallel(const std::vector<StageSpec>& stages, int participants,
@@ -79,10 +91,18 @@ void StageExecutor::run_parallel(const std::vector<StageSpec>& stages, int parti
     }
   };
 
+  TbbHandOff hand_off;
   tbb::task_group group;
-  for (int t = 1; t < participants; ++t) group.run([&participate, t] { participate(uint32_t(t)); });
+  hand_off.spawn(participate);
+  for (int t = 1; t < participants; ++t) {
+    group.run([&participate, &hand_off, t] {
+      TbbHandOff::TaskScope task(hand_off);
+      participate(uint32_t(t));
+    });
+  }
   participate(0);
   group.wait();
+  hand_off.joined();
 }
 
 }  // namespace elan::detail

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "elan/error.hpp"
+#include "elan/limits.hpp"
 
 namespace elan::detail {
 namespace {
@@ -324,6 +325,12 @@ ConvexHull build_convex_hull(std::span<const Vec3> points) {
   p.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     if (!points[i].allFinite()) fail("point " + std::to_string(i) + " is not finite");
+    // No point of a supported shape lies past the supported positions (elan/limits.hpp); past
+    // them, clouds spanning 1e-40 to 1e30 defeated the relative tolerance (found by fuzz_hull).
+    if (!(points[i].cwiseAbs().maxCoeff() <= Real(limits::kMaxPosition))) {
+      fail("point " + std::to_string(i) + " is farther than " +
+           std::to_string(int(limits::kMaxPosition)) + " m from the origin");
+    }
     p.push_back(points[i].cast<double>());
   }
   // Tolerance relative to the cloud's magnitude (as in qhull): rounding of Real coordinates is
@@ -380,6 +387,14 @@ ConvexHull build_convex_hull(std::span<const Vec3> points) {
     hull.faces.push_back(face);
   }
   for (const auto& e : edges) hull.edges.push_back({e.first.first, e.first.second});
+  // A closed convex polyhedron has at least a tetrahedron's features and V - E + F = 2. A cloud
+  // whose coordinates span many orders of magnitude (1e-30 beside 1e30) has its small
+  // differences inside the relative tolerance, and quickhull can then return fewer faces than a
+  // solid: refused as flat rather than handed to the narrowphase (found by fuzz_hull).
+  const std::size_t nv = hull.vertices.size(), ne = hull.edges.size(), nf = hull.faces.size();
+  if (nv < 4 || nf < 4 || nv + nf != ne + 2) {
+    fail("the points are coplanar or collinear within the tolerance of their magnitude");
+  }
   compute_edge_faces(hull);
   return hull;
 }

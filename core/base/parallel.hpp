@@ -17,6 +17,7 @@
 #include "core/base/grow.hpp"
 #include "core/base/heap_bytes.hpp"
 #include "core/base/step_scratch.hpp"
+#include "core/base/tbb_hand_off.hpp"
 
 namespace elan::detail {
 
@@ -35,14 +36,18 @@ void for_blocks(std::size_t count, std::size_t grain, F&& f) {
     f(std::size_t{0}, count, std::size_t{0});
     return;
   }
+  TbbHandOff hand_off;
+  hand_off.spawn(f);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, blocks, 1),
       [&](const tbb::blocked_range<std::size_t>& r) {
+        TbbHandOff::TaskScope task(hand_off);
         for (std::size_t b = r.begin(); b != r.end(); ++b) {
           f(b * grain, std::min(count, (b + 1) * grain), b);
         }
       },
       tbb::simple_partitioner());
+  hand_off.joined();
 }
 
 // Per-thread scratch: the slots the current arena needs, and the calling thread's slot (a serial

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Scene files: the top level of the schema (world settings, bodies, generators, joints), read
 // from text or from a file.
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/base/range_checks.hpp"
 #include "core/scene/body_schema.hpp"
 #include "core/scene/generators.hpp"
 #include "core/scene/joint_schema.hpp"
@@ -67,6 +69,14 @@ Scene parse_scene(const std::string& text, const std::string& file_name) {
   Scene scene;
   if (const auto it = root.find("gravity"); it != root.end()) {
     scene.world.gravity = to_vec3(ctx, *it, "gravity");
+    // The World refuses it too, but with an elan::Error that names no file: parse_scene promises
+    // SceneError for every bad scene (found by fuzz_scene).
+    try {
+      detail::check_length(scene.world.gravity, limits::kMaxGravity, "gravity", "m/s^2");
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      fail(ctx, "gravity", what.substr(std::min(what.size(), e.field().size() + 2)));
+    }
   }
   if (const auto it = root.find("timestep"); it != root.end()) {
     scene.timestep = positive(ctx, *it, "timestep");

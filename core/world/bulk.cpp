@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/base/range_checks.hpp"
+#include "core/base/tbb_hand_off.hpp"
 #include "core/world/events.hpp"
 #include "core/world/step.hpp"
 #include "core/world/thread_pool_access.hpp"
@@ -123,9 +124,12 @@ uint32_t step_all(std::span<World* const> worlds, Real dt, ThreadPool* pool) {
   std::vector<uint32_t> status(worlds.size(), 0);
   // determinism: worlds share nothing, and each world's step is thread-count independent, so
   // running them side by side in one pool gives each the bits it gets alone.
+  detail::TbbHandOff hand_off;
   auto step_worlds = [&] {
+    detail::TbbHandOff::TaskScope outer(hand_off);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, worlds.size(), 1),
                       [&](const tbb::blocked_range<std::size_t>& r) {
+                        detail::TbbHandOff::TaskScope task(hand_off);
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           // perf: the worlds already fill the pool, so each solve runs on
                           // its caller alone instead of spinning up stage workers.
@@ -137,11 +141,13 @@ uint32_t step_all(std::span<World* const> worlds, Real dt, ThreadPool* pool) {
                         }
                       });
   };
+  hand_off.spawn(step_worlds);
   if (pool) {
     detail::arena_of(*pool).execute(step_worlds);
   } else {
     step_worlds();
   }
+  hand_off.joined();
   uint32_t all = 0;
   for (uint32_t f : status) all |= f;
   return all;

@@ -15,6 +15,7 @@
 #include "core/world/byte_io.hpp"
 #include "core/world/world_access.hpp"
 #include "core/world/world_state.hpp"
+#include "elan/limits.hpp"
 
 namespace elan {
 
@@ -361,6 +362,18 @@ Shape read_shape(ByteReader& r, bool in_compound) {
   s.local_min = r.vec3();
   s.local_max = r.vec3();
   s.bounding_radius = r.real();
+  // Every size and frame finite, every size not negative: a body's reported pose is derived
+  // through the frame, and the step through the sizes (found by fuzz_snapshot: a body loaded
+  // with a non-finite position).
+  const bool finite = std::isfinite(s.plane_offset) && s.plane_normal.allFinite() &&
+                      s.frame_position.allFinite() && s.local_min.allFinite() &&
+                      s.local_max.allFinite();
+  const bool sizes =
+      s.radius >= 0 && s.half_height >= 0 && s.volume >= 0 && s.bounding_radius >= 0 &&
+      (s.half_extents.array() >= 0).all() && (s.unit_inertia.array() >= 0).all() &&
+      std::isfinite(s.radius) && std::isfinite(s.half_height) && std::isfinite(s.volume) &&
+      std::isfinite(s.bounding_radius) && s.half_extents.allFinite() && s.unit_inertia.allFinite();
+  if (!finite || !sizes) r.fail("shape sizes or frame are not finite and non-negative");
   const uint8_t has_hull = r.u8();
   if (has_hull > 1 || (has_hull == 1) != (s.type == ShapeType::ConvexHull)) {
     r.fail("hull data does not match the shape type");
@@ -649,12 +662,49 @@ void check_bodies(ByteReader& r, const Decoded& d) {
     if (b.slot[i] >= d.slot_index.size() || d.slot_index[b.slot[i]] != i) {
       r.fail("body " + std::to_string(i) + ": id slot does not point back at it");
     }
+    // A loaded world holds what a running world can: every value finite (found by
+    // fuzz_snapshot: nothing was checked, and a loaded world's kinetic energy was infinite), a
+    // unit orientation, the mass in the supported range and the inertia at most
+    // m r^2 = 1e9 kg (1e4 m)^2 = 1e17 kg m^2 (neither changes in a step). Positions and speeds
+    // past the API's ranges (elan/limits.hpp) are not refused: a running world reaches them (the
+    // soak test's bodies did), and its snapshot must load.
+    const std::string body = "body " + std::to_string(i) + ": ";
+    if (!(std::isfinite(b.px[i]) && std::isfinite(b.py[i]) && std::isfinite(b.pz[i]))) {
+      r.fail(body + "position is not finite");
+    }
+    const double q2 = double(b.qw[i]) * b.qw[i] + double(b.qx[i]) * b.qx[i] +
+                      double(b.qy[i]) * b.qy[i] + double(b.qz[i]) * b.qz[i];
+    if (!(std::abs(q2 - 1) <= 1e-3)) r.fail(body + "orientation is not a unit quaternion");
+    const auto length = [](Real x, Real y, Real z) {
+      return std::sqrt(double(x) * x + double(y) * y + double(z) * z);
+    };
+    if (!std::isfinite(length(b.vx[i], b.vy[i], b.vz[i])) ||
+        !std::isfinite(length(b.wx[i], b.wy[i], b.wz[i]))) {
+      r.fail(body + "velocity is not finite");
+    }
+    const bool dynamic = b.motion[i] == uint8_t(MotionType::Dynamic);
+    // 1/m for m in the mass range, with a float rounding's slack.
+    const double inv_mass = b.inv_mass[i];
+    if (dynamic ? !(inv_mass >= (1 - 1e-6) / limits::kMaxMass &&
+                    inv_mass <= (1 + 1e-6) / limits::kMinMass)
+                : inv_mass != 0) {
+      r.fail(body + "inverse mass outside the supported range");
+    }
+    for (const Real inv : {b.inv_ix[i], b.inv_iy[i], b.inv_iz[i]}) {
+      if (!(std::isfinite(inv) && inv >= 0 && (!dynamic || inv >= Real(1e-17)))) {
+        r.fail(body + "inverse inertia outside the supported range");
+      }
+    }
+    if (!(std::isfinite(b.sleep_time[i]) && b.sleep_time[i] >= 0)) r.fail(body + "bad sleep time");
     const uint32_t k = b.applied[i];
     if (k != detail::kNoForce && (k >= b.applied_forces.size() || b.applied_forces[k].body != i)) {
       r.fail("body " + std::to_string(i) + ": applied force slot does not point back at it");
     }
   }
   for (std::size_t k = 0; k < b.applied_forces.size(); ++k) {
+    if (!(b.applied_forces[k].force.allFinite() && b.applied_forces[k].torque.allFinite())) {
+      r.fail("applied force is not finite");
+    }
     const uint32_t body = b.applied_forces[k].body;
     if (body >= n || b.applied[body] != k) r.fail("applied force of a body that does not hold it");
   }

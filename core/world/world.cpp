@@ -12,6 +12,7 @@
 #include "core/base/pair_key.hpp"
 #include "core/base/range_checks.hpp"
 #include "core/base/state_hash.hpp"
+#include "core/base/tbb_hand_off.hpp"
 #include "core/world/events.hpp"
 #include "core/world/joints.hpp"
 #include "core/world/sensors.hpp"
@@ -248,7 +249,16 @@ uint32_t World::step(Real dt) {
   }
   uint32_t status = 0;
   tbb::task_arena& arena = s.def.thread_pool ? detail::arena_of(*s.def.thread_pool) : *s.arena;
-  arena.execute([&] { status = detail::run_step(s, dt); });
+  // threading: the arena runs the step on this thread when it has a free slot, else on a worker
+  // while this thread waits; the hand-off tells TSan of the second case's ordering.
+  detail::TbbHandOff hand_off;
+  const auto step = [&] {
+    detail::TbbHandOff::TaskScope task(hand_off);
+    status = detail::run_step(s, dt);
+  };
+  hand_off.spawn(step);
+  arena.execute(step);
+  hand_off.joined();
   return status;
 }
 

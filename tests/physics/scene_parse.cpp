@@ -141,6 +141,18 @@ TEST(SceneParser, GridPlacesCopiesXFastestThenYThenZ) {
   }
 }
 
+// Found by fuzz_scene: gravity past the supported range passed parse_scene, and the World's
+// constructor then threw an elan::Error naming no file, where parse_scene promises SceneError.
+TEST(SceneParser, GravityOutOfRangeIsASceneErrorNamingTheFile) {
+  try {
+    parse_scene(R"({"gravity": [0, 1e38, 0]})", "f.json");
+    FAIL() << "gravity of 1e38 m/s^2 was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_STREQ(e.what(), "f.json: gravity: length must be at most 100000 m/s^2, got 1e+38");
+  }
+  EXPECT_NO_THROW(parse_scene(R"({"gravity": [0, -1e4, 0]})", "f.json"));
+}
+
 TEST(SceneParser, ErrorsNameFileBodyAndField) {
   const auto message = [](const std::string& text) {
     try {

@@ -116,7 +116,9 @@ TEST(BodyLanes, ConsecutivePacketsGatherWholeAndRepeatTheLast) {
     for (int l = 0; l < kLanes; ++l) {
       const Real* expected = floats_of(bodies[first + std::size_t(std::min(l, count - 1))]);
       for (int j = 0; j < 16; ++j) {
-        ASSERT_EQ(std::memcmp(&cols[j][l], &expected[j], sizeof(Real)), 0)
+        // A copy of the lane: clang takes no address of a vector element.
+        const Real lane = cols[j][l];
+        ASSERT_EQ(std::memcmp(&lane, &expected[j], sizeof(Real)), 0)
             << "count " << count << ", lane " << l << ", float " << j;
       }
     }
@@ -140,7 +142,8 @@ TEST(BodyLanes, RowsGatherFromAnyAddresses) {
     gather_rows(row, cols);
     for (int l = 0; l < kLanes; ++l) {
       for (int j = 0; j < 16; ++j) {
-        ASSERT_EQ(std::memcmp(&cols[j][l], &floats_of(bodies[picked[l]])[j], sizeof(Real)), 0)
+        const Real lane = cols[j][l];
+        ASSERT_EQ(std::memcmp(&lane, &floats_of(bodies[picked[l]])[j], sizeof(Real)), 0)
             << "trial " << trial << ", lane " << l << ", float " << j;
       }
     }
