@@ -211,4 +211,44 @@ void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real
   fill_bounds(bodies, shapes, dt, margin, out, &kinds);
 }
 
+Aabb shape_box(const Shape& shape, const Vec3& position, const Quat& orientation) {
+  if (shape.type == ShapeType::Plane) {
+    BoundsColumns one;
+    one.resize(1);
+    plane_bounds(shape, orientation, position, 0, one, 0);
+    return {Vec3(one.min_x[0], one.min_y[0], one.min_z[0]),
+            Vec3(one.max_x[0], one.max_y[0], one.max_z[0])};
+  }
+  Vec3 h = Vec3::Zero(), c = Vec3::Zero();
+  Real sphere_r = 0, cyl_r = 0;
+  switch (shape.type) {
+    case ShapeType::Sphere:
+      sphere_r = shape.radius;
+      break;
+    case ShapeType::Box:
+      h = shape.half_extents;
+      break;
+    case ShapeType::Capsule:
+      h.y() = shape.half_height;
+      sphere_r = shape.radius;
+      break;
+    case ShapeType::Cylinder:
+      h.y() = shape.half_height;
+      cyl_r = shape.radius;
+      break;
+    default:
+      c = Real(0.5) * (shape.local_max + shape.local_min);
+      h = Real(0.5) * (shape.local_max - shape.local_min);
+      break;
+  }
+  const Mat3 r = orientation.toRotationMatrix();
+  const Vec3 centre = position + r * c;
+  Vec3 e;
+  for (int a = 0; a < 3; ++a) {
+    e[a] = std::abs(r(a, 0)) * h.x() + std::abs(r(a, 1)) * h.y() + std::abs(r(a, 2)) * h.z() +
+           cyl_r * std::sqrt(std::max(Real(0), 1 - r(a, 1) * r(a, 1))) + sphere_r;
+  }
+  return {centre - e, centre + e};
+}
+
 }  // namespace elan::detail

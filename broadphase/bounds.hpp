@@ -12,6 +12,7 @@
 
 #include "broadphase/broad_kind.hpp"
 #include "core/base/body_store.hpp"
+#include "core/base/bvh.hpp"
 #include "core/base/shape.hpp"
 #include "core/base/step_scratch.hpp"
 
@@ -50,5 +51,10 @@ struct BodyKindColumns {
 // As above, and fills `kinds` in the same pass.
 void compute_bounds(const BodyStore& bodies, std::span<const Shape> shapes, Real dt, Real margin,
                     BoundsColumns& out, const BodyKindColumns& kinds);
+
+// The box of one shape at a pose (principal frame to world) by the formula above, with no motion
+// and no margin: the box the broadphase grows and sweeps, as World::bounds and the debug drawer
+// report it. A plane's box is infinite on its unbounded axes.
+Aabb shape_box(const Shape& shape, const Vec3& position, const Quat& orientation);
 
 }  // namespace elan::detail

@@ -18,10 +18,11 @@ void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverB
     const uint32_t i = m.body;
     const Vec3 force = bodies.force(i);
     const Vec3 torque = bodies.torque(i);
-    const Vec3 delta_v_per_s = gravity + m.inv_mass * force;
+    const BodyTraits& traits = bodies.traits_of(i);
+    // A gravity scale of 1 (the default) multiplies exactly: the same bits as gravity alone.
+    const Vec3 delta_v_per_s = traits.gravity_scale * gravity + m.inv_mass * force;
     const Vec3 delta_w_per_s = m.inv_inertia * torque;
     SolverBody& b = packets[k];
-    const BodyTraits& traits = bodies.traits_of(i);
     b.v = (b.v + h * delta_v_per_s) / (1 + h * traits.linear_damping);
     b.w = (b.w + h * delta_w_per_s) / (1 + h * traits.angular_damping);
   }

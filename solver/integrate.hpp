@@ -13,9 +13,10 @@
 
 namespace elan::detail {
 
-// v += h (g + F/m), w += h I^-1 tau, then implicit damping v /= (1 + h d) (dv/dt = -d v). The
-// force, torque and damping are the body's (masses[i].body) in the store; I^-1 is the packet's
-// current world inverse inertia. Kinematic packets (no inverse mass) keep their velocities.
+// v += h (s g + F/m), s the body's gravity scale, w += h I^-1 tau, then implicit damping v /= (1 +
+// h d) (dv/dt = -d v). The force, torque and damping are the body's (masses[i].body) in the store;
+// I^-1 is the packet's current world inverse inertia. Kinematic packets (no inverse mass) keep
+// their velocities.
 void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyMass> masses,
                           const BodyStore& bodies, const Vec3& gravity, Real h, uint32_t begin,
                           uint32_t end);

@@ -8,7 +8,7 @@
 
 namespace elan::detail {
 
-static_assert(sizeof(BodyTraits) == 4 * sizeof(Real) + 16, "BodyTraits: no padding to compare");
+static_assert(sizeof(BodyTraits) == 5 * sizeof(Real) + 16, "BodyTraits: no padding to compare");
 
 bool same_bits(const BodyTraits& a, const BodyTraits& b) {
   return std::memcmp(&a, &b, sizeof(BodyTraits)) == 0;

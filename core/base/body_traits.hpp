@@ -15,12 +15,14 @@ namespace elan::detail {
 
 // The values a body is made of rather than where it is: most bodies share them with many others
 // (a pile's bodies all have one set), so the body store keeps a 4-byte index a body into a
-// TraitTable, not these 24 bytes a body. Default: all zero, as a new column's values were.
+// TraitTable, not these bytes a body. Default: all zero, as a new column's values were, but a
+// gravity scale of 1.
 struct BodyTraits {
   Real friction = 0;         // Coulomb coefficient, mixed as sqrt(f_a f_b)
   Real restitution = 0;      // mixed as max(e_a, e_b)
   Real linear_damping = 0;   // 1/s
   Real angular_damping = 0;  // 1/s
+  Real gravity_scale = 1;    // multiplies the world's gravity (1: none, exact)
   uint32_t category = 0;  // collision filter: a pair passes if (cat_a & mask_b) && (cat_b & mask_a)
   uint32_t mask = 0;
   uint32_t flags = 0;  // kTraitSensor

@@ -52,6 +52,20 @@ inline void check_length(const Vec3& v, double max, const char* field, const cha
   }
 }
 
+// density x volume, refused (elan::Error "mass") unless within the mass range. In double, so
+// that an overflow of the float product is reported as the mass it is; the product of two floats
+// is exact in double, so its rounding to Real is the float product.
+inline Real checked_mass(Real density, Real volume) {
+  const double m = double(density) * double(volume);
+  if (!(m >= double(Real(limits::kMinMass)) && m <= double(Real(limits::kMaxMass)))) {
+    throw Error("mass", "computed mass is out of range: density " + show_value(density) +
+                            " kg/m^3 x volume " + show_value(volume) + " m^3 = " + show_value(m) +
+                            " kg, outside [" + show_value(limits::kMinMass) + ", " +
+                            show_value(limits::kMaxMass) + "] kg");
+  }
+  return Real(m);
+}
+
 // The inverse principal inertia 1 / (mass * unit_inertia) of a dynamic body, refused unless
 // finite and positive (the step divides by neither, so an infinite one would freeze the body).
 inline Vec3 inverse_inertia(Real mass, const Vec3& unit_inertia) {

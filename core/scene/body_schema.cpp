@@ -99,7 +99,7 @@ SceneBody parse_body(const Ctx& ctx, const Json& j) {
   check_keys(ctx, j,
              {"name", "motion", "shape", "position", "orientation", "linear_velocity",
               "angular_velocity", "mass", "density", "friction", "restitution", "linear_damping",
-              "angular_damping", "category_bits", "mask_bits", "awake"},
+              "angular_damping", "category_bits", "mask_bits", "awake", "sensor"},
              "", "a body");
   SceneBody b;
   if (const auto it = j.find("name"); it != j.end()) b.name = to_string(ctx, *it, "name");
@@ -155,6 +155,7 @@ SceneBody parse_body(const Ctx& ctx, const Json& j) {
   if (const Json* v = opt("mask_bits"))
     d.mask_bits = uint32_t(to_int(ctx, *v, "mask_bits", 0, UINT32_MAX));
   if (const Json* v = opt("awake")) d.awake = to_bool(ctx, *v, "awake");
+  if (const Json* v = opt("sensor")) d.sensor = to_bool(ctx, *v, "sensor");
   return b;
 }
 

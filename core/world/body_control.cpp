@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/base/range_checks.hpp"
+#include "core/world/sensors.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/world.hpp"
 
@@ -55,7 +56,8 @@ void store_pose(WorldState& s, std::size_t i, const Vec3& position, const Quat& 
   s.bodies.set_position(i, position + rotation * shape.frame_position);
   s.bodies.set_orientation(i, (rotation * shape.frame_rotation).normalized());
   detail::wake_index(s, i);
-  ++s.api.mutations;
+  detail::wake_sensor_partners(s, uint32_t(i));
+  ++s.api.mutations;  // query caches: a pose changed
 }
 
 }  // namespace
@@ -231,6 +233,7 @@ void World::set_mass(BodyId id, Real mass) {
   const std::size_t i = index_of(s, id);
   check_arg(s.bodies.is_dynamic(i), "body", "mass applies to dynamic bodies only");
   const Vec3 inv_inertia = detail::inverse_inertia(mass, s.shapes[s.bodies.shape[i]].unit_inertia);
+  detail::body_extra(s, id.slot).given_mass = mass;
   s.bodies.inv_mass[i] = 1 / mass;
   s.bodies.inv_ix[i] = inv_inertia.x();
   s.bodies.inv_iy[i] = inv_inertia.y();

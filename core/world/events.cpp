@@ -29,6 +29,27 @@ ContactBeginEvent begin_event(const WorldState& w, const BodyStore& start, const
   e.point = start.position(m.body_a) + sum / Real(m.point_count);
   return e;
 }
+// A contact that began is a hit when its approach speed, the relative normal velocity at its
+// deepest point at the step's start (before the solve), -dot(v_b(p) - v_a(p), n) with
+// v(p) = v + w x (p - c), reaches the threshold (Box2D's b2ContactHitEvent). `start` holds the
+// step's start poses and velocities, at which the points were made.
+void add_hit_event(WorldState& w, const BodyStore& start, const Manifold& m) {
+  int deepest = 0;
+  for (int k = 1; k < int(m.point_count); ++k) {
+    if (m.points[k].separation < m.points[deepest].separation) deepest = k;
+  }
+  const Vec3 centre_a = start.position(m.body_a);
+  const Vec3 point = centre_a + m.points[deepest].anchor_a;
+  const Vec3 va =
+      start.linear_velocity(m.body_a) + start.angular_velocity(m.body_a).cross(point - centre_a);
+  const Vec3 vb = start.linear_velocity(m.body_b) +
+                  start.angular_velocity(m.body_b).cross(point - start.position(m.body_b));
+  const Real approach = -(vb - va).dot(m.normal);
+  if (!(approach >= w.api.hit_threshold) || !(approach > 0)) return;
+  w.api.hit_events.push_back(
+      {body_id_at(w, m.body_a), body_id_at(w, m.body_b), point, m.normal, approach});
+}
+
 }  // namespace
 
 void filter_pairs(WorldState& w) {
@@ -57,6 +78,7 @@ void compute_contact_events(WorldState& w, const BodyStore& start) {
   std::vector<ContactEndEvent>& ends = w.api.end_events;
   begins.clear();
   ends.clear();
+  w.api.hit_events.clear();
   // determinism: both lists are in pair-key order, so the events are too (rule 4). perf: each
   // began key is looked up, not merged along the whole list: a settled pile of thousands of
   // manifolds begins and ends a few dozen a step.
@@ -75,7 +97,9 @@ void compute_contact_events(WorldState& w, const BodyStore& start) {
       assert(next_tail != tails.end() && next_tail->key == key && "its tail is in the list");
       tail = &*next_tail;
     }
-    begins.push_back(begin_event(w, start, whole(*next, tail)));
+    const Manifold m = whole(*next, tail);
+    begins.push_back(begin_event(w, start, m));
+    add_hit_event(w, start, m);
   }
   for (const ContactRecord& r : w.contacts.ended()) {
     ends.push_back({body_id_at(w, r.body_a), body_id_at(w, r.body_b)});

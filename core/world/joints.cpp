@@ -220,6 +220,11 @@ const JointDef& World::joint_def(JointId id) const {
   return state_->joints.joints[joint_index(*state_, id)].def;
 }
 
+void World::set_user_data(JointId id, uint64_t value) {
+  WorldState& s = *state_;
+  s.joints.joints[joint_index(s, id)].def.user_data = value;
+}
+
 void World::set_joint_motor(JointId id, const JointMotor& motor) {
   WorldState& s = *state_;
   Joint& j = s.joints.joints[joint_index(s, id)];

@@ -91,7 +91,16 @@ MemoryUse memory_use(const WorldState& w) {
   const ApiState& a = w.api;
   m.api = heap_bytes(a.begin_events) + heap_bytes(a.end_events) + heap_bytes(a.pair_keep) +
           heap_bytes(a.pair_scratch) + heap_bytes(a.shape_destroyed) + heap_bytes(a.body_ids) +
-          bounds_bytes(a.query_bounds);
+          bounds_bytes(a.query_bounds) + heap_bytes(a.shape_user_data) + heap_bytes(a.shape_defs) +
+          heap_bytes(a.body_extra) + heap_bytes(a.sensor_overlaps) +
+          heap_bytes(a.sensor_begin_events) + heap_bytes(a.sensor_end_events) +
+          heap_bytes(a.hit_events);
+  // A derived definition's own arrays (meshes, heightfields: their size again).
+  for (const auto& d : a.shape_defs) {
+    if (!d) continue;
+    m.api += sizeof(ShapeDef) + heap_bytes(d->points) + heap_bytes(d->vertices) +
+             heap_bytes(d->triangles) + heap_bytes(d->heights) + heap_bytes(d->children);
+  }
   m.scratch = w.scratch.heap_bytes();
   return m;
 }

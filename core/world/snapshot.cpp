@@ -758,6 +758,7 @@ void commit(WorldState& s, Decoded&& d) {
   s.all_pairs = detail::AllPairs{};
   s.stats = StepStats{};
   s.api.shape_destroyed = std::move(d.shape_destroyed);
+  s.api.shape_defs.clear();
   forget_api_caches(s);
 }
 

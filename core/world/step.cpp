@@ -10,6 +10,7 @@
 #include "core/world/continuous.hpp"
 #include "core/world/events.hpp"
 #include "core/world/joints.hpp"
+#include "core/world/sensors.hpp"
 #include "narrowphase/collide.hpp"
 #include "solver/bundles.hpp"
 #include "solver/color_contacts.hpp"
@@ -57,6 +58,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   w.scratch.rewind_front();
   filter_pairs(w);
   drop_jointed_pairs(w);
+  // Sensors take no part in contact response: their pairs go to the overlap test after the step.
+  divert_sensor_pairs(w);
   const auto t2 = clock::now();
 
   CollideSettings collide_settings;
@@ -111,6 +114,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   const auto t6 = clock::now();
   const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   if (!w.broken_joints.empty()) remove_broken_joints(w);
+  update_sensors(w);
   const auto t7 = clock::now();
 
   stats.manifolds = w.contacts.size();

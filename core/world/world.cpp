@@ -14,6 +14,7 @@
 #include "core/base/state_hash.hpp"
 #include "core/world/events.hpp"
 #include "core/world/joints.hpp"
+#include "core/world/sensors.hpp"
 #include "core/world/step.hpp"
 #include "core/world/thread_pool_access.hpp"
 #include "core/world/world_access.hpp"
@@ -48,19 +49,6 @@ void validate(const WorldDef& def) {
   check_arg(def.iterations >= 1 && def.iterations <= kMaxIterations, "iterations",
             in_range(1, kMaxIterations));
   check_arg(def.threads >= 0 && def.threads <= kMaxThreads, "threads", in_range(0, kMaxThreads));
-}
-
-// density x volume, refused unless within the mass range. In double, so that an overflow of the
-// float product is reported as the mass it is; the product of two floats is exact in double, so
-// its rounding to Real is the float product.
-Real computed_mass(Real density, Real volume) {
-  const double m = double(density) * double(volume);
-  check_arg(m >= double(Real(limits::kMinMass)) && m <= double(Real(limits::kMaxMass)), "mass",
-            "computed mass is out of range: density " + detail::show_value(density) +
-                " kg/m^3 x volume " + detail::show_value(volume) + " m^3 = " +
-                detail::show_value(m) + " kg, outside [" + detail::show_value(limits::kMinMass) +
-                ", " + detail::show_value(limits::kMaxMass) + "] kg");
-  return Real(m);
 }
 
 int resolve_threads(int threads) {
@@ -98,7 +86,10 @@ void World::reserve(std::size_t bodies, std::size_t shapes) {
 }
 
 ShapeId World::create_shape(const ShapeDef& def) {
-  state_->shapes.push_back(detail::make_shape(def));
+  WorldState& s = *state_;
+  s.shapes.push_back(detail::make_shape(def));
+  s.api.shape_user_data.resize(s.shapes.size() - 1);
+  s.api.shape_user_data.push_back(def.user_data);
   return ShapeId{uint32_t(state_->shapes.size() - 1)};
 }
 
@@ -112,6 +103,7 @@ void World::destroy_shape(ShapeId id) {
   s.api.shape_destroyed.resize(s.shapes.size(), 0);
   s.api.shape_destroyed[id.index] = 1;
   s.shapes[id.index] = detail::Shape{};
+  if (id.index < s.api.shape_defs.size()) s.api.shape_defs[id.index].reset();
 }
 
 bool World::is_valid(ShapeId id) const {
@@ -142,6 +134,9 @@ BodyId World::create_body(const BodyDef& def) {
             "must be finite and >= 0");
   check_arg(std::isfinite(def.angular_damping) && def.angular_damping >= 0, "angular_damping",
             "must be finite and >= 0");
+  check_arg(std::isfinite(def.gravity_scale), "gravity_scale", "must be finite");
+  check_range(def.gravity_scale, -limits::kMaxGravityScale, limits::kMaxGravityScale,
+              "gravity_scale", "");
   if (def.mass) {
     check_arg(std::isfinite(*def.mass) && *def.mass > 0, "mass", "must be finite and positive");
     check_range(*def.mass, limits::kMinMass, limits::kMaxMass, "mass", "kg");
@@ -163,7 +158,7 @@ BodyId World::create_body(const BodyDef& def) {
   Real inv_mass = 0;
   Vec3 inv_inertia = Vec3::Zero();
   if (def.motion == MotionType::Dynamic) {
-    const Real mass = def.mass ? *def.mass : computed_mass(def.density, shape.volume);
+    const Real mass = def.mass ? *def.mass : detail::checked_mass(def.density, shape.volume);
     inv_mass = 1 / mass;
     inv_inertia = detail::inverse_inertia(mass, shape.unit_inertia);
   }
@@ -183,8 +178,16 @@ BodyId World::create_body(const BodyDef& def) {
     b.inv_iy[i] = inv_inertia.y();
     b.inv_iz[i] = inv_inertia.z();
   }
-  b.set_traits(i, {def.friction, def.restitution, def.linear_damping, def.angular_damping,
-                   def.category_bits, def.mask_bits});
+  detail::BodyTraits traits;
+  traits.friction = def.friction;
+  traits.restitution = def.restitution;
+  traits.linear_damping = def.linear_damping;
+  traits.angular_damping = def.angular_damping;
+  traits.gravity_scale = def.gravity_scale;
+  traits.category = def.category_bits;
+  traits.mask = def.mask_bits;
+  traits.flags = def.sensor ? detail::kTraitSensor : 0;
+  b.set_traits(i, traits);
   b.shape[i] = def.shape.index;
   b.motion[i] = uint8_t(def.motion);
   b.flags[i] =
@@ -195,7 +198,11 @@ BodyId World::create_body(const BodyDef& def) {
   const uint32_t slot =
       detail::take_slot(s.slot_index, s.slot_generation, s.free_slots, uint32_t(i));
   b.slot[i] = slot;
-  ++s.api.mutations;
+  detail::BodyExtra& extra = detail::body_extra(s, slot);
+  extra.user_data = def.user_data;
+  extra.density = def.density;
+  extra.given_mass = def.mass ? *def.mass : 0;
+  ++s.api.mutations;  // query caches: a body joined
   return BodyId{slot, s.slot_generation[slot]};
 }
 
@@ -219,12 +226,14 @@ void World::destroy_body(BodyId id) {
     const uint32_t other = m.body_a == i ? m.body_b : m.body_a;
     if (s.bodies.is_dynamic(other)) detail::wake_index(s, other);
   });
+  // Sensor overlaps: the body's end (an event each), the last body's are renamed.
+  detail::sensor_remove_body(s, i, last);
   // The sweep-and-prune's kept order is a permutation of 0..n-1 re-sorted every update (a full
   // sort when the count changes), and its output is canonical, so it needs no fix-up.
   s.bodies.swap_remove(i);
   if (i != last) s.slot_index[s.bodies.slot[i]] = i;
   detail::release_slot(s.slot_index, s.slot_generation, s.free_slots, id.slot);
-  ++s.api.mutations;
+  ++s.api.mutations;  // query caches: a body left
 }
 
 uint32_t World::step(Real dt) {

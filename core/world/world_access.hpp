@@ -42,6 +42,20 @@ inline bool shape_live(const WorldState& s, ShapeId id) {
          !(id.index < s.api.shape_destroyed.size() && s.api.shape_destroyed[id.index]);
 }
 
+// The extras of the body in id slot `slot` (see BodyExtra), grown to hold it.
+inline BodyExtra& body_extra(WorldState& s, uint32_t slot) {
+  if (slot >= s.api.body_extra.size()) s.api.body_extra.resize(std::size_t(slot) + 1);
+  return s.api.body_extra[slot];
+}
+inline BodyExtra body_extra(const WorldState& s, uint32_t slot) {
+  return slot < s.api.body_extra.size() ? s.api.body_extra[slot] : BodyExtra{};
+}
+
+// The caller's value on shape `index` (0 for a shape made before the list grew to it).
+inline uint64_t shape_user_data(const WorldState& s, uint32_t index) {
+  return index < s.api.shape_user_data.size() ? s.api.shape_user_data[index] : 0;
+}
+
 // A non-static body was moved or pushed: simulate it again from this step on.
 inline void wake_index(WorldState& s, std::size_t i) {
   if (s.bodies.is_static(i)) return;

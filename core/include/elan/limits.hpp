@@ -44,6 +44,10 @@ inline constexpr double kMaxAngularSpeed = 1e5;
 /// reaches the speed bound.
 inline constexpr double kMaxGravity = 1e5;
 
+/// A body's gravity scale, in [-kMaxGravityScale, kMaxGravityScale]: with the largest gravity it
+/// keeps the body's acceleration within ten times the gravity bound.
+inline constexpr double kMaxGravityScale = 10;
+
 /// A body's friction coefficient, at most: 1 is already rubber on concrete, 100 never slips;
 /// beyond, the friction bound mu * lambda of a heavy fast contact overflows (1e38 froze bodies).
 inline constexpr double kMaxFriction = 100;
