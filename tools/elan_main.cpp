@@ -29,6 +29,9 @@
 #include "tools/options.hpp"
 #include "tools/recording.hpp"
 #include "tools/trajectory.hpp"
+#if defined(ELAN_HAVE_VIEWER)
+#include "tools/viewer/viewer.hpp"
+#endif
 
 namespace elan::cli {
 namespace {
@@ -537,6 +540,81 @@ int diverge(const DivergeOptions& o) {
   return d.found ? 1 : 0;
 }
 
+// Whether the file `path` starts with a recording's magic bytes (a scene file is JSON text).
+bool starts_like_recording(const std::string& path) {
+  std::string head;
+  try {
+    detail::RegularFile file(path, "scene or recording");
+    head = file.read(kRecordingMagicBytes);
+  } catch (const detail::FileError& e) {
+    throw SceneError(e.what());
+  }
+  try {
+    check_recording_magic(head, path);
+    return head.size() == kRecordingMagicBytes;
+  } catch (const RecordingError&) {
+    return false;
+  }
+}
+
+// `elan view`: the scene (or the recording and its scene) is read, parsed and loaded into a world
+// here, before any window opens, so a bad file exits 2 with the usual message whether or not the
+// viewer is built, and with no display needed.
+int view(const ViewOptions& o) {
+  std::string text;
+  std::optional<Recording> recording;
+  Scene scene;
+  WorldDef def;
+  Real dt = 0;
+  std::string name = o.file;
+  if (starts_like_recording(o.file)) {
+    recording = decode_recording(read_recording(o.file), o.file);
+    const Recording& r = *recording;
+    if (r.real_bytes != sizeof(Real)) {
+      throw RecordingError(o.file + ": recorded by a build with " +
+                           std::to_string(r.real_bytes * 8) + "-bit Real, this build uses " +
+                           std::to_string(sizeof(Real) * 8) + "-bit");
+    }
+    name = "recorded scene" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
+    try {
+      scene = parse_scene(r.scene_text, name);
+    } catch (const SceneError& e) {
+      throw RecordingError(o.file + ": corrupt recording: " + e.what());
+    }
+    def = scene.world;
+    def.substeps = r.substeps;
+    def.iterations = r.iterations;
+    def.broadphase = BroadphaseType(r.broadphase);
+    dt = Real(r.timestep);
+    if (o.step && *o.step > r.steps) {
+      throw UsageError("--step: " + std::to_string(*o.step) + " is past the recording's " +
+                       std::to_string(r.steps) + " steps");
+    }
+  } else {
+    if (o.step) throw UsageError("--step: only with a RECORDING");
+    text = detail::read_scene_file(o.file);
+    scene = parse_scene(text, o.file);
+    std::string().swap(text);
+    def = scene.world;
+    dt = scene.timestep;
+  }
+  def.threads = workers(o.threads);
+  World world = make_world(def, name);
+  load_into(scene, world, name);
+  if (o.body && *o.body >= world.body_count()) {
+    throw UsageError("--body: " + std::to_string(*o.body) + " out of range (the scene has " +
+                     std::to_string(world.body_count()) + " bodies)");
+  }
+#if defined(ELAN_HAVE_VIEWER)
+  viewer::Source source{name, std::move(scene), def, dt, std::move(recording)};
+  return viewer::run(o, std::move(source), std::move(world));
+#else
+  throw std::runtime_error(
+      "view: this elan was built without the viewer (GLFW, Dear ImGui or OpenGL was not found "
+      "when it was configured; install libglfw3-dev and libimgui-dev, see tools/setup.sh)");
+#endif
+}
+
 int dispatch(const std::vector<std::string>& args) {
   if (args.empty()) {
     std::fputs(kMainUsage, stderr);
@@ -575,6 +653,14 @@ int dispatch(const std::vector<std::string>& args) {
       return 0;
     }
     return diverge(o);
+  }
+  if (command == "view") {
+    const ViewOptions o = parse_view_options(rest);
+    if (o.help) {
+      std::fputs(kViewUsage, stdout);
+      return 0;
+    }
+    return view(o);
   }
   throw UsageError("unknown command '" + command + "'");
 }

@@ -26,6 +26,8 @@ const char* const kMainUsage =
     "  diverge SCENE.json --a OPTS --b OPTS\n"
     "                             step a scene under two settings side by side and report the\n"
     "                             first step, body and field that differ\n"
+    "  view SCENE.json|RECORDING  open a window on a scene (or play a recording); with\n"
+    "                             --screenshot, render a picture off screen and exit\n"
     "\n"
     "'elan COMMAND --help' lists a command's options.\n";
 
@@ -79,6 +81,29 @@ const char* const kDivergeUsage =
     "Steps both worlds side by side, compares every body's stored pose, velocities, sleep timer\n"
     "and flags bit for bit after each step, and prints one JSON line.\n"
     "Exit status: 0 no difference, 1 they diverged, 2 bad arguments or scene.\n";
+
+const char* const kViewUsage =
+    "usage: elan view SCENE.json|RECORDING [options]\n"
+    "\n"
+    "  --paused             open paused\n"
+    "  --threads T          worker threads, at most the cores (default: all cores)\n"
+    "  --steps N            simulate N steps first (default 0)\n"
+    "  --size WxH           window or picture size in pixels (default 1280x720)\n"
+    "  --camera EX,EY,EZ,AX,AY,AZ\n"
+    "                       camera eye and target (m, world; default: frame every non-static\n"
+    "                       body)\n"
+    "  --screenshot F.png   render the state after N steps off screen to F.png and exit\n"
+    "  --frames DIR         render frames DIR/frame_00000.png ... off screen, one every K steps\n"
+    "                       up to step N, and exit\n"
+    "  --every K            with --frames: the frame interval in steps (default 1)\n"
+    "  --step N             recording: open at step N (e.g. the first_mismatch_step of\n"
+    "                       'elan replay')\n"
+    "  --body K             recording: select and highlight body K (e.g. the divergence's body)\n"
+    "\n"
+    "Off screen (--screenshot, --frames) one JSON line is printed on stdout: the state hash and\n"
+    "step count, as 'elan run' prints them. A display is needed (under no X server, run it under\n"
+    "'xvfb-run -a'). Keys and mouse: docs/viewer.md.\n"
+    "Exit status: 0 ok, 2 bad arguments, input, or no display.\n";
 
 namespace {
 
@@ -297,6 +322,91 @@ DivergeOptions parse_diverge_options(std::span<const std::string> args) {
   };
   walk(args, "diverge", o.scene, o.help, on_option, takes_value);
   if (!o.help && o.scene.empty()) throw UsageError("elan diverge: missing SCENE.json");
+  return o;
+}
+
+namespace {
+
+// `WxH`, each side in 16..8192 pixels.
+void parse_size(const std::string& option, const std::string& text, int& w, int& h) {
+  const std::size_t x = text.find('x');
+  if (x == std::string::npos) throw UsageError(option + ": expected WxH, got '" + text + "'");
+  w = int(parse_count(option, text.substr(0, x), 16, 8192));
+  h = int(parse_count(option, text.substr(x + 1), 16, 8192));
+}
+
+// Six finite numbers separated by commas.
+void parse_camera(const std::string& option, const std::string& text, double (&out)[6]) {
+  std::size_t start = 0;
+  for (int i = 0; i < 6; ++i) {
+    const std::size_t comma = text.find(',', start);
+    const bool last = i == 5;
+    if ((comma == std::string::npos) != last) {
+      throw UsageError(option + ": expected six numbers EX,EY,EZ,AX,AY,AZ, got '" + text + "'");
+    }
+    const std::string word = text.substr(start, last ? std::string::npos : comma - start);
+    char* end = nullptr;
+    errno = 0;
+    const double v = word.empty() ? 0 : std::strtod(word.c_str(), &end);
+    if (word.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v) || std::abs(v) > 1e6) {
+      throw UsageError(option + ": expected a finite number within 1e6 m, got '" + word + "'");
+    }
+    out[i] = v;
+    start = comma + 1;
+  }
+  const double dx = out[3] - out[0], dy = out[4] - out[1], dz = out[5] - out[2];
+  if (!(dx * dx + dy * dy + dz * dz > 1e-12)) {
+    throw UsageError(option + ": the eye and the target must differ");
+  }
+}
+
+}  // namespace
+
+ViewOptions parse_view_options(std::span<const std::string> args) {
+  ViewOptions o;
+  bool has_every = false;
+  // --paused takes no value: it is taken out before the common walk.
+  std::vector<std::string> rest;
+  for (const std::string& a : args) {
+    if (a == "--paused") {
+      o.paused = true;
+    } else {
+      rest.push_back(a);
+    }
+  }
+  const auto takes_value = [](const std::string& n) {
+    return n == "--threads" || n == "--screenshot" || n == "--frames" || n == "--every" ||
+           n == "--steps" || n == "--size" || n == "--camera" || n == "--step" || n == "--body";
+  };
+  const auto on_option = [&](const std::string& n, const std::string& v) {
+    if (n == "--threads") {
+      o.threads = int(parse_count(n, v, 1, kMaxThreads));
+    } else if (n == "--screenshot" || n == "--frames") {
+      if (v.empty()) throw UsageError(n + ": empty file name");
+      (n == "--screenshot" ? o.screenshot : o.frames) = v;
+    } else if (n == "--every") {
+      o.every = parse_count(n, v, 1, kMaxSteps);
+      has_every = true;
+    } else if (n == "--steps") {
+      o.steps = parse_count(n, v, 0, kMaxSteps);
+    } else if (n == "--size") {
+      parse_size(n, v, o.width, o.height);
+    } else if (n == "--camera") {
+      parse_camera(n, v, o.camera);
+      o.has_camera = true;
+    } else if (n == "--step") {
+      o.step = parse_count(n, v, 0, kMaxSteps);
+    } else {
+      o.body = parse_count(n, v, 0, UINT32_MAX);
+    }
+  };
+  walk(rest, "view", o.file, o.help, on_option, takes_value);
+  if (o.help) return o;
+  if (o.file.empty()) throw UsageError("elan view: missing SCENE.json or RECORDING");
+  if (has_every && o.frames.empty()) throw UsageError("--every: only with --frames");
+  if (!o.screenshot.empty() && !o.frames.empty()) {
+    throw UsageError("elan view: --screenshot and --frames exclude each other");
+  }
   return o;
 }
 

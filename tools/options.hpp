@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Command-line options of `elan run`, `elan replay` and `elan diverge`: hand-written parsing,
-// strict numbers.
+// Command-line options of `elan run`, `elan replay`, `elan diverge` and `elan view`: hand-written
+// parsing, strict numbers.
 #pragma once
 
 #include <cstdint>
@@ -70,10 +70,29 @@ struct DivergeOptions {
   SideOptions a, b;
 };
 
+/// `elan view`: a window on a scene or a recording, or (with --screenshot / --frames) pictures
+/// rendered off screen.
+struct ViewOptions {
+  bool help = false;
+  std::string file;  // a scene or a recording
+  bool paused = false;
+  int threads = 0;                 // 0 = all cores
+  std::string screenshot;          // PNG path, empty = none
+  std::string frames;              // directory of numbered PNG frames, empty = none
+  uint64_t every = 1;              // with --frames: a frame every K steps
+  uint64_t steps = 0;              // steps before the screenshot (or before the window opens)
+  int width = 1280, height = 720;  // pixels, of the off-screen picture or the window
+  bool has_camera = false;
+  double camera[6] = {0, 0, 0, 0, 0, 0};  // eye x y z, target x y z (m, world)
+  std::optional<uint64_t> step;           // recording: open at this step
+  std::optional<uint64_t> body;           // recording: highlight this body
+};
+
 /// `args` are the words after the command name. Throw UsageError.
 RunOptions parse_run_options(std::span<const std::string> args);
 ReplayOptions parse_replay_options(std::span<const std::string> args);
 DivergeOptions parse_diverge_options(std::span<const std::string> args);
+ViewOptions parse_view_options(std::span<const std::string> args);
 
 const char* broadphase_name(BroadphaseType type);
 /// Worker count that `threads` (0 = all cores) stands for: at most the threads oneTBB runs at
@@ -84,5 +103,6 @@ extern const char* const kMainUsage;
 extern const char* const kRunUsage;
 extern const char* const kReplayUsage;
 extern const char* const kDivergeUsage;
+extern const char* const kViewUsage;
 
 }  // namespace elan::cli

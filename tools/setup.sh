@@ -8,7 +8,9 @@ cd "$root"
 
 packages=(build-essential cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libgtest-dev
           libgmock-dev libbenchmark-dev libbullet-dev libtinyobjloader-dev clang-format python3
-          gnuplot-nox)
+          gnuplot-nox
+          # the viewer (elan view), its off-screen pictures and tools/make_pictures.sh
+          libglfw3-dev libimgui-dev libstb-dev libgl-dev libgl1-mesa-dri xvfb xauth imagemagick)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: MIT
+#include "tools/viewer/scene_view.hpp"
+
+#include <cstring>
+
+namespace elan::viewer {
+namespace {
+
+void put(std::string& key, const void* bytes, std::size_t n) {
+  key.append(static_cast<const char*>(bytes), n);
+}
+
+// The bytes of everything that shapes the mesh of `def`: equal keys, equal meshes.
+void shape_key(const ShapeDef& def, std::string& key) {
+  put(key, &def.type, sizeof def.type);
+  switch (def.type) {
+    case ShapeType::Capsule:
+      put(key, &def.radius, sizeof def.radius);
+      put(key, &def.half_height, sizeof def.half_height);
+      break;
+    case ShapeType::ConvexHull:
+      put(key, def.points.data(), def.points.size() * sizeof(Vec3));
+      break;
+    case ShapeType::Plane:
+      put(key, def.normal.data(), sizeof(Vec3));
+      put(key, &def.offset, sizeof def.offset);
+      break;
+    case ShapeType::Mesh:
+      put(key, def.vertices.data(), def.vertices.size() * sizeof(Vec3));
+      put(key, def.triangles.data(), def.triangles.size() * sizeof(def.triangles[0]));
+      break;
+    case ShapeType::Heightfield:
+      put(key, def.heights.data(), def.heights.size() * sizeof(Real));
+      put(key, &def.columns, sizeof def.columns);
+      put(key, &def.spacing_x, sizeof def.spacing_x);
+      put(key, &def.spacing_z, sizeof def.spacing_z);
+      break;
+    case ShapeType::Compound:
+      for (const CompoundChild& c : def.children) {
+        shape_key(c.shape, key);
+        put(key, c.position.data(), sizeof(Vec3));
+        put(key, c.orientation.coeffs().data(), 4 * sizeof(Real));
+        // Unit-mesh children are built at their size.
+        put(key, &c.shape.radius, sizeof(Real));
+        put(key, &c.shape.half_height, sizeof(Real));
+        put(key, c.shape.half_extents.data(), sizeof(Vec3));
+      }
+      break;
+    default:
+      break;
+  }
+}
+
+constexpr float kPalette[8][3] = {
+    {0.90f, 0.45f, 0.25f}, {0.30f, 0.65f, 0.90f}, {0.45f, 0.80f, 0.40f}, {0.95f, 0.75f, 0.25f},
+    {0.70f, 0.45f, 0.85f}, {0.30f, 0.80f, 0.75f}, {0.90f, 0.40f, 0.55f}, {0.80f, 0.80f, 0.75f},
+};
+
+}  // namespace
+
+Eigen::Vector4f body_color(std::size_t index, MotionType motion, bool awake) {
+  Eigen::Vector3f c;
+  if (motion == MotionType::Static) {
+    c = {0.55f, 0.56f, 0.58f};
+  } else if (motion == MotionType::Kinematic) {
+    c = {0.35f, 0.50f, 0.90f};
+  } else {
+    // A multiplicative hash spreads neighbouring indices (a pyramid's rows) over the palette.
+    const float* p = kPalette[(uint32_t(index) * 2654435761u >> 29) & 7];
+    c = {p[0], p[1], p[2]};
+    if (!awake) c = 0.45f * c + Eigen::Vector3f::Constant(0.12f);
+  }
+  return {c.x(), c.y(), c.z(), 1.0f};
+}
+
+void SceneView::rebuild(const Simulation& sim, Renderer& renderer) {
+  renderer.clear_meshes();
+  own_meshes_.clear();
+  constexpr int kRings = 12, kSegments = 20;
+  unit_meshes_[0] = renderer.add_mesh(unit_sphere(kRings, kSegments));
+  unit_meshes_[1] = renderer.add_mesh(unit_box());
+  unit_meshes_[2] = renderer.add_mesh(unit_cylinder(kSegments));
+  const World& world = sim.world();
+  body_mesh_.assign(world.body_count(), -1);
+  body_scale_.assign(world.body_count(), Eigen::Vector3f::Ones());
+  for (std::size_t i = 0; i < world.body_count(); ++i) {
+    const ShapeDef& def = sim.body_shape(i);
+    const MeshKind kind = mesh_kind(def);
+    body_scale_[i] = instance_scale(def);
+    if (kind != MeshKind::Own) {
+      body_mesh_[i] = unit_meshes_[int(kind)];
+      continue;
+    }
+    std::string key;
+    shape_key(def, key);
+    auto it = own_meshes_.find(key);
+    if (it == own_meshes_.end()) {
+      it = own_meshes_.emplace(std::move(key), renderer.add_mesh(shape_mesh(def))).first;
+    }
+    body_mesh_[i] = it->second;
+  }
+  version_ = sim.version();
+  sim_ = &sim;
+}
+
+void SceneView::update(const Simulation& sim, Renderer& renderer,
+                       std::optional<std::size_t> selected,
+                       std::optional<std::size_t> highlighted) {
+  if (sim.version() != version_ || &sim != sim_ || body_mesh_.size() != sim.world().body_count()) {
+    rebuild(sim, renderer);
+  }
+  renderer.begin_frame();
+  const World& world = sim.world();
+  const std::size_t n = world.body_count();
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyId id = world.body_at(i);
+    const Vec3 p = world.position(id);
+    const Quat q = world.orientation(id);
+    const MotionType motion = world.motion_type(id);
+    Eigen::Vector4f c = body_color(i, motion, world.is_awake(id));
+    if (selected && *selected == i) c = {1.0f, 0.85f, 0.2f, 1.0f};
+    if (highlighted && *highlighted == i) c = {1.0f, 0.15f, 0.1f, 1.0f};
+    const Eigen::Vector3f& s = body_scale_[i];
+    Instance inst{{float(p.x()), float(p.y()), float(p.z())},
+                  {float(q.x()), float(q.y()), float(q.z()), float(q.w())},
+                  {s.x(), s.y(), s.z()},
+                  {c[0], c[1], c[2], c[3]},
+                  motion == MotionType::Static ? 1.0f : 0.0f};
+    renderer.add_instance(body_mesh_[i], inst);
+  }
+  // Joints: origin A -> anchor A -> anchor B -> origin B.
+  const Eigen::Vector4f arm(0.95f, 0.95f, 0.55f, 1.0f), gap(1.0f, 0.3f, 0.3f, 1.0f);
+  for (const JointLink& j : sim.joints()) {
+    if (!world.is_valid(j.id) || j.body_a < 0 || std::size_t(j.body_a) >= n) continue;
+    const BodyId a = world.body_at(std::size_t(j.body_a));
+    const Eigen::Vector3f pa = world.position(a).cast<float>();
+    const Eigen::Vector3f wa = (world.position(a) + world.orientation(a) * j.local_a).cast<float>();
+    Eigen::Vector3f pb = j.local_b.cast<float>(), wb = pb;
+    if (j.body_b >= 0 && std::size_t(j.body_b) < n) {
+      const BodyId b = world.body_at(std::size_t(j.body_b));
+      pb = world.position(b).cast<float>();
+      wb = (world.position(b) + world.orientation(b) * j.local_b).cast<float>();
+    }
+    renderer.add_line(pa, wa, arm);
+    renderer.add_line(wa, wb, gap);
+    renderer.add_line(wb, pb, arm);
+  }
+}
+
+}  // namespace elan::viewer
