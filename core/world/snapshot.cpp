@@ -96,6 +96,10 @@ void write_quat(ByteWriter& w, const Quat& q) {
 
 Quat read_quat(ByteReader& r) {
   const Real qw = r.real(), qx = r.real(), qy = r.real(), qz = r.real();
+  // Every saved rotation is a unit quaternion; anything else would spread NaN into the poses
+  // derived through it (found by fuzz_snapshot: a shape frame's).
+  const double n2 = double(qw) * qw + double(qx) * qx + double(qy) * qy + double(qz) * qz;
+  if (!(std::abs(n2 - 1) <= 1e-3)) r.fail("a rotation is not a unit quaternion");
   return Quat(qw, qx, qy, qz);
 }
 
