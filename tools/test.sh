@@ -46,9 +46,11 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
 
 # Under TSan (about 10x slower than a native run) the largest golden-hash scenes would take
 # minutes each; ASan and Release run them, and every smaller scene still runs here.
-# Gjk.MatchesExactDistanceOnRandomHulls: GJK's lower bound misses its 1e-4 tolerance by a
-# few 1e-6 in clang's build (a numerical difference, not a race), and gcc's builds run it.
+# Two narrowphase tolerances that clang's numerics miss by a few 1e-6 (not races; gcc's builds
+# run them): Gjk.MatchesExactDistanceOnRandomHulls, CollidePairs.CarriedManifoldsAgree...; and
+# the public-header check, which is about include lines, not threads, and reads gcc's output.
 tsan_skip='GoldenHash.*"(pile10k|pile4k|heightfield_rain)"|Gjk.MatchesExactDistanceOnRandomHulls'
+tsan_skip+='|CollidePairs.CarriedManifoldsAgreeWithTheExactTest|Unit.PublicHeadersIncludeNoTbbOrJson'
 echo "== ThreadSanitizer build of the threaded tests (unit, stage, determinism), and tests"
 # Only the areas whose tests run threads (docs/sanitizers.md); no tools, benchmarks or fuzz
 # drivers. halt_on_error: the first report fails its test.

@@ -102,6 +102,10 @@ void write_quat(ByteWriter& w, const Quat& q) {
 
 Quat read_quat(ByteReader& r) {
   const Real qw = r.real(), qx = r.real(), qy = r.real(), qz = r.real();
+  // Every saved rotation is a unit quaternion; anything else would spread NaN into the poses
+  // derived through it (found by fuzz_snapshot: a shape frame's).
+  const double n2 = double(qw) * qw + double(qx) * qx + double(qy) * qy + double(qz) * qz;
+  if (!(std::abs(n2 - 1) <= 1e-3)) r.fail("a rotation is not a unit quaternion");
   return Quat(qw, qx, qy, qz);
 }
 
@@ -373,7 +377,11 @@ Shape read_shape(ByteReader& r, bool in_compound) {
       (s.half_extents.array() >= 0).all() && (s.unit_inertia.array() >= 0).all() &&
       std::isfinite(s.radius) && std::isfinite(s.half_height) && std::isfinite(s.volume) &&
       std::isfinite(s.bounding_radius) && s.half_extents.allFinite() && s.unit_inertia.allFinite();
-  if (!finite || !sizes) r.fail("shape sizes or frame are not finite and non-negative");
+  // A shape's frame is within the supported positions (elan/limits.hpp), as make_shape's are.
+  const bool frame = s.frame_position.cwiseAbs().maxCoeff() <= Real(limits::kMaxPosition);
+  if (!finite || !sizes || !frame) {
+    r.fail("shape sizes or frame are not finite and non-negative, or past the supported range");
+  }
   const uint8_t has_hull = r.u8();
   if (has_hull > 1 || (has_hull == 1) != (s.type == ShapeType::ConvexHull)) {
     r.fail("hull data does not match the shape type");
@@ -669,8 +677,11 @@ void check_bodies(ByteReader& r, const Decoded& d) {
     // past the API's ranges (elan/limits.hpp) are not refused: a running world reaches them (the
     // soak test's bodies did), and its snapshot must load.
     const std::string body = "body " + std::to_string(i) + ": ";
-    if (!(std::isfinite(b.px[i]) && std::isfinite(b.py[i]) && std::isfinite(b.pz[i]))) {
-      r.fail(body + "position is not finite");
+    // At most 1e30 (m, m/s, rad/s): what the API reports is derived through a shape frame of at
+    // most 1e5 m (position - R frame, v + w x frame), which then stays below the float maximum.
+    const auto bounded = [](Real x) { return std::abs(x) <= Real(1e30); };
+    if (!(bounded(b.px[i]) && bounded(b.py[i]) && bounded(b.pz[i]))) {
+      r.fail(body + "position is not finite or past 1e30 m");
     }
     const double q2 = double(b.qw[i]) * b.qw[i] + double(b.qx[i]) * b.qx[i] +
                       double(b.qy[i]) * b.qy[i] + double(b.qz[i]) * b.qz[i];
@@ -678,9 +689,9 @@ void check_bodies(ByteReader& r, const Decoded& d) {
     const auto length = [](Real x, Real y, Real z) {
       return std::sqrt(double(x) * x + double(y) * y + double(z) * z);
     };
-    if (!std::isfinite(length(b.vx[i], b.vy[i], b.vz[i])) ||
-        !std::isfinite(length(b.wx[i], b.wy[i], b.wz[i]))) {
-      r.fail(body + "velocity is not finite");
+    if (!(length(b.vx[i], b.vy[i], b.vz[i]) <= 1e30) ||
+        !(length(b.wx[i], b.wy[i], b.wz[i]) <= 1e30)) {
+      r.fail(body + "velocity is not finite or past 1e30");
     }
     const bool dynamic = b.motion[i] == uint8_t(MotionType::Dynamic);
     // 1/m for m in the mass range, with a float rounding's slack.
