@@ -85,7 +85,9 @@ void Camera::frame(const Eigen::Vector3f& lo, const Eigen::Vector3f& hi, float a
   const float radius = std::max(0.5f * (hi - lo).norm(), 0.1f);
   const float half_x = std::atan(std::tan(fov_y / 2) * aspect);
   const float half = std::min(fov_y / 2, half_x);
-  distance = radius / std::sin(half) * 1.05f;
+  // The sphere touches the view's edges at its tangent points; a box fills less of it, so the
+  // distance that puts the sphere's radius at the edge (r / tan) frames it snugly.
+  distance = radius / std::tan(half);
 }
 
 PixelRay Camera::ray(double x, double y, int w, int h) const {

@@ -83,13 +83,11 @@ void controls(AppState& app) {
   if (ImGui::Button("Frame all (F)")) app.frame_request = true;
 
   if (!replay && ImGui::CollapsingHeader("World", ImGuiTreeNodeFlags_DefaultOpen)) {
-#if defined(ELAN_VIEWER_DEBUG_DRAW)
     float g[3] = {float(sim.gravity.x()), float(sim.gravity.y()), float(sim.gravity.z())};
     if (ImGui::DragFloat3("gravity", g, 0.1f, -100.0f, 100.0f, "%.2f")) {
       sim.gravity = Vec3(Real(g[0]), Real(g[1]), Real(g[2]));
       world.set_gravity(sim.gravity);
     }
-#endif
     ImGui::Checkbox("sleeping", &sim.sleeping);
     int substeps = world.settings().substeps, iterations = world.settings().iterations;
     int threads = world.settings().threads;

@@ -79,7 +79,7 @@ GLFWwindow* open_window(int width, int height, bool visible, const std::string& 
   return w;
 }
 
-// The default view: every non-static body's bounding sphere (all bodies' when every body is
+// The default view: every non-static body's bounding box (all bodies' when every body is
 // static), seen from the default yaw and pitch.
 void frame_bodies(Camera& camera, const Simulation& sim, float aspect) {
   const World& world = sim.world();
@@ -91,9 +91,9 @@ void frame_bodies(Camera& camera, const Simulation& sim, float aspect) {
       // A plane is unbounded: it cannot be framed.
       const float r = bounding_radius(sim.body_shape(i));
       if (!(r < 1e4f)) continue;
-      const Eigen::Vector3f p = world.position(id).cast<float>();
-      lo = lo.cwiseMin(p - Eigen::Vector3f::Constant(r));
-      hi = hi.cwiseMax(p + Eigen::Vector3f::Constant(r));
+      const Aabb b = world.bounds(id);
+      lo = lo.cwiseMin(b.lo.cast<float>());
+      hi = hi.cwiseMax(b.hi.cast<float>());
     }
     if (lo.x() <= hi.x()) break;
   }
@@ -384,9 +384,7 @@ int interactive(const cli::ViewOptions& o, AppState& app) {
     }
 
     view.update(*app.sim, renderer, app.selected, app.highlighted);
-#if defined(ELAN_VIEWER_DEBUG_DRAW)
     draw_overlays(app.sim->world(), app.overlays, renderer);
-#endif
     if (app.dragger.active()) {
       renderer.add_line(app.dragger.grab_point(app.sim->world()).cast<float>(),
                         app.dragger.target().cast<float>(), {1, 1, 1, 1});
