@@ -58,9 +58,9 @@ void shape_bounds(const Shape& shape, const Vec3& position, const Quat& rotation
                   Vec3& hi);
 // The same box as an Aabb: what World::bounds and the debug drawer report.
 inline Aabb shape_box(const Shape& shape, const Vec3& position, const Quat& rotation) {
-  Aabb box;
-  shape_bounds(shape, position, rotation, box.lo, box.hi);
-  return box;
+  Vec3 lo, hi;
+  shape_bounds(shape, position, rotation, lo, hi);
+  return Aabb{lo, hi};
 }
 
 }  // namespace elan::detail
