@@ -731,7 +731,7 @@ void forget_api_caches(WorldState& s) {
   s.api.end_events.clear();
   s.api.joint_events.clear();
   s.api.body_ids.clear();
-  detail::query_tree_rebuild(s);
+  detail::query_tree_refit_all(s);
 }
 
 // Replaces the world's state with `d`. Scratch of the step (bounds, pairs, the sweep's kept
