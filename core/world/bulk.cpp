@@ -73,7 +73,7 @@ void World::set_center_of_mass_positions(std::span<const Real> x, std::span<cons
     b.pz[i] = z[i];
     detail::wake_index(s, i);
   }
-  detail::query_tree_rebuild(s);
+  detail::query_tree_refit_all(s);
 }
 
 void World::set_linear_velocities(std::span<const Real> x, std::span<const Real> y,

@@ -62,12 +62,14 @@ void query_tree_remove(WorldState& s, uint32_t index) {
   q.tree.resize_items(last);
 }
 
-void query_tree_rebuild(WorldState& s) {
+void query_tree_refit_all(WorldState& s) {
   QueryTree& q = s.query;
-  q.tree.clear();
-  q.planes.clear();
   const uint32_t n = uint32_t(s.bodies.size());
+  for (std::size_t i = n; i < q.tree.item_count(); ++i) q.tree.remove(uint32_t(i));
+  q.planes.erase(std::lower_bound(q.planes.begin(), q.planes.end(), n), q.planes.end());
   q.tree.resize_items(n);
+  // perf: a rollback restores poses a few steps back, most inside their leaves: a containment
+  // test each, not a rebuild.
   for (uint32_t i = 0; i < n; ++i) query_tree_update(s, i);
 }
 
@@ -76,7 +78,7 @@ void query_tree_after_step(WorldState& s) {
   const BodyStore& b = s.bodies;
   const std::size_t n = b.size();
   if (q.tree.item_count() != n) {
-    query_tree_rebuild(s);
+    query_tree_refit_all(s);
     return;
   }
   // What the step may have moved: static bodies move only through the API (which refits them),

@@ -3,7 +3,7 @@
 // grown by kQueryFatMargin, which every scene query reads and nothing else. It is kept in step
 // with the world by the step's last stage (query_tree_after_step) and by every API call that
 // changes a pose, a shape or the body set (query_tree_update, query_tree_remove,
-// query_tree_rebuild), so the queries themselves only read: they are const in fact, and any
+// query_tree_refit_all), so the queries themselves only read: they are const in fact, and any
 // number of threads may run them at once between steps.
 #pragma once
 
@@ -36,8 +36,9 @@ void query_tree_update(WorldState& s, uint32_t index);
 // Body `index` is about to be swap-removed (the last body takes its index): call before the
 // store's swap_remove.
 void query_tree_remove(WorldState& s, uint32_t index);
-// Every body changed (bulk setters, snapshot and rollback restores): rebuilt from scratch.
-void query_tree_rebuild(WorldState& s);
+// Every body may have changed (bulk setters, snapshot and rollback restores): every body's leaf
+// refitted, entries past the body count dropped.
+void query_tree_refit_all(WorldState& s);
 // The step's last stage: refits the leaves of every body the step may have moved (awake dynamic,
 // kinematic, quarantined), serially in index order after a parallel pass over their boxes.
 void query_tree_after_step(WorldState& s);

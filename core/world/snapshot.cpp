@@ -869,7 +869,7 @@ void forget_api_caches(WorldState& s) {
   s.api.hit_events.clear();
   s.bodies_placed = false;
   for (uint8_t f : s.bodies.flags) s.bodies_placed |= (f & detail::kPlaced) != 0;
-  detail::query_tree_rebuild(s);
+  detail::query_tree_refit_all(s);
 }
 
 // Replaces the world's state with `d`. Scratch of the step (bounds, pairs, the sweep's kept

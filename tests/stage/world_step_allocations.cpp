@@ -139,6 +139,15 @@ TEST(StepAllocations, NoneOnceAPileHasSettled) {
   }
 }
 
+// The tree broadphase keeps its leaves and node pool, and the query tree its own, from step to
+// step: a warm step re-inserts leaves into freed nodes only.
+TEST(StepAllocations, NoneOnceAPileHasSettledWithTheTreeBroadphase) {
+  if (test::kSanitized) GTEST_SKIP() << "pile1k runs under the sanitizers in the determinism tests";
+  Real dt = 0;
+  World world = test::load_world("pile1k.json", 2, dt, BroadphaseType::Tree);
+  EXPECT_EQ(allocations_once_warm(world, dt, 300, 120), 0);
+}
+
 // Joints: the rows, the groups and the island links keep their capacity; the chains swing over a
 // pile, so the joints share the step with contacts that come and go. The chains' widest swings
 // (the most sweep strips, the most continuous impacts and pairs) come within the first 8 s: the
