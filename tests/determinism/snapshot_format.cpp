@@ -107,8 +107,15 @@ TEST(SnapshotFormat, OtherVersionAndRealSizeAreRefusedByName) {
 
 // The joint section's bytes (it follows the contacts).
 std::size_t joint_bytes(const detail::WorldState& s) {
-  return 4 + s.joints.size() * (14 + 64 * sizeof(Real)) + 4 + 8 * s.joints.slot_index.size() + 4 +
+  return 4 + s.joints.size() * (22 + 64 * sizeof(Real)) + 4 + 8 * s.joints.slot_index.size() + 4 +
          4 * s.joints.free_slots.size();
+}
+
+// Version 10's section after the joints: per body user data, density and given mass; the hit
+// threshold; the sensor overlaps.
+std::size_t api_bytes(const detail::WorldState& s) {
+  return s.bodies.size() * (8 + 2 * sizeof(Real)) + sizeof(Real) + 4 +
+         8 * s.api.sensor_overlaps.size();
 }
 
 // The snapshot's bytes after the body columns: the applied forces, contacts, id slots, joints
@@ -116,14 +123,14 @@ std::size_t joint_bytes(const detail::WorldState& s) {
 std::size_t bytes_after_columns(const detail::WorldState& s) {
   constexpr std::size_t kR = sizeof(Real);
   const std::size_t forces = 4 + s.bodies.applied_forces.size() * (4 + 6 * kR);
-  const std::size_t traits = 4 + s.bodies.trait_table.entries().size() * (4 * kR + 8) + 4 +
+  const std::size_t traits = 4 + s.bodies.trait_table.entries().size() * (5 * kR + 12) + 4 +
                              4 * s.bodies.trait_table.free_entries().size();
   // Per manifold: key and bodies, normal, point count, points, friction, whether it has cache
   // poses; then the poses of those that have them.
   const std::size_t contacts = 4 + s.contacts.size() * (16 + 6 * kR + 1 + 4 * (5 * kR + 4) + 1) +
                                s.contacts.pair_cache().size() * (14 * kR + 7);
   const std::size_t slots = 4 + 8 * s.slot_index.size() + 4 + 4 * s.free_slots.size();
-  return forces + traits + contacts + slots + joint_bytes(s) + 8;
+  return forces + traits + contacts + slots + joint_bytes(s) + api_bytes(s) + 8;
 }
 
 // The error a fresh world gives for `bytes` with the byte at `at` (which must hold `was`) set to
@@ -195,7 +202,7 @@ TEST(SnapshotFormat, ResealedBadPackedRotationIsRefused) {
       << "the last manifold has poses";
   const std::vector<uint8_t> saved = save_snapshot(world);
   std::vector<uint8_t> bytes = saved;
-  const std::size_t tail = 8 + joint_bytes(s);  // the joints and the checksum
+  const std::size_t tail = 8 + joint_bytes(s) + api_bytes(s);  // joints, API values, checksum
   uint8_t& dropped = bytes[bytes.size() - tail - 1];
   ASSERT_LE(dropped, 3);
   dropped = 4;

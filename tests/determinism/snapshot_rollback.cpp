@@ -67,8 +67,11 @@ TEST(Rollback, SizeIsEightyOneBytesPerMovingBodyPlusContacts) {
   // The joint section: counts of joints, slots and free slots, none of them here.
   ASSERT_TRUE(s.joints.empty());
   const std::size_t joint_bytes = 12;
+  // The sensor overlaps: a count, none here.
+  ASSERT_TRUE(s.api.sensor_overlaps.empty());
+  const std::size_t sensor_bytes = 4;
   // Header 16, body count 4, fingerprint 8, step count 8, checksum 8.
-  EXPECT_EQ(saved.size(), 44 + moving * per_body + contact_bytes + joint_bytes);
+  EXPECT_EQ(saved.size(), 44 + moving * per_body + contact_bytes + joint_bytes + sensor_bytes);
   if constexpr (sizeof(Real) == 4) {
     EXPECT_LE(per_body, 128u);
   }
