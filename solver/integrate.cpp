@@ -159,7 +159,11 @@ Quat spin_in_pieces(const Quat& dq, const Quat& q0, const Vec3& d, Real h, Vec3&
   const Quat before = (dq * q0).normalized();
   const Vec3 l_world = before * d.cwiseProduct(before.conjugate() * w);
   const Real e_start = w.dot(l_world);
-  const int pieces = std::min(kMaxSpinPieces, int(std::ceil(w.norm() * h / kMaxTurnPerPiece)));
+  // Compared as a Real first: an infinite or NaN turn (a body going non-finite, quarantined after
+  // the step) takes the most pieces instead of an undefined conversion to int.
+  const Real turn_pieces = std::ceil(w.norm() * h / kMaxTurnPerPiece);
+  const int pieces =
+      turn_pieces < Real(kMaxSpinPieces) ? std::max(1, int(turn_pieces)) : kMaxSpinPieces;
   const Real hp = h / Real(pieces);
   Quat turned = dq, after = before;
   Vec3 wc = w;

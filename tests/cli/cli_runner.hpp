@@ -76,9 +76,11 @@ inline std::string temp_path(const std::string& name) {
 
 // With `timeout_seconds` > 0 the binary runs under timeout(1), killed after that long: a test of
 // a former hang then fails (status 124, or 137 after the KILL) instead of hanging the suite.
-inline Result run_elan(const std::vector<std::string>& args, int timeout_seconds = 0) {
+// `env_prefix` (e.g. "env -u DISPLAY") goes before the whole command.
+inline Result run_elan(const std::vector<std::string>& args, int timeout_seconds = 0,
+                       const std::string& env_prefix = "") {
   const std::string out = temp_path("stdout"), err = temp_path("stderr");
-  std::string cmd;
+  std::string cmd = env_prefix.empty() ? "" : env_prefix + " ";
   if (timeout_seconds > 0)
     cmd.append("timeout -k 5 ").append(std::to_string(timeout_seconds)).append(" ");
   cmd.append(quote(ELAN_CLI));

@@ -55,18 +55,7 @@ std::size_t drawn_pixels(const Image& img) {
 
 // Runs the elan binary with `env_prefix` (e.g. "env -u DISPLAY") before it.
 Result run_with_env(const std::string& env_prefix, const std::vector<std::string>& args) {
-  const std::string out = temp_path("stdout"), err = temp_path("stderr");
-  std::string cmd = env_prefix + " timeout -k 5 120 " + quote(ELAN_CLI);
-  for (const std::string& a : args) cmd.append(" ").append(quote(a));
-  cmd.append(" >").append(quote(out)).append(" 2>").append(quote(err)).append(" </dev/null");
-  const int rc = std::system(cmd.c_str());
-  Result r;
-  r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  r.out = read(out);
-  r.err = read(err);
-  std::remove(out.c_str());
-  std::remove(err.c_str());
-  return r;
+  return run_elan(args, 120, env_prefix);
 }
 
 class ViewerTest : public ::testing::Test {
