@@ -10,7 +10,21 @@
 #include <cstdint>
 #include <cstring>
 
-#if defined(__AVX512F__) && !defined(ELAN_DOUBLE)
+// The lane count as a macro too, for the #if of the intrinsic paths below and in body_lanes.hpp.
+// ELAN_LANES (the CMake cache option of that name) overrides the ISA's default.
+#if defined(ELAN_LANES)
+#define ELAN_WIDE_LANES ELAN_LANES
+#elif defined(__AVX512F__)
+#define ELAN_WIDE_LANES 16
+#else
+#define ELAN_WIDE_LANES 8
+#endif
+#if ELAN_WIDE_LANES != 8 && ELAN_WIDE_LANES != 16
+#error "ELAN_LANES must be 8 or 16"
+#endif
+// The AVX-512 intrinsic paths: sixteen float lanes in one zmm register.
+#if defined(__AVX512F__) && !defined(ELAN_DOUBLE) && ELAN_WIDE_LANES == 16
+#define ELAN_WIDE_AVX512 1
 #include <immintrin.h>
 #endif
 
@@ -23,11 +37,7 @@ namespace elan::detail {
 // work per step of that chain. With AVX-512, 16 lanes in one register do better than 8, though
 // the later, smaller colours carry more padding. Without it (Box2D v3 bundles 8 on AVX2), 16 lanes
 // would take two registers each and spill.
-#if defined(__AVX512F__)
-inline constexpr int kLanes = 16;
-#else
-inline constexpr int kLanes = 8;
-#endif
+inline constexpr int kLanes = ELAN_WIDE_LANES;
 
 typedef Real Wide __attribute__((vector_size(kLanes * sizeof(Real))));
 
@@ -52,7 +62,7 @@ inline Wide wide_min(Wide a, Wide b) {
 // std::sqrt lane by lane; the lane loop compiles to scalar calls (errno), the intrinsic to one
 // instruction.
 inline Wide wide_sqrt(Wide x) {
-#if defined(__AVX512F__) && !defined(ELAN_DOUBLE)
+#if defined(ELAN_WIDE_AVX512)
   // A zeroing mask of all lanes: _mm512_sqrt_ps passes GCC 12 an undefined merge operand, which it
   // reports as used uninitialized in some callers (GCC bug 105593; see body_lanes.hpp).
   return Wide(_mm512_maskz_sqrt_ps(__mmask16(0xFFFF), __m512(x)));
