@@ -84,6 +84,13 @@ class Replayer {
   std::size_t next_call_ = 0;  // offset in r_->calls
 };
 
+/// One step of a recording on `world`, which holds the recording's state after `step` steps: the
+/// calls recorded before the next step, then that step with its recorded timestep (a scene
+/// recording: the step alone). Returns the step's StepStatus. For players that own their world
+/// (the viewer's timeline); Replayer does the same without searching the calls each time.
+/// Throws as Replayer::advance.
+uint32_t replay_step(World& world, const Recording& r, uint64_t step);
+
 struct ReplayOptions {
   int threads = 1;                           ///< 0: all cores
   std::optional<BroadphaseType> broadphase;  ///< default: the recorded one
