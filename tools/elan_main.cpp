@@ -272,6 +272,8 @@ int run(const RunOptions& o) {
   if (!o.record.empty()) {
     Recording r;
     r.real_bytes = sizeof(Real);
+    r.engine_version = kEngineVersion;
+    r.promise = kDeterminismPromise;
     r.steps = o.steps;
     r.timestep = double(dt);
     r.substeps = def.substeps;

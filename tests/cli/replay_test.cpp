@@ -535,8 +535,14 @@ TEST_F(ProgramReplay, ReplaysBitForBitWithAnyThreadsAndBroadphase) {
 // One ulp more on the first component of the impulse the program applies after step kPushStep,
 // edited through the codec: the replay parts at the next step, and the divergence finder (the
 // keyframe at kPushStep replayed with the recorded calls) names the pushed body.
+//
+// The recorded state after that step is known only from a keyframe there: replaying from the
+// keyframe before it re-applies the edited call too, which reproduces the replay and not the
+// recorded hash (that case is reported without a body). So this recording keeps a keyframe at
+// every step.
 TEST_F(ProgramReplay, OneUlpInOneCallIsFoundAtItsStepAndBody) {
-  elan::Recording r = decoded();
+  static const elan::test::RecordedProgram every_step = elan::test::record_program(2, 1);
+  elan::Recording r = elan::decode_recording(to_string(every_step.recording), path_);
   for (const elan::RecordedCall& c : elan::list_calls(r)) {
     if (elan::recorded_call_name(c.op) != "apply_impulse") continue;
     uint8_t* x = r.calls.data() + c.offset + 8;  // after the body id
@@ -551,9 +557,31 @@ TEST_F(ProgramReplay, OneUlpInOneCallIsFoundAtItsStepAndBody) {
   const Json j = Json::parse(out.out);
   EXPECT_EQ(j["first_mismatch_step"], elan::test::kPushStep + 1);
   const Json& d = j["divergence"];
-  EXPECT_EQ(d["keyframe"], elan::test::kPushStep);
-  EXPECT_EQ(d["method"], "re-simulated from keyframe");
-  EXPECT_EQ(d["body"], recorded().pushed_body) << j.dump();
+  EXPECT_EQ(d["keyframe"], elan::test::kPushStep + 1);
+  EXPECT_EQ(d["method"], "keyframe");
+  EXPECT_EQ(d["body"], every_step.pushed_body) << j.dump();
+  // The edited x component changes vx by one ulp of J / m; the position moved by vx dt rounds to
+  // the same bits here, so vx is the first field that differs.
+  EXPECT_EQ(d["field"], "vx");
+
+  // With keyframes every 10 steps the step is found, and the reason why no body is named given.
+  r = decoded();
+  for (const elan::RecordedCall& c : elan::list_calls(r)) {
+    if (elan::recorded_call_name(c.op) != "apply_impulse") continue;
+    uint8_t* x = r.calls.data() + c.offset + 8;
+    elan::Real v;
+    std::memcpy(&v, x, sizeof v);
+    v = std::nextafter(v, std::numeric_limits<elan::Real>::infinity());
+    std::memcpy(x, &v, sizeof v);
+  }
+  write_recording(r);
+  const Result sparse = run_elan({"replay", path_});
+  ASSERT_EQ(sparse.status, 1) << sparse.err;
+  const Json k = Json::parse(sparse.out);
+  EXPECT_EQ(k["first_mismatch_step"], elan::test::kPushStep + 1);
+  EXPECT_TRUE(k["divergence"]["body"].is_null());
+  EXPECT_NE(k["divergence"]["reason"].get<std::string>().find("does not reproduce"),
+            std::string::npos);
 }
 
 TEST_F(ProgramReplay, UntilSaveSnapshotContinuesBitForBit) {
@@ -578,7 +606,7 @@ TEST_F(ProgramReplay, SaveSceneSaysWhyNot) {
   EXPECT_EQ(out.status, 2);
   EXPECT_NE(out.err.find("cannot be written as a scene"), std::string::npos) << out.err;
   EXPECT_NE(out.err.find("use --save-snapshot"), std::string::npos) << out.err;
-  EXPECT_EQ(count_lines(out.err), 1u) << out.err;
+  EXPECT_EQ(elan::test::count_lines(out.err), 1u) << out.err;
 }
 
 TEST_F(ProgramReplay, RecordingsFromBuildsWithOtherPromisesAreRefused) {
