@@ -697,7 +697,6 @@ int diverge(const DivergeOptions& o) {
 int view(const ViewOptions& o) {
   std::string text;
   std::optional<Recording> recording;
-  std::optional<World> program_world;
   Scene scene;
   WorldDef def;
   [[maybe_unused]] Real dt = 0;  // read by the viewer only
@@ -707,21 +706,18 @@ int view(const ViewOptions& o) {
     const Recording& r = *recording;
     name = "recorded scene" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
     if (r.is_program()) {
-      // A program's world starts from its snapshot; its shapes come from the world.
-      name =
-          "recorded program" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
-      program_world.emplace(
-          start_world(r, o.file, workers(o.threads), BroadphaseType(r.broadphase), scene));
-      def = program_world->settings();
-      def.thread_pool = nullptr;
-    } else {
-      try {
-        scene = parse_scene(r.scene_text, name);
-      } catch (const SceneError& e) {
-        throw RecordingError(o.file + ": corrupt recording: " + e.what());
-      }
-      def = scene.world;
+      // The viewer draws a scene's bodies and steps without re-applying calls: a program
+      // recording would show the wrong world, so it is refused until the timeline plays one.
+      throw std::runtime_error("view: " + o.file +
+                               " is a program recording, which the viewer does not play yet; "
+                               "use 'elan replay --until STEP --save-snapshot OUT'");
     }
+    try {
+      scene = parse_scene(r.scene_text, name);
+    } catch (const SceneError& e) {
+      throw RecordingError(o.file + ": corrupt recording: " + e.what());
+    }
+    def = scene.world;
     def.substeps = r.substeps;
     def.iterations = r.iterations;
     def.broadphase = BroadphaseType(r.broadphase);
@@ -739,8 +735,8 @@ int view(const ViewOptions& o) {
     dt = scene.timestep;
   }
   def.threads = workers(o.threads);
-  World world = program_world ? std::move(*program_world) : make_world(def, name);
-  if (!program_world) load_into(scene, world, name);
+  World world = make_world(def, name);
+  load_into(scene, world, name);
   if (o.body && *o.body >= world.body_count()) {
     throw UsageError("--body: " + std::to_string(*o.body) + " out of range (the scene has " +
                      std::to_string(world.body_count()) + " bodies)");
