@@ -252,6 +252,8 @@ int run(const RunOptions& o) {
   if (!o.record.empty()) {
     Recording r;
     r.real_bytes = sizeof(Real);
+    r.engine_version = kEngineVersion;
+    r.promise = kDeterminismPromise;
     r.steps = o.steps;
     r.timestep = double(dt);
     r.substeps = def.substeps;
@@ -286,12 +288,54 @@ World load_keyframe(const Keyframe& k, const std::string& file) {
   }
 }
 
+// The world a recording starts from, with the replay's thread count and broadphase: the recorded
+// scene (kept in `scene` for body names) or a program recording's starting snapshot. The
+// recording's checksum held, so a scene or snapshot that does not load means a corrupt (or
+// forged) recording: the message names the recording, and the recorded scene path only as part of
+// what is wrong in it.
+World start_world(const Recording& r, const std::string& file, int threads,
+                  BroadphaseType broadphase, Scene& scene) {
+  const auto corrupt = [&](const std::string& what) {
+    return RecordingError(file + ": corrupt recording: " + what);
+  };
+  if (r.is_program()) {
+    try {
+      return recording_start_world(r, threads, broadphase);
+    } catch (const RecordingError& e) {
+      throw RecordingError(file + ": " + e.what());
+    }
+  }
+  const std::string embedded =
+      "recorded scene" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
+  WorldDef def;
+  try {
+    scene = parse_scene(r.scene_text, embedded);
+    def = scene.world;
+  } catch (const SceneError& e) {
+    throw corrupt(e.what());
+  }
+  def.substeps = r.substeps;
+  def.iterations = r.iterations;
+  def.threads = threads;
+  def.broadphase = broadphase;
+  try {
+    World w(def);
+    load_into(scene, w, embedded);
+    return w;
+  } catch (const SceneError& e) {
+    throw corrupt(e.what());
+  } catch (const Error& e) {
+    throw corrupt(embedded + ": " + e.what());
+  }
+}
+
 // Finds the first body and field that differ at step `d`, the first step whose hash differs.
 // The recorded state at d is known in full only where a keyframe sits at d; otherwise it is
-// rebuilt by restoring the last keyframe before d and stepping it to d with the recorded thread
-// count and broadphase, which reproduces the recording exactly when the difference comes from
-// the replay's own settings (or --perturb) and not from another build; the recorded hashes from
-// the keyframe to d check that, and when they do not match, no body is named.
+// rebuilt by restoring the last keyframe before d and replaying it to d (a program recording's
+// calls included) with the recorded thread count and broadphase, which reproduces the recording
+// exactly when the difference comes from the replay's own settings (or --perturb) and not from
+// another build; the recorded hashes from the keyframe to d check that, and when they do not
+// match, no body is named.
 Json locate(const Recording& r, const std::string& file, const World& replayed, uint64_t d,
             const Scene& scene) {
   Json out;
@@ -302,23 +346,28 @@ Json locate(const Recording& r, const std::string& file, const World& replayed, 
                                   : "the recording has no keyframes (--keyframe-every 0)";
     return out;
   }
-  World reference = load_keyframe(*k, file);
-  reference.set_threads(resolve_threads(int(r.threads)));
-  reference.set_broadphase(BroadphaseType(r.broadphase));
-  const Real dt = Real(r.timestep);
-  for (uint64_t step = k->step; step <= d; ++step) {
-    if (step > k->step) reference.step(dt);
-    if (reference.state_hash() != r.hashes[step]) {
-      out["body"] = nullptr;
-      out["keyframe"] = k->step;
-      out["reason"] = "re-simulating from the keyframe at step " + std::to_string(k->step) +
-                      " with the recorded settings does not reproduce the recorded hash at step " +
-                      std::to_string(step) +
-                      ": the recording comes from another build, or a step is not deterministic";
-      return out;
+  World keyframe = load_keyframe(*k, file);
+  keyframe.set_threads(resolve_threads(int(r.threads)));
+  keyframe.set_broadphase(BroadphaseType(r.broadphase));
+  Replayer reference(r, std::move(keyframe), k->step);
+  const auto not_reproduced = [&](uint64_t step, const std::string& why) {
+    out["body"] = nullptr;
+    out["keyframe"] = k->step;
+    out["reason"] = "re-simulating from the keyframe at step " + std::to_string(k->step) +
+                    " with the recorded settings does not reproduce the recorded " + why +
+                    " at step " + std::to_string(step) +
+                    ": the recording comes from another build, or a step is not deterministic";
+    return out;
+  };
+  if (reference.actual_hash() != r.hashes[k->step]) return not_reproduced(k->step, "hash");
+  while (reference.step() < d) {
+    try {
+      if (!reference.advance()) return not_reproduced(reference.step(), "hash");
+    } catch (const RecordingError& e) {
+      return not_reproduced(reference.step() + 1, std::string("calls (") + e.what() + ")");
     }
   }
-  const Divergence div = compare_worlds(reference, replayed);
+  const Divergence div = compare_worlds(reference.world(), replayed);
   out["keyframe"] = k->step;
   out["method"] = k->step == d ? "keyframe" : "re-simulated from keyframe";
   if (!div.found) {
@@ -334,58 +383,75 @@ Json locate(const Recording& r, const std::string& file, const World& replayed, 
   return out;
 }
 
+// Opens `path` for writing a binary file, or fails at once naming it.
+std::ofstream open_output(const std::string& path) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing: " + std::strerror(errno));
+  return out;
+}
+
+void write_all(std::ofstream& out, const std::string& path, const void* data, std::size_t n) {
+  out.write(static_cast<const char*>(data), std::streamsize(n));
+  out.close();
+  if (!out) throw std::runtime_error(path + ": writing failed");
+}
+
+// Reads and decodes a recording, refusing one from a build with other promises.
+Recording load_recording(const std::string& file) {
+  Recording r = decode_recording(read_recording(file), file);
+  check_recording_build(r, file);
+  return r;
+}
+
 int replay(const ReplayOptions& o) {
-  const std::string bytes = read_recording(o.file);
-  const Recording r = decode_recording(bytes, o.file);
-  if (r.real_bytes != sizeof(Real)) {
-    throw RecordingError(o.file + ": recorded by a build with " + std::to_string(r.real_bytes * 8) +
-                         "-bit Real, this build uses " + std::to_string(sizeof(Real) * 8) +
-                         "-bit: hashes are comparable only on one build");
+  const Recording r = load_recording(o.file);
+  if (o.until && *o.until > r.steps) {
+    throw UsageError("--until: " + std::to_string(*o.until) + " is past the recording's " +
+                     std::to_string(r.steps) + " steps");
   }
-  // The recording's checksum held, so a scene or settings that do not load mean a corrupt (or
-  // forged) recording: the message names the recording, and the recorded scene path only as
-  // part of what is wrong in it.
-  const std::string embedded =
-      "recorded scene" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
-  const auto corrupt = [&](const std::string& what) {
-    return RecordingError(o.file + ": corrupt recording: " + what);
-  };
+  // A scene file holds bodies, shapes and joints but no contacts, warm starts or sleep timers,
+  // so only a state that is exactly a scene can be written as one: a scene recording's start.
+  if (!o.save_scene.empty() && (r.is_program() || *o.until != 0)) {
+    throw std::runtime_error(
+        "--save-scene: the state after " + std::to_string(*o.until) + " steps of " + o.file +
+        " cannot be written as a scene (a scene holds no contacts, warm starts or sleep timers" +
+        (r.is_program() ? ", and a program recording starts from a snapshot" : "") +
+        "); use --save-snapshot");
+  }
+  std::ofstream snapshot_out, scene_out;
+  if (!o.save_snapshot.empty()) snapshot_out = open_output(o.save_snapshot);
+  if (!o.save_scene.empty()) scene_out = open_output(o.save_scene);
+
   Scene scene;
-  WorldDef def;
-  try {
-    scene = parse_scene(r.scene_text, embedded);
-    def = scene.world;
-  } catch (const SceneError& e) {
-    throw corrupt(e.what());
-  }
-  def.substeps = r.substeps;
-  def.iterations = r.iterations;
-  def.threads = workers(o.threads);
-  def.broadphase = o.broadphase.value_or(BroadphaseType(r.broadphase));
-  const Real dt = Real(r.timestep);
-  World world = [&] {
-    try {
-      World w(def);
-      load_into(scene, w, embedded);
-      return w;
-    } catch (const SceneError& e) {
-      throw corrupt(e.what());
-    } catch (const Error& e) {
-      throw corrupt(embedded + ": " + e.what());
-    }
-  }();
+  const int threads = workers(o.threads);
+  const BroadphaseType broadphase = o.broadphase.value_or(BroadphaseType(r.broadphase));
+  Replayer replayer(r, start_world(r, o.file, threads, broadphase, scene));
+  World& world = replayer.world();
   check_perturb_body(o.perturb, world);
 
   Json out;
   out["recording"] = o.file;
+  out["kind"] = r.is_program() ? "program" : "scene";
   out["steps"] = r.steps;
-  out["threads"] = def.threads;
-  out["broadphase"] = broadphase_name(def.broadphase);
+  out["threads"] = threads;
+  out["broadphase"] = broadphase_name(broadphase);
   out["keyframes"] = r.keyframes.size();
-  Progress progress("replay", r.steps);
-  for (uint64_t step = 0; step <= r.steps; ++step) {
+  const uint64_t last = o.until.value_or(r.steps);
+  if (o.until) out["until"] = last;
+  Progress progress("replay", last);
+  for (uint64_t step = 0; step <= last; ++step) {
     if (step > 0) {
-      world.step(dt);
+      try {
+        replayer.advance();
+      } catch (const RecordingError& e) {
+        // A recorded call that fails on replay (a stale id, another returned id): the replay has
+        // already parted from the recording; the hashes before it matched.
+        out["match"] = false;
+        out["first_mismatch_step"] = step;
+        out["call_error"] = e.what();
+        print(out);
+        return 1;
+      }
       progress.update(step);
     }
     if (o.perturb && o.perturb->step == step) nudge(world, o.perturb->body);
@@ -400,8 +466,17 @@ int replay(const ReplayOptions& o) {
       return 1;
     }
   }
+  if (!o.save_snapshot.empty()) {
+    const std::vector<uint8_t> bytes = save_snapshot(world);
+    write_all(snapshot_out, o.save_snapshot, bytes.data(), bytes.size());
+    out["snapshot"] = o.save_snapshot;
+  }
+  if (!o.save_scene.empty()) {
+    write_all(scene_out, o.save_scene, r.scene_text.data(), r.scene_text.size());
+    out["scene"] = o.save_scene;
+  }
   out["match"] = true;
-  out["state_hash"] = hex(r.hashes.back());
+  out["state_hash"] = hex(r.hashes[last]);
   print(out);
   return 0;
 }
@@ -446,7 +521,83 @@ Divergence step_side_by_side(World& a, World& b, const DivergeOptions& o, Real d
   return d;
 }
 
+// Whether the file `path` starts with a recording's magic bytes (a scene file is JSON text).
+bool starts_like_recording(const std::string& path) {
+  std::string head;
+  try {
+    detail::RegularFile file(path, "scene or recording");
+    head = file.read(kRecordingMagicBytes);
+  } catch (const detail::FileError& e) {
+    throw SceneError(e.what());
+  }
+  try {
+    check_recording_magic(head, path);
+    return head.size() == kRecordingMagicBytes;
+  } catch (const RecordingError&) {
+    return false;
+  }
+}
+
+// `elan diverge RECORDING`: two replays of the recording side by side, each with its side's
+// settings, every body compared bit for bit after each step (the recorded calls re-applied
+// before each step on both sides).
+int diverge_recording(const DivergeOptions& o) {
+  const Recording r = load_recording(o.scene);
+  if (o.timestep) throw UsageError("--timestep: a recording replays with its recorded timesteps");
+  const auto make = [&](const SideOptions& side) {
+    Scene unused;
+    World world = start_world(r, o.scene, workers(side.threads), side.broadphase, unused);
+    if (side.substeps) world.set_substeps(*side.substeps);
+    if (side.iterations) world.set_iterations(*side.iterations);
+    check_perturb_body(side.perturb, world);
+    return Replayer(r, std::move(world));
+  };
+  Scene scene;
+  if (!r.is_program()) scene = parse_scene(r.scene_text, "recorded scene");
+  Replayer a = make(o.a);
+  Replayer b = make(o.b);
+  const uint64_t steps = std::min(o.steps, r.steps);
+  Divergence d;
+  std::string call_error;
+  for (uint64_t step = 0; step <= steps && !d.found && call_error.empty(); ++step) {
+    if (step > 0) {
+      try {
+        a.advance();
+        b.advance();
+      } catch (const RecordingError& e) {
+        call_error = e.what();
+        d.step = step;
+        break;
+      }
+    }
+    if (o.a.perturb && o.a.perturb->step == step) nudge(a.world(), o.a.perturb->body);
+    if (o.b.perturb && o.b.perturb->step == step) nudge(b.world(), o.b.perturb->body);
+    d = compare_worlds(a.world(), b.world());
+    d.step = step;
+  }
+  Json out;
+  out["recording"] = o.scene;
+  out["steps"] = steps;
+  out["a"] = side_json(o.a, a.world());
+  out["b"] = side_json(o.b, b.world());
+  out["diverged"] = d.found || !call_error.empty();
+  if (!call_error.empty()) {
+    out["step"] = d.step;
+    out["call_error"] = call_error;
+  } else if (d.found) {
+    out["step"] = d.step;
+    out["body"] = d.body;
+    out["name"] = json_name(scene, d.body);
+    out["field"] = d.field;
+    out["value_a"] = d.value_a;
+    out["value_b"] = d.value_b;
+  }
+  print(out);
+  return out["diverged"].get<bool>() ? 1 : 0;
+}
+
 int diverge(const DivergeOptions& o) {
+  if (starts_like_recording(o.scene)) return diverge_recording(o);
   const std::string text = detail::read_scene_file(o.scene);
   const Scene scene = parse_scene(text, o.scene);
   const Real dt = o.timestep ? Real(*o.timestep) : scene.timestep;
@@ -483,48 +634,37 @@ int diverge(const DivergeOptions& o) {
   return d.found ? 1 : 0;
 }
 
-// Whether the file `path` starts with a recording's magic bytes (a scene file is JSON text).
-bool starts_like_recording(const std::string& path) {
-  std::string head;
-  try {
-    detail::RegularFile file(path, "scene or recording");
-    head = file.read(kRecordingMagicBytes);
-  } catch (const detail::FileError& e) {
-    throw SceneError(e.what());
-  }
-  try {
-    check_recording_magic(head, path);
-    return head.size() == kRecordingMagicBytes;
-  } catch (const RecordingError&) {
-    return false;
-  }
-}
-
 // `elan view`: the scene (or the recording and its scene) is read, parsed and loaded into a world
 // here, before any window opens, so a bad file exits 2 with the usual message whether or not the
 // viewer is built, and with no display needed.
 int view(const ViewOptions& o) {
   std::string text;
   std::optional<Recording> recording;
+  std::optional<World> program_world;
   Scene scene;
   WorldDef def;
-  [[maybe_unused]] Real dt = 0;
+  [[maybe_unused]] Real dt = 0;  // read by the viewer only
   std::string name = o.file;
   if (starts_like_recording(o.file)) {
-    recording = decode_recording(read_recording(o.file), o.file);
+    recording = load_recording(o.file);
     const Recording& r = *recording;
-    if (r.real_bytes != sizeof(Real)) {
-      throw RecordingError(o.file + ": recorded by a build with " +
-                           std::to_string(r.real_bytes * 8) + "-bit Real, this build uses " +
-                           std::to_string(sizeof(Real) * 8) + "-bit");
-    }
     name = "recorded scene" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
-    try {
-      scene = parse_scene(r.scene_text, name);
-    } catch (const SceneError& e) {
-      throw RecordingError(o.file + ": corrupt recording: " + e.what());
+    if (r.is_program()) {
+      // A program's world starts from its snapshot; its shapes come from the world.
+      name =
+          "recorded program" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
+      program_world.emplace(
+          start_world(r, o.file, workers(o.threads), BroadphaseType(r.broadphase), scene));
+      def = program_world->settings();
+      def.thread_pool = nullptr;
+    } else {
+      try {
+        scene = parse_scene(r.scene_text, name);
+      } catch (const SceneError& e) {
+        throw RecordingError(o.file + ": corrupt recording: " + e.what());
+      }
+      def = scene.world;
     }
-    def = scene.world;
     def.substeps = r.substeps;
     def.iterations = r.iterations;
     def.broadphase = BroadphaseType(r.broadphase);
@@ -542,8 +682,8 @@ int view(const ViewOptions& o) {
     dt = scene.timestep;
   }
   def.threads = workers(o.threads);
-  World world = make_world(def, name);
-  load_into(scene, world, name);
+  World world = program_world ? std::move(*program_world) : make_world(def, name);
+  if (!program_world) load_into(scene, world, name);
   if (o.body && *o.body >= world.body_count()) {
     throw UsageError("--body: " + std::to_string(*o.body) + " out of range (the scene has " +
                      std::to_string(world.body_count()) + " bodies)");
@@ -570,7 +710,7 @@ int dispatch(const std::vector<std::string>& args) {
     return 0;
   }
   if (command == "--version") {
-    std::puts("elan 0.1.0");
+    std::printf("elan %s (%s)\n", kEngineVersion, kDeterminismPromise);
     return 0;
   }
   if (command == "run") {

@@ -57,8 +57,13 @@ const char* const kReplayUsage =
     "  --broadphase B       sap, all-pairs or tree (default: the recorded one)\n"
     "  --perturb BODY:STEP  testing aid: nudge body BODY's x position up by one ulp after STEP\n"
     "                       steps, to check that the divergence is found\n"
+    "  --until STEP         stop after STEP steps\n"
+    "  --save-snapshot OUT  with --until: write the state there as a snapshot\n"
+    "  --save-scene OUT     with --until: write it as a scene (a scene recording at step 0 only)\n"
     "\n"
-    "Re-simulates a recording made with 'elan run --record' and prints one JSON line. At the\n"
+    "Re-simulates a recording made with 'elan run --record' or by a program's recorder\n"
+    "(elan/recorder.hpp: the program's calls are re-applied before each step) and prints one\n"
+    "JSON line. At the\n"
     "first step whose hash differs it names the first body and field that differ, found against\n"
     "the recording's keyframe at that step, or by re-simulating from the keyframe before it with\n"
     "the recorded settings.\n"
@@ -251,19 +256,29 @@ RunOptions parse_run_options(std::span<const std::string> args) {
 ReplayOptions parse_replay_options(std::span<const std::string> args) {
   ReplayOptions o;
   const auto takes_value = [](const std::string& n) {
-    return n == "--threads" || n == "--broadphase" || n == "--perturb";
+    return n == "--threads" || n == "--broadphase" || n == "--perturb" || n == "--until" ||
+           n == "--save-snapshot" || n == "--save-scene";
   };
   const auto on_option = [&o](const std::string& n, const std::string& v) {
     if (n == "--threads") {
       o.threads = int(parse_count(n, v, 1, kMaxThreads));
     } else if (n == "--perturb") {
       o.perturb = parse_perturbation(n, v);
+    } else if (n == "--until") {
+      o.until = parse_count(n, v, 0, kMaxSteps);
+    } else if (n == "--save-snapshot") {
+      o.save_snapshot = v;
+    } else if (n == "--save-scene") {
+      o.save_scene = v;
     } else {
       o.broadphase = parse_broadphase(n, v);
     }
   };
   walk(args, "replay", o.file, o.help, on_option, takes_value);
   if (!o.help && o.file.empty()) throw UsageError("elan replay: missing FILE");
+  if ((!o.save_snapshot.empty() || !o.save_scene.empty()) && !o.until) {
+    throw UsageError("--save-snapshot and --save-scene need --until STEP");
+  }
   return o;
 }
 

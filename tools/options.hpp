@@ -52,6 +52,9 @@ struct ReplayOptions {
   int threads = 0;                           // 0 = all cores
   std::optional<BroadphaseType> broadphase;  // default: the recorded one
   std::optional<Perturbation> perturb;
+  std::optional<uint64_t> until;  // --until STEP: stop after STEP steps
+  std::string save_snapshot;      // --save-snapshot OUT: the state there, as a snapshot
+  std::string save_scene;         // --save-scene OUT: the state there, as a scene file
 };
 
 /// The settings of one side of `elan diverge`.

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/base/range_checks.hpp"
+#include "core/world/recorder_hooks.hpp"
 #include "core/world/sensors.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/world.hpp"
@@ -80,6 +81,7 @@ uint32_t World::mask_bits(BodyId id) const {
 }
 
 void World::set_linear_velocity(BodyId id, const Vec3& v) {
+  ELAN_RECORDED(SetLinearVelocity, set_linear_velocity(id, v), id, v);
   check_linear_velocity(v, "linear_velocity");
   const std::size_t i = index_of(*state_, id);
   if (state_->bodies.is_static(i)) return;
@@ -88,6 +90,7 @@ void World::set_linear_velocity(BodyId id, const Vec3& v) {
 }
 
 void World::set_angular_velocity(BodyId id, const Vec3& w) {
+  ELAN_RECORDED(SetAngularVelocity, set_angular_velocity(id, w), id, w);
   check_angular_velocity(w, "angular_velocity");
   const std::size_t i = index_of(*state_, id);
   if (state_->bodies.is_static(i)) return;
@@ -96,24 +99,28 @@ void World::set_angular_velocity(BodyId id, const Vec3& w) {
 }
 
 void World::set_position(BodyId id, const Vec3& position) {
+  ELAN_RECORDED(SetPosition, set_position(id, position), id, position);
   check_position(position, "position");
   const std::size_t i = index_of(*state_, id);
   store_pose(*state_, i, position, orientation(id));
 }
 
 void World::set_orientation(BodyId id, const Quat& orientation) {
+  ELAN_RECORDED(SetOrientation, set_orientation(id, orientation), id, orientation);
   const Quat q = checked_rotation(orientation, "orientation");
   const std::size_t i = index_of(*state_, id);
   store_pose(*state_, i, position(id), q);
 }
 
 void World::set_transform(BodyId id, const Transform& pose) {
+  ELAN_RECORDED(SetTransform, set_transform(id, pose), id, pose);
   check_position(pose.position, "position");
   const Quat q = checked_rotation(pose.rotation, "orientation");
   store_pose(*state_, index_of(*state_, id), pose.position, q);
 }
 
 void World::apply_force(BodyId id, const Vec3& force) {
+  ELAN_RECORDED(ApplyForce, apply_force(id, force), id, force);
   check_vec(force, "force");
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
@@ -123,6 +130,7 @@ void World::apply_force(BodyId id, const Vec3& force) {
 }
 
 void World::apply_force_at(BodyId id, const Vec3& force, const Vec3& point) {
+  ELAN_RECORDED(ApplyForceAt, apply_force_at(id, force, point), id, force, point);
   check_vec(force, "force");
   check_vec(point, "point");
   const std::size_t i = index_of(*state_, id);
@@ -131,6 +139,7 @@ void World::apply_force_at(BodyId id, const Vec3& force, const Vec3& point) {
 }
 
 void World::apply_torque(BodyId id, const Vec3& torque) {
+  ELAN_RECORDED(ApplyTorque, apply_torque(id, torque), id, torque);
   check_vec(torque, "torque");
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
@@ -140,6 +149,7 @@ void World::apply_torque(BodyId id, const Vec3& torque) {
 }
 
 void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
+  ELAN_RECORDED(ApplyImpulse, apply_impulse(id, impulse, point), id, impulse, point);
   check_vec(impulse, "impulse");
   check_vec(point, "point");
   const std::size_t i = index_of(*state_, id);
@@ -154,6 +164,7 @@ void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
 }
 
 void World::apply_linear_impulse(BodyId id, const Vec3& impulse) {
+  ELAN_RECORDED(ApplyLinearImpulse, apply_linear_impulse(id, impulse), id, impulse);
   check_vec(impulse, "impulse");
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
@@ -165,6 +176,7 @@ void World::apply_linear_impulse(BodyId id, const Vec3& impulse) {
 }
 
 void World::apply_angular_impulse(BodyId id, const Vec3& impulse) {
+  ELAN_RECORDED(ApplyAngularImpulse, apply_angular_impulse(id, impulse), id, impulse);
   check_vec(impulse, "angular_impulse");
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
@@ -176,6 +188,7 @@ void World::apply_angular_impulse(BodyId id, const Vec3& impulse) {
 }
 
 void World::move_kinematic(BodyId id, const Transform& target, Real dt) {
+  ELAN_RECORDED(MoveKinematic, move_kinematic(id, target, dt), id, target, dt);
   check_position(target.position, "target.position");
   const Quat q_target = checked_rotation(target.rotation, "target.rotation");
   check_arg(std::isfinite(dt) && dt > 0, "dt", "must be finite and positive");
@@ -195,11 +208,13 @@ void World::move_kinematic(BodyId id, const Transform& target, Real dt) {
 }
 
 void World::wake(BodyId id) {
+  ELAN_RECORDED(Wake, wake(id), id);
   const std::size_t i = index_of(*state_, id);
   if (state_->bodies.is_dynamic(i)) detail::wake_index(*state_, i);
 }
 
 void World::sleep(BodyId id) {
+  ELAN_RECORDED(Sleep, sleep(id), id);
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   if (!b.is_dynamic(i)) return;
@@ -210,6 +225,7 @@ void World::sleep(BodyId id) {
 }
 
 void World::set_friction(BodyId id, Real friction) {
+  ELAN_RECORDED(SetFriction, set_friction(id, friction), id, friction);
   check_arg(std::isfinite(friction) && friction >= 0, "friction", "must be finite and >= 0");
   detail::check_range(friction, 0, limits::kMaxFriction, "friction", "");
   detail::BodyStore& b = state_->bodies;
@@ -220,6 +236,7 @@ void World::set_friction(BodyId id, Real friction) {
 }
 
 void World::set_restitution(BodyId id, Real restitution) {
+  ELAN_RECORDED(SetRestitution, set_restitution(id, restitution), id, restitution);
   check_arg(std::isfinite(restitution) && restitution >= 0, "restitution",
             "must be finite and >= 0");
   detail::check_range(restitution, 0, limits::kMaxRestitution, "restitution", "");
@@ -231,6 +248,7 @@ void World::set_restitution(BodyId id, Real restitution) {
 }
 
 void World::set_mass(BodyId id, Real mass) {
+  ELAN_RECORDED(SetMass, set_mass(id, mass), id, mass);
   check_arg(std::isfinite(mass) && mass > 0, "mass", "must be finite and positive");
   detail::check_range(mass, limits::kMinMass, limits::kMaxMass, "mass", "kg");
   WorldState& s = *state_;
@@ -245,6 +263,8 @@ void World::set_mass(BodyId id, Real mass) {
 }
 
 void World::set_collision_filter(BodyId id, uint32_t category_bits, uint32_t mask_bits) {
+  ELAN_RECORDED(SetCollisionFilter, set_collision_filter(id, category_bits, mask_bits), id,
+                category_bits, mask_bits);
   detail::BodyStore& b = state_->bodies;
   const std::size_t i = index_of(*state_, id);
   detail::BodyTraits t = b.traits_of(i);

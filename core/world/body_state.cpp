@@ -11,6 +11,7 @@
 #include "core/base/range_checks.hpp"
 #include "core/world/events.hpp"
 #include "core/world/query_tree.hpp"
+#include "core/world/recorder_hooks.hpp"
 #include "core/world/sensors.hpp"
 #include "core/world/shape_defs.hpp"
 #include "core/world/world_access.hpp"
@@ -112,6 +113,7 @@ uint64_t World::user_data(BodyId id) const {
   return detail::body_extra(std::as_const(*state_), id.slot).user_data;
 }
 void World::set_user_data(BodyId id, uint64_t value) {
+  ELAN_RECORDED(SetBodyUserData, set_user_data(id, value), id, value);
   index_of(*state_, id);
   detail::body_extra(*state_, id.slot).user_data = value;
 }
@@ -120,6 +122,7 @@ uint64_t World::user_data(ShapeId id) const {
   return detail::shape_user_data(*state_, id.index);
 }
 void World::set_user_data(ShapeId id, uint64_t value) {
+  ELAN_RECORDED(SetShapeUserData, set_user_data(id, value), id, value);
   WorldState& s = *state_;
   check_arg(detail::shape_live(s, id), "shape", "invalid or destroyed shape id");
   if (s.api.shape_user_data.size() < s.shapes.size()) s.api.shape_user_data.resize(s.shapes.size());
@@ -130,6 +133,7 @@ uint64_t World::user_data(JointId id) const {
 }
 
 void World::set_gravity_scale(BodyId id, Real scale) {
+  ELAN_RECORDED(SetGravityScale, set_gravity_scale(id, scale), id, scale);
   check_arg(std::isfinite(scale), "gravity_scale", "must be finite");
   detail::check_range(scale, -limits::kMaxGravityScale, limits::kMaxGravityScale, "gravity_scale",
                       "");
@@ -142,6 +146,7 @@ void World::set_gravity_scale(BodyId id, Real scale) {
 }
 
 void World::set_damping(BodyId id, Real linear, Real angular) {
+  ELAN_RECORDED(SetDamping, set_damping(id, linear, angular), id, linear, angular);
   check_arg(std::isfinite(linear) && linear >= 0, "linear_damping", "must be finite and >= 0");
   check_arg(std::isfinite(angular) && angular >= 0, "angular_damping", "must be finite and >= 0");
   WorldState& s = *state_;
@@ -154,6 +159,7 @@ void World::set_damping(BodyId id, Real linear, Real angular) {
 }
 
 void World::set_gravity(const Vec3& gravity) {
+  ELAN_RECORDED(SetGravity, set_gravity(gravity), gravity);
   check_arg(gravity.allFinite(), "gravity", "must be finite");
   detail::check_length(gravity, limits::kMaxGravity, "gravity", "m/s^2");
   WorldState& s = *state_;
@@ -165,6 +171,7 @@ void World::set_gravity(const Vec3& gravity) {
 }
 
 void World::set_sensor(BodyId id, bool sensor) {
+  ELAN_RECORDED(SetSensor, set_sensor(id, sensor), id, sensor);
   WorldState& s = *state_;
   const uint32_t i = uint32_t(index_of(s, id));
   detail::BodyTraits t = s.bodies.traits_of(i);
@@ -180,6 +187,7 @@ void World::set_sensor(BodyId id, bool sensor) {
 }
 
 void World::set_motion_type(BodyId id, MotionType type) {
+  ELAN_RECORDED(SetMotionType, set_motion_type(id, type), id, type);
   WorldState& s = *state_;
   const uint32_t i = uint32_t(index_of(s, id));
   check_arg(
@@ -230,6 +238,7 @@ void World::set_motion_type(BodyId id, MotionType type) {
 }
 
 void World::set_shape(BodyId id, ShapeId shape_id) {
+  ELAN_RECORDED(SetShape, set_shape(id, shape_id), id, shape_id);
   WorldState& s = *state_;
   const uint32_t i = uint32_t(index_of(s, id));
   check_arg(detail::shape_live(s, shape_id), "shape", "invalid or destroyed shape id");

@@ -9,6 +9,7 @@
 #include "core/base/range_checks.hpp"
 #include "core/base/tbb_hand_off.hpp"
 #include "core/world/events.hpp"
+#include "core/world/recorder_hooks.hpp"
 #include "core/world/step.hpp"
 #include "core/world/thread_pool_access.hpp"
 #include "core/world/world_access.hpp"
@@ -64,6 +65,7 @@ std::span<const BodyId> World::body_ids() const {
 
 void World::set_center_of_mass_positions(std::span<const Real> x, std::span<const Real> y,
                                          std::span<const Real> z) {
+  ELAN_RECORDED(SetCenterOfMassPositions, set_center_of_mass_positions(x, y, z), x, y, z);
   WorldState& s = *state_;
   check_columns(s, "positions", x, y, z, limits::kMaxPosition, false, "m");
   detail::BodyStore& b = s.bodies;
@@ -78,6 +80,7 @@ void World::set_center_of_mass_positions(std::span<const Real> x, std::span<cons
 
 void World::set_linear_velocities(std::span<const Real> x, std::span<const Real> y,
                                   std::span<const Real> z) {
+  ELAN_RECORDED(SetLinearVelocities, set_linear_velocities(x, y, z), x, y, z);
   WorldState& s = *state_;
   check_columns(s, "linear_velocities", x, y, z, limits::kMaxLinearSpeed, true, "m/s");
   detail::BodyStore& b = s.bodies;
@@ -92,6 +95,7 @@ void World::set_linear_velocities(std::span<const Real> x, std::span<const Real>
 
 void World::set_angular_velocities(std::span<const Real> x, std::span<const Real> y,
                                    std::span<const Real> z) {
+  ELAN_RECORDED(SetAngularVelocities, set_angular_velocities(x, y, z), x, y, z);
   WorldState& s = *state_;
   check_columns(s, "angular_velocities", x, y, z, limits::kMaxAngularSpeed, true, "rad/s");
   detail::BodyStore& b = s.bodies;
@@ -148,6 +152,10 @@ uint32_t step_all(std::span<World* const> worlds, Real dt, ThreadPool* pool) {
     step_worlds();
   }
   hand_off.joined();
+  for (World* w : worlds) {
+    if (detail::state_of(*w).recorder) [[unlikely]]
+      detail::record_step(*w, dt);
+  }
   uint32_t all = 0;
   for (uint32_t f : status) all |= f;
   return all;

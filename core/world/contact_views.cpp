@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/world/events.hpp"
+#include "core/world/recorder_hooks.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/world.hpp"
 
@@ -82,6 +83,7 @@ void World::contacts_of(BodyId body, std::vector<ContactView>& out) const {
 }
 
 void World::set_hit_event_threshold(Real speed) {
+  ELAN_RECORDED(SetHitEventThreshold, set_hit_event_threshold(speed), speed);
   detail::check_arg(std::isfinite(speed) && speed >= 0, "speed", "must be finite and >= 0");
   state_->api.hit_threshold = speed;
 }

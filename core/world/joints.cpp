@@ -10,6 +10,7 @@
 #include "core/base/pair_key.hpp"
 #include "core/base/range_checks.hpp"
 #include "core/world/events.hpp"
+#include "core/world/recorder_hooks.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/limits.hpp"
 #include "elan/world.hpp"
@@ -103,6 +104,7 @@ BodyId body_of_slot(const WorldState& s, uint32_t slot) {
 }  // namespace
 
 JointId World::create_joint(const JointDef& def) {
+  ELAN_RECORDED(CreateJoint, create_joint(def), def);
   WorldState& s = *state_;
   JointStore& js = s.joints;
   check_arg(js.size() < detail::kMaxBodyCount, "joint", "too many joints");
@@ -194,6 +196,7 @@ JointId World::create_joint(const JointDef& def) {
 }
 
 void World::destroy_joint(JointId id) {
+  ELAN_RECORDED(DestroyJoint, destroy_joint(id), id);
   WorldState& s = *state_;
   const std::size_t k = joint_index(s, id);
   wake_joint_bodies(s, s.joints.joints[k]);
@@ -221,11 +224,13 @@ const JointDef& World::joint_def(JointId id) const {
 }
 
 void World::set_user_data(JointId id, uint64_t value) {
+  ELAN_RECORDED(SetJointUserData, set_user_data(id, value), id, value);
   WorldState& s = *state_;
   s.joints.joints[joint_index(s, id)].def.user_data = value;
 }
 
 void World::set_joint_motor(JointId id, const JointMotor& motor) {
+  ELAN_RECORDED(SetJointMotor, set_joint_motor(id, motor), id, motor);
   WorldState& s = *state_;
   Joint& j = s.joints.joints[joint_index(s, id)];
   check_motor(motor);
@@ -234,6 +239,7 @@ void World::set_joint_motor(JointId id, const JointMotor& motor) {
 }
 
 void World::set_joint_spring(JointId id, const JointSpring& spring) {
+  ELAN_RECORDED(SetJointSpring, set_joint_spring(id, spring), id, spring);
   WorldState& s = *state_;
   Joint& j = s.joints.joints[joint_index(s, id)];
   check_spring(spring);
@@ -245,6 +251,7 @@ void World::set_joint_spring(JointId id, const JointSpring& spring) {
 }
 
 void World::set_joint_limits(JointId id, const JointLimits& limits) {
+  ELAN_RECORDED(SetJointLimits, set_joint_limits(id, limits), id, limits);
   WorldState& s = *state_;
   Joint& j = s.joints.joints[joint_index(s, id)];
   check_limits(j.def, limits);
@@ -253,6 +260,7 @@ void World::set_joint_limits(JointId id, const JointLimits& limits) {
 }
 
 void World::set_joint_swing_limit(JointId id, Real swing_limit) {
+  ELAN_RECORDED(SetJointSwingLimit, set_joint_swing_limit(id, swing_limit), id, swing_limit);
   WorldState& s = *state_;
   Joint& j = s.joints.joints[joint_index(s, id)];
   check_swing(swing_limit);
@@ -261,6 +269,8 @@ void World::set_joint_swing_limit(JointId id, Real swing_limit) {
 }
 
 void World::set_joint_lengths(JointId id, Real min_length, Real max_length) {
+  ELAN_RECORDED(SetJointLengths, set_joint_lengths(id, min_length, max_length), id, min_length,
+                max_length);
   WorldState& s = *state_;
   Joint& j = s.joints.joints[joint_index(s, id)];
   check_arg(std::isfinite(min_length) && min_length >= 0, "min_length", "must be finite and >= 0");
@@ -272,6 +282,7 @@ void World::set_joint_lengths(JointId id, Real min_length, Real max_length) {
 }
 
 void World::set_joint_friction(JointId id, Real friction) {
+  ELAN_RECORDED(SetJointFriction, set_joint_friction(id, friction), id, friction);
   WorldState& s = *state_;
   Joint& j = s.joints.joints[joint_index(s, id)];
   check_arg(std::isfinite(friction) && friction >= 0, "friction",

@@ -13,6 +13,7 @@
 #include "core/base/pair_key.hpp"
 #include "core/base/triangle_mesh.hpp"
 #include "core/world/byte_io.hpp"
+#include "core/world/recorder_hooks.hpp"
 #include "core/world/world_access.hpp"
 #include "core/world/world_state.hpp"
 #include "elan/limits.hpp"
@@ -1067,6 +1068,11 @@ std::vector<uint8_t> save_snapshot(const World& world) {
 }
 
 void restore_snapshot(World& world, std::span<const uint8_t> bytes) {
+  if (detail::state_of(world).recorder) [[unlikely]] {
+    return detail::recorded(
+        detail::state_of(world), detail::Call::RestoreSnapshot,
+        [&] { restore_snapshot(world, bytes); }, bytes);
+  }
   commit(detail::state_of(world), decode_snapshot(bytes));
 }
 
@@ -1118,6 +1124,11 @@ std::vector<uint8_t> save_rollback(const World& world) {
 }
 
 void restore_rollback(World& world, std::span<const uint8_t> bytes) {
+  if (detail::state_of(world).recorder) [[unlikely]] {
+    return detail::recorded(
+        detail::state_of(world), detail::Call::RestoreRollback,
+        [&] { restore_rollback(world, bytes); }, bytes);
+  }
   const std::span<const uint8_t> payload =
       open(bytes, kRollbackMagic, "rollback", "rollback state", kSnapshotVersion);
   WorldState& s = detail::state_of(world);

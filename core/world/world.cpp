@@ -15,6 +15,7 @@
 #include "core/base/tbb_hand_off.hpp"
 #include "core/world/events.hpp"
 #include "core/world/joints.hpp"
+#include "core/world/recorder_hooks.hpp"
 #include "core/world/sensors.hpp"
 #include "core/world/step.hpp"
 #include "core/world/thread_pool_access.hpp"
@@ -87,6 +88,7 @@ void World::reserve(std::size_t bodies, std::size_t shapes) {
 }
 
 ShapeId World::create_shape(const ShapeDef& def) {
+  ELAN_RECORDED(CreateShape, create_shape(def), def);
   WorldState& s = *state_;
   s.shapes.push_back(detail::make_shape(def));
   s.api.shape_user_data.resize(s.shapes.size() - 1);
@@ -95,6 +97,7 @@ ShapeId World::create_shape(const ShapeDef& def) {
 }
 
 void World::destroy_shape(ShapeId id) {
+  ELAN_RECORDED(DestroyShape, destroy_shape(id), id);
   WorldState& s = *state_;
   check_arg(detail::shape_live(s, id), "shape", "invalid or destroyed shape id");
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
@@ -112,6 +115,7 @@ bool World::is_valid(ShapeId id) const {
 }
 
 BodyId World::create_body(const BodyDef& def) {
+  ELAN_RECORDED(CreateBody, create_body(def), def);
   WorldState& s = *state_;
   check_arg(s.bodies.size() < detail::kMaxBodyCount, "body",
             "too many bodies: a world holds at most " + std::to_string(detail::kMaxBodyCount));
@@ -212,6 +216,7 @@ BodyId World::create_body(const BodyDef& def) {
 }
 
 void World::destroy_body(BodyId id) {
+  ELAN_RECORDED(DestroyBody, destroy_body(id), id);
   WorldState& s = *state_;
   const uint32_t i = uint32_t(index_of(s, id));
   const uint32_t last = uint32_t(s.bodies.size() - 1);
@@ -259,6 +264,8 @@ uint32_t World::step(Real dt) {
   hand_off.spawn(step);
   arena.execute(step);
   hand_off.joined();
+  if (s.recorder) [[unlikely]]
+    detail::record_step(*this, dt);
   return status;
 }
 
@@ -318,10 +325,12 @@ const WorldDef& World::settings() const {
 }
 
 void World::set_substeps(int substeps) {
+  ELAN_RECORDED(SetSubsteps, set_substeps(substeps), substeps);
   check_arg(substeps >= 1 && substeps <= kMaxSubsteps, "substeps", in_range(1, kMaxSubsteps));
   state_->def.substeps = substeps;
 }
 void World::set_iterations(int iterations) {
+  ELAN_RECORDED(SetIterations, set_iterations(iterations), iterations);
   check_arg(iterations >= 1 && iterations <= kMaxIterations, "iterations",
             in_range(1, kMaxIterations));
   state_->def.iterations = iterations;

@@ -24,6 +24,8 @@
 
 namespace elan::detail {
 
+struct CallLog;  // core/world/recorder_hooks.hpp
+
 inline constexpr Real kSpeculativeDistance = Real(0.02);
 // Margin added to every bounding box, m: two boxes this far out overlap whenever their shapes are
 // within 2.5 cm, a quarter more than the speculative distance. The boxes are rebuilt every step
@@ -85,6 +87,9 @@ struct WorldState {
   StepStats stats;
   uint32_t reported_status = 0;  // flags already reported once
   uint64_t step_count = 0;
+  // The program recorder, when one is attached (elan/recorder.hpp): every recorded method
+  // checks it first.
+  std::shared_ptr<CallLog> recorder;
 };
 
 }  // namespace elan::detail

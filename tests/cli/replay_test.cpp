@@ -4,12 +4,20 @@
 #include <gtest/gtest.h>
 
 #include "cli/cli_runner.hpp"
+#include "determinism/recorded_program.hpp"
+#include "elan/recorder.hpp"
+#include "elan/snapshot.hpp"
 
 #include <cctype>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -50,6 +58,38 @@ uint64_t get_u64(const std::string& s, std::size_t at) {
 void reseal(std::string& bytes) {
   const uint64_t sum = fnv1a(bytes, bytes.size() - 8);
   for (int i = 0; i < 8; ++i) bytes[bytes.size() - 8 + i] = char(uint8_t(sum >> (8 * i)));
+}
+
+// A version-3 scene recording as version 2 wrote it: without the engine version and the promise
+// (after the real size) and without the starting snapshot and the calls (after the scene text),
+// both empty in a scene recording.
+std::string to_version_2(const std::string& v3) {
+  std::string v2 = v3.substr(0, 8);
+  put_u32(v2, 2);
+  std::size_t at = 12;
+  v2 += v3.substr(at, 4);  // real size
+  at += 4;
+  for (int s = 0; s < 2; ++s) at += 8 + get_u64(v3, at);  // engine version, promise
+  const std::size_t fixed = 8 + 8 + 4 + 4 + 4 + 4 + 8;    // steps .. keyframe_every
+  v2 += v3.substr(at, fixed);
+  at += fixed;
+  for (int s = 0; s < 2; ++s) {  // scene name, scene text
+    const uint64_t n = get_u64(v3, at);
+    v2 += v3.substr(at, 8 + n);
+    at += 8 + n;
+  }
+  for (int s = 0; s < 2; ++s) at += 8 + get_u64(v3, at);  // snapshot, calls
+  v2 += v3.substr(at, v3.size() - 8 - at);
+  put_u64(v2, 0);
+  reseal(v2);
+  return v2;
+}
+
+// Offset of the field after the promise in a version-3 recording (the steps).
+std::size_t after_promise(const std::string& v3) {
+  std::size_t at = 16;
+  for (int s = 0; s < 2; ++s) at += 8 + get_u64(v3, at);
+  return at;
 }
 
 class Replay : public ::testing::Test {
@@ -138,24 +178,36 @@ TEST_F(Replay, WithoutKeyframesTheStepIsStillReported) {
   EXPECT_NE(j["divergence"]["reason"].get<std::string>().find("no keyframes"), std::string::npos);
 }
 
+TEST_F(Replay, VersionTwoRecordingsAreStillRead) {
+  write(path_, to_version_2(bytes_));
+  const Json j = replay({"--threads", "2"}, 0);
+  EXPECT_EQ(j["match"], true);
+  EXPECT_EQ(j["keyframes"], 3);
+  EXPECT_EQ(j["state_hash"], summary_["state_hash"]);
+  const Json p = replay({"--perturb", "2:7"}, 1);
+  EXPECT_EQ(p["first_mismatch_step"], 7);
+  EXPECT_EQ(p["divergence"]["body"], 2);
+}
+
 TEST_F(Replay, VersionOneRecordingsAreStillRead) {
   // Version 1 is version 2 without the keyframe interval and the keyframes.
+  const std::string v2 = to_version_2(bytes_);
   std::size_t at = 8;
-  std::string v1 = bytes_.substr(0, at);
+  std::string v1 = v2.substr(0, at);
   put_u32(v1, 1);
   at += 4;
   const std::size_t fixed = 4 + 8 + 8 + 4 + 4 + 4 + 4;  // real size .. broadphase
-  v1 += bytes_.substr(at, fixed);
+  v1 += v2.substr(at, fixed);
   at += fixed + 8;               // skip keyframe_every
   for (int s = 0; s < 2; ++s) {  // scene name, scene text
-    const uint64_t n = get_u64(bytes_, at);
-    v1 += bytes_.substr(at, 8 + n);
+    const uint64_t n = get_u64(v2, at);
+    v1 += v2.substr(at, 8 + n);
     at += 8 + n;
   }
-  const uint64_t keyframes = get_u64(bytes_, at);
+  const uint64_t keyframes = get_u64(v2, at);
   at += 8;
-  for (uint64_t k = 0; k < keyframes; ++k) at += 16 + get_u64(bytes_, at + 8);
-  v1 += bytes_.substr(at, bytes_.size() - 8 - at);
+  for (uint64_t k = 0; k < keyframes; ++k) at += 16 + get_u64(v2, at + 8);
+  v1 += v2.substr(at, v2.size() - 8 - at);
   put_u64(v1, 0);
   reseal(v1);
   write(path_, v1);
@@ -169,13 +221,14 @@ TEST_F(Replay, VersionOneRecordingsAreStillRead) {
 
 TEST_F(Replay, FutureVersionIsRefusedByName) {
   std::string future = bytes_;
-  future[8] = 3;
+  future[8] = 4;
   reseal(future);
   write(path_, future);
   const Result r = run_elan({"replay", path_});
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("unsupported recording version 3 (this elan reads versions 1 to 2)"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find(path_ + ": unsupported recording version 4 (this elan reads versions 1 to 3)"),
+      std::string::npos)
       << r.err;
   EXPECT_TRUE(r.out.empty());
 }
@@ -347,9 +400,9 @@ TEST(ReplayCorrupt, RecordedSettingsOutOfRangeAreACorruptRecording) {
 // A recording whose settings a world refuses (iterations 65 under a valid checksum) or whose
 // scene has a bad body names the recording too.
 TEST_F(Replay, InvalidRecordedSettingsAndScenesNameTheRecording) {
-  // iterations sits after magic, version, real size, steps, timestep and substeps.
+  // iterations sits after the promise, steps, timestep and substeps.
   std::string bytes = bytes_;
-  const std::size_t at = 8 + 4 + 4 + 8 + 8 + 4;
+  const std::size_t at = after_promise(bytes) + 8 + 8 + 4;
   put_u32_at(bytes, at, 65);
   reseal(bytes);
   write(path_, bytes);
@@ -429,3 +482,175 @@ TEST(ReplayJoints, JointedSceneReplaysAndFindsAPerturbation) {
   EXPECT_EQ(j["divergence"]["body"], 1100);
   std::remove(path.c_str());
 }
+
+// Program recordings (elan/recorder.hpp): made in this process by the program of
+// determinism/recorded_program.hpp, replayed, searched and cut by the elan binary.
+namespace program {
+
+std::string to_string(const std::vector<uint8_t>& v) {
+  return std::string(v.begin(), v.end());
+}
+
+const elan::test::RecordedProgram& recorded() {
+  static const elan::test::RecordedProgram p = elan::test::record_program(2);
+  return p;
+}
+
+std::string hex(uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+class ProgramReplay : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    path_ = temp_path("program.rec");
+    bytes_ = to_string(recorded().recording);
+    write(path_, bytes_);
+  }
+  void TearDown() override { std::remove(path_.c_str()); }
+  elan::Recording decoded() const { return elan::decode_recording(bytes_, path_); }
+  void write_recording(const elan::Recording& r) { write(path_, elan::encode_recording(r)); }
+  std::string path_, bytes_;
+};
+
+TEST_F(ProgramReplay, ReplaysBitForBitWithAnyThreadsAndBroadphase) {
+  for (const std::vector<std::string>& extra :
+       std::vector<std::vector<std::string>>{{"--threads", "1"},
+                                             {"--threads", "2", "--broadphase", "tree"},
+                                             {"--threads", "2", "--broadphase", "all-pairs"}}) {
+    std::vector<std::string> args = {"replay", path_};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Result r = run_elan(args);
+    ASSERT_EQ(r.status, 0) << r.err << r.out;
+    const Json j = Json::parse(r.out);
+    EXPECT_EQ(j["kind"], "program");
+    EXPECT_EQ(j["match"], true);
+    EXPECT_EQ(j["steps"], elan::test::kProgramSteps);
+    EXPECT_EQ(j["state_hash"], hex(recorded().final_hash));
+  }
+}
+
+// One ulp more on the first component of the impulse the program applies after step kPushStep,
+// edited through the codec: the replay parts at the next step, and the divergence finder (the
+// keyframe at kPushStep replayed with the recorded calls) names the pushed body.
+//
+// The recorded state after that step is known only from a keyframe there: replaying from the
+// keyframe before it re-applies the edited call too, which reproduces the replay and not the
+// recorded hash (that case is reported without a body). So this recording keeps a keyframe at
+// every step.
+TEST_F(ProgramReplay, OneUlpInOneCallIsFoundAtItsStepAndBody) {
+  static const elan::test::RecordedProgram every_step = elan::test::record_program(2, 1);
+  elan::Recording r = elan::decode_recording(to_string(every_step.recording), path_);
+  for (const elan::RecordedCall& c : elan::list_calls(r)) {
+    if (elan::recorded_call_name(c.op) != "apply_impulse") continue;
+    uint8_t* x = r.calls.data() + c.offset + 8;  // after the body id
+    elan::Real v;
+    std::memcpy(&v, x, sizeof v);
+    v = std::nextafter(v, std::numeric_limits<elan::Real>::infinity());
+    std::memcpy(x, &v, sizeof v);
+  }
+  write_recording(r);
+  const Result out = run_elan({"replay", path_, "--threads", "2"});
+  ASSERT_EQ(out.status, 1) << out.err;
+  const Json j = Json::parse(out.out);
+  EXPECT_EQ(j["first_mismatch_step"], elan::test::kPushStep + 1);
+  const Json& d = j["divergence"];
+  EXPECT_EQ(d["keyframe"], elan::test::kPushStep + 1);
+  EXPECT_EQ(d["method"], "keyframe");
+  EXPECT_EQ(d["body"], every_step.pushed_body) << j.dump();
+  // The edited x component changes vx by one ulp of J / m; the position moved by vx dt rounds to
+  // the same bits here, so vx is the first field that differs.
+  EXPECT_EQ(d["field"], "vx");
+
+  // With keyframes every 10 steps the step is found, and the reason why no body is named given.
+  r = decoded();
+  for (const elan::RecordedCall& c : elan::list_calls(r)) {
+    if (elan::recorded_call_name(c.op) != "apply_impulse") continue;
+    uint8_t* x = r.calls.data() + c.offset + 8;
+    elan::Real v;
+    std::memcpy(&v, x, sizeof v);
+    v = std::nextafter(v, std::numeric_limits<elan::Real>::infinity());
+    std::memcpy(x, &v, sizeof v);
+  }
+  write_recording(r);
+  const Result sparse = run_elan({"replay", path_});
+  ASSERT_EQ(sparse.status, 1) << sparse.err;
+  const Json k = Json::parse(sparse.out);
+  EXPECT_EQ(k["first_mismatch_step"], elan::test::kPushStep + 1);
+  EXPECT_TRUE(k["divergence"]["body"].is_null());
+  EXPECT_NE(k["divergence"]["reason"].get<std::string>().find("does not reproduce"),
+            std::string::npos);
+}
+
+TEST_F(ProgramReplay, UntilSaveSnapshotContinuesBitForBit) {
+  const std::string snap = temp_path("program_45.snap");
+  const Result out = run_elan({"replay", path_, "--until", "45", "--save-snapshot", snap});
+  ASSERT_EQ(out.status, 0) << out.err;
+  const std::string bytes = read(snap);
+  std::remove(snap.c_str());
+  const elan::Recording r = decoded();
+  elan::Replayer rest(
+      r,
+      elan::load_snapshot(std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())),
+      45);
+  EXPECT_EQ(rest.actual_hash(), r.hashes[45]);
+  while (rest.step() < r.steps) ASSERT_TRUE(rest.advance()) << rest.step();
+  EXPECT_EQ(rest.actual_hash(), recorded().final_hash);
+}
+
+TEST_F(ProgramReplay, SaveSceneSaysWhyNot) {
+  const std::string scene = temp_path("program.json");
+  const Result out = run_elan({"replay", path_, "--until", "10", "--save-scene", scene});
+  EXPECT_EQ(out.status, 2);
+  EXPECT_NE(out.err.find("cannot be written as a scene"), std::string::npos) << out.err;
+  EXPECT_NE(out.err.find("use --save-snapshot"), std::string::npos) << out.err;
+  EXPECT_EQ(elan::test::count_lines(out.err), 1u) << out.err;
+}
+
+TEST_F(ProgramReplay, RecordingsFromBuildsWithOtherPromisesAreRefused) {
+  elan::Recording r = decoded();
+  r.real_bytes = sizeof(elan::Real) == 4 ? 8 : 4;
+  write_recording(r);
+  Result out = run_elan({"replay", path_});
+  EXPECT_EQ(out.status, 2);
+  EXPECT_NE(out.err.find(path_ + ": recorded by a build with " + std::to_string(r.real_bytes * 8) +
+                         "-bit Real"),
+            std::string::npos)
+      << out.err;
+  EXPECT_TRUE(out.out.empty());
+
+  r = decoded();
+  r.promise = "x86-64 double, cross-build";
+  write_recording(r);
+  out = run_elan({"replay", path_});
+  EXPECT_EQ(out.status, 2);
+  EXPECT_NE(out.err.find(path_ + ": recorded by a build that promises \"x86-64 double"),
+            std::string::npos)
+      << out.err;
+
+  std::string future = bytes_;
+  future[8] = 4;
+  reseal(future);
+  write(path_, future);
+  out = run_elan({"replay", path_});
+  EXPECT_EQ(out.status, 2);
+  EXPECT_NE(out.err.find(path_ + ": unsupported recording version 4"), std::string::npos)
+      << out.err;
+}
+
+TEST_F(ProgramReplay, DivergeComparesTwoReplays) {
+  Result out =
+      run_elan({"diverge", path_, "--a", "--threads 1", "--b", "--threads 2 --broadphase tree"});
+  ASSERT_EQ(out.status, 0) << out.err;
+  EXPECT_EQ(Json::parse(out.out)["diverged"], false);
+  out = run_elan({"diverge", path_, "--a", "--threads 1", "--b", "--threads 2 --perturb 3:50"});
+  ASSERT_EQ(out.status, 1) << out.err;
+  const Json j = Json::parse(out.out);
+  EXPECT_EQ(j["step"], 50);
+  EXPECT_EQ(j["body"], 3);
+  EXPECT_EQ(j["field"], "px");
+}
+
+}  // namespace program

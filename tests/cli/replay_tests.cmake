@@ -2,7 +2,7 @@
 # Record, replay and diverge through the elan binary: keyframes, the body and field named at the
 # first divergent step, perturbed replays, old and future recording versions, corrupt files.
 add_executable(test_cli_replay ${CMAKE_CURRENT_LIST_DIR}/replay_test.cpp)
-target_link_libraries(test_cli_replay PRIVATE elan_options nlohmann_json::nlohmann_json GTest::gtest
+target_link_libraries(test_cli_replay PRIVATE elan elan_options nlohmann_json::nlohmann_json GTest::gtest
                                               GTest::gtest_main)
 target_compile_definitions(test_cli_replay PRIVATE ELAN_CLI="$<TARGET_FILE:elan_cli>"
   ELAN_REPRODUCERS="${CMAKE_CURRENT_LIST_DIR}/reproducers"

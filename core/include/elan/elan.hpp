@@ -11,6 +11,8 @@
 #include "elan/math.hpp"
 #include "elan/profile.hpp"
 #include "elan/queries.hpp"
+#include "elan/recorder.hpp"
+#include "elan/recording.hpp"
 #include "elan/scene.hpp"
 #include "elan/snapshot.hpp"
 #include "elan/thread_pool.hpp"

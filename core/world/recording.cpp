@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
-// Recording file format, version 2 (all integers little-endian):
-//   magic "\x89ELANREC" | u32 version | u32 real_bytes | u64 steps | f64 timestep | i32 substeps |
-//   i32 iterations | u32 threads | u32 broadphase | u64 keyframe_every | u64 n, scene name |
-//   u64 n, scene text | u64 k keyframes, each: u64 step, u64 n, n bytes of snapshot |
-//   u64 n, n hashes (u64) | u64 FNV-1a of every byte before it.
-// Version 1 is the same without keyframe_every and the keyframes; it is still read. The hashes
-// stay last so the newest step sits just before the checksum in both versions.
+// Recording file format, version 3 (all integers little-endian):
+//   magic "\x89ELANREC" | u32 version | u32 real_bytes | (3) u64 n, engine version |
+//   (3) u64 n, determinism promise | u64 steps | f64 timestep | i32 substeps | i32 iterations |
+//   u32 threads | u32 broadphase | u64 keyframe_every | u64 n, scene name | u64 n, scene text |
+//   (3) u64 n, starting snapshot | (3) u64 n, calls | u64 k keyframes, each: u64 step, u64 n,
+//   n bytes of snapshot | u64 n, n hashes (u64) | u64 FNV-1a of every byte before it.
+// Version 2 is the same without the fields marked (3); version 1 also without keyframe_every and
+// the keyframes; both are still read. The promise sits right after the real size, so a
+// recording from a build with other promises is named as such before anything else is read. The
+// hashes stay last so the newest step sits just before the checksum in every version.
 // The leading 0x89 byte keeps a text file from ever passing as a recording (as in PNG).
-#include "tools/recording.hpp"
+#include "elan/recording.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,12 +18,12 @@
 
 #include "elan/defs.hpp"
 
-namespace elan::cli {
+namespace elan {
 namespace {
 
 constexpr char kMagic[kRecordingMagicBytes] = {'\x89', 'E', 'L', 'A', 'N', 'R', 'E', 'C'};
-constexpr uint32_t kVersion = 2;
-constexpr uint32_t kOldestVersion = 1;
+constexpr uint32_t kVersion = kRecordingVersion;
+constexpr uint32_t kOldestVersion = kOldestRecordingVersion;
 
 // FNV-1a, 64 bit: every single-byte change changes the sum (each step is a bijection), which is
 // what corruption and truncation checks need; no cryptographic strength is sought.
@@ -39,14 +42,18 @@ void put_u64(std::string& out, uint64_t v) {
 void put_u32(std::string& out, uint32_t v) {
   for (int i = 0; i < 4; ++i) out.push_back(char(uint8_t(v >> (8 * i))));
 }
-void put_string(std::string& out, const std::string& s) {
+void put_string(std::string& out, std::string_view s) {
   put_u64(out, s.size());
   out += s;
+}
+void put_bytes(std::string& out, const std::vector<uint8_t>& v) {
+  put_u64(out, v.size());
+  out.append(reinterpret_cast<const char*>(v.data()), v.size());
 }
 
 class Reader {
  public:
-  Reader(const std::string& bytes, std::size_t end, const std::string& file)
+  Reader(std::string_view bytes, std::size_t end, const std::string& file)
       : bytes_(bytes), end_(end), file_(file) {}
   uint64_t u64(const char* what) {
     need(8, what);
@@ -65,7 +72,7 @@ class Reader {
   std::string string(const char* what) {
     const uint64_t n = u64(what);
     need(n, what);
-    std::string s = bytes_.substr(pos_, n);
+    std::string s(bytes_.substr(pos_, n));
     pos_ += n;
     return s;
   }
@@ -84,7 +91,7 @@ class Reader {
   std::size_t pos() const { return pos_; }
 
  private:
-  const std::string& bytes_;
+  std::string_view bytes_;
   std::size_t end_;
   const std::string& file_;
   std::size_t pos_ = 0;
@@ -96,6 +103,8 @@ std::string encode_recording(const Recording& r) {
   std::string out(kMagic, sizeof kMagic);
   put_u32(out, kVersion);
   put_u32(out, r.real_bytes);
+  put_string(out, r.engine_version);
+  put_string(out, r.promise);
   put_u64(out, r.steps);
   uint64_t dt_bits;
   std::memcpy(&dt_bits, &r.timestep, 8);
@@ -107,6 +116,8 @@ std::string encode_recording(const Recording& r) {
   put_u64(out, r.keyframe_every);
   put_string(out, r.scene_name);
   put_string(out, r.scene_text);
+  put_bytes(out, r.initial_snapshot);
+  put_bytes(out, r.calls);
   put_u64(out, r.keyframes.size());
   for (const Keyframe& k : r.keyframes) {
     put_u64(out, k.step);
@@ -119,14 +130,14 @@ std::string encode_recording(const Recording& r) {
   return out;
 }
 
-void check_recording_magic(const std::string& head, const std::string& file) {
+void check_recording_magic(std::string_view head, const std::string& file) {
   const std::size_t magic_seen = std::min(head.size(), sizeof kMagic);
   if (head.empty() || std::memcmp(head.data(), kMagic, magic_seen) != 0) {
     throw RecordingError(file + ": not an elan recording (it does not start with the magic bytes)");
   }
 }
 
-Recording decode_recording(const std::string& bytes, const std::string& file) {
+Recording decode_recording(std::string_view bytes, const std::string& file) {
   check_recording_magic(bytes, file);
   if (bytes.size() < sizeof kMagic + 4 + 8) {
     throw RecordingError(file + ": truncated recording (" + std::to_string(bytes.size()) +
@@ -150,6 +161,10 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
   Recording r;
   r.version = version;
   r.real_bytes = in.u32("real size");
+  if (version >= 3) {
+    r.engine_version = in.string("engine version");
+    r.promise = in.string("determinism promise");
+  }
   r.steps = in.u64("steps");
   const uint64_t dt_bits = in.u64("timestep");
   std::memcpy(&r.timestep, &dt_bits, 8);
@@ -157,7 +172,9 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
   r.iterations = int32_t(in.u32("iterations"));
   r.threads = in.u32("threads");
   r.broadphase = in.u32("broadphase");
-  if (!(r.timestep > 0) || !std::isfinite(r.timestep) || r.broadphase > 2) {
+  // A program recording's steps carry their own timesteps; 0 is its "none taken".
+  const bool timestep_ok = r.timestep > 0 || (version >= 3 && r.timestep == 0);
+  if (!timestep_ok || !std::isfinite(r.timestep) || r.broadphase > 2) {
     throw RecordingError(file + ": corrupt recording: invalid settings");
   }
   // The library's own ranges (elan/defs.hpp): a value no world accepts is a corrupt recording,
@@ -175,6 +192,10 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
   if (version >= 2) r.keyframe_every = in.u64("keyframe interval");
   r.scene_name = in.string("scene name");
   r.scene_text = in.string("scene text");
+  if (version >= 3) {
+    r.initial_snapshot = in.byte_vector("starting snapshot");
+    r.calls = in.byte_vector("calls");
+  }
   if (version >= 2) {
     const uint64_t keyframes = in.u64("keyframe count");
     // Each keyframe takes at least its two 8-byte counts.
@@ -204,6 +225,19 @@ Recording decode_recording(const std::string& bytes, const std::string& file) {
   return r;
 }
 
+void check_recording_build(const Recording& r, const std::string& file) {
+  if (r.real_bytes != sizeof(Real)) {
+    throw RecordingError(file + ": recorded by a build with " + std::to_string(r.real_bytes * 8) +
+                         "-bit Real, this build uses " + std::to_string(sizeof(Real) * 8) +
+                         "-bit: hashes are comparable only between builds with the same promises");
+  }
+  if (r.version >= 3 && r.promise != kDeterminismPromise) {
+    throw RecordingError(file + ": recorded by a build that promises \"" + r.promise +
+                         "\", this build promises \"" + kDeterminismPromise +
+                         "\": hashes are comparable only between builds with the same promises");
+  }
+}
+
 const Keyframe* keyframe_at_or_before(const Recording& r, uint64_t step) {
   const Keyframe* best = nullptr;
   for (const Keyframe& k : r.keyframes) {
@@ -212,4 +246,4 @@ const Keyframe* keyframe_at_or_before(const Recording& r, uint64_t step) {
   return best;
 }
 
-}  // namespace elan::cli
+}  // namespace elan
