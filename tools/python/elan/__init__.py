@@ -11,7 +11,9 @@ from elan._elan import (  # noqa: F401
     STEP_FROZE_NON_FINITE,
     STEP_OK,
     Error,
+    RecordingError,
     World,
+    replay_recording,
 )
 
 from elan._columns import BodyColumns, body_columns, positions
@@ -23,6 +25,8 @@ del body_columns, positions
 __all__ = [
     "BodyColumns",
     "Error",
+    "RecordingError",
+    "replay_recording",
     "World",
     "STEP_OK",
     "STEP_FROZE_NON_FINITE",

@@ -42,5 +42,6 @@ void bind_queries(pybind11::class_<PyWorld>& c);
 void bind_events(pybind11::class_<PyWorld>& c);
 void bind_columns(pybind11::class_<PyWorld>& c);
 void bind_snapshots(pybind11::class_<PyWorld>& c);
+void bind_recording(pybind11::module_& m, pybind11::class_<PyWorld>& c);
 
 }  // namespace elan::py

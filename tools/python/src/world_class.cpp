@@ -70,6 +70,7 @@ void bind_world_class(pybind11::module_& m) {
   bind_events(c);
   bind_columns(c);
   bind_snapshots(c);
+  bind_recording(m, c);
 }
 
 }  // namespace elan::py

@@ -68,3 +68,24 @@ def test_bad_snapshot_bytes(scenes):
         w.restore_snapshot("text")
     with pytest.raises(elan.Error):
         w.restore_rollback(b"nope")
+
+
+def test_program_recording_replays_bit_for_bit():
+    w = elan.World(threads=1)
+    w.create_body(w.create_shape("box", half_extents=(5, 1, 5)), motion="static",
+                  position=(0, -1, 0))
+    s = w.create_shape("sphere", radius=0.5)
+    w.start_recording(keyframe_every=10, name="python test")
+    assert w.is_recording
+    ball = w.create_body(s, position=(0, 3, 0))
+    w.step(20)
+    w.apply_linear_impulse(ball, (500, 0, 0))
+    w.step(20)
+    rec = w.stop_recording()
+    assert isinstance(rec, bytes) and not w.is_recording
+    r = elan.replay_recording(rec, threads=2)
+    assert r["match"] and r["steps"] == 40 and r["error"] == ""
+    replayed = elan.World.load_snapshot(r["snapshot"])
+    assert replayed.state_hash == w.state_hash
+    with pytest.raises(elan.RecordingError):
+        elan.replay_recording(b"not a recording")
