@@ -1,3 +1,0 @@
-file(REMOVE_RECURSE
-  "libelan_scene.a"
-)

@@ -1,2 +1,0 @@
-# Empty dependencies file for elan_narrowphase.
-# This may be replaced when dependencies are built.

@@ -1,3 +1,0 @@
-file(REMOVE_RECURSE
-  "libelan_solver.a"
-)
