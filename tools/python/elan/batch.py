@@ -53,39 +53,48 @@ def _trajectory_path(case: dict) -> str:
     return os.path.join(case["out"], TRAJECTORY_DIR, f"case_{case['index']:05d}.{t['format']}")
 
 
-def _motion_is_static(world: Any) -> list:
-    """Per body, whether it is static (the trajectory lists the others, as ``elan run`` does)."""
-    kinds = world.motion_types
-    static = getattr(__import__("elan"), "MOTION_STATIC", 0)
-    return [int(k) == int(static) for k in kinds]
+def _trajectory_bodies(world: Any) -> tuple:
+    """The non-static bodies (a trajectory lists them, as ``elan run`` does): ids and indices."""
+    ids, indices = [], []
+    for i in range(world.body_count()):
+        body = world.body_at(i)
+        if world.motion_type(body) != "static":
+            ids.append(body)
+            indices.append(i)
+    return ids, indices
 
 
-def _sample(world: Any, keep: Any):
+def _sample(world: Any, ids: list):
+    """(bodies, 13): position (of the shape frame, as ``elan run`` reports it), orientation
+    [w, x, y, z], linear and angular velocity."""
     import numpy as np
 
-    return (
-        np.array(world.positions)[keep],
-        np.array(world.orientations)[keep],
-        np.array(world.linear_velocities)[keep],
-        np.array(world.angular_velocities)[keep],
-    )
+    rows = [
+        (*world.position(b), *world.orientation(b), *world.linear_velocity(b), *world.angular_velocity(b))
+        for b in ids
+    ]
+    return np.array(rows, dtype=np.float64).reshape(len(ids), 13)
 
 
 def _write_trajectory(world: Any, case: dict) -> None:
     """Steps the world ``case['steps']`` steps, sampling every non-static body at step 0, every
-    ``every``-th step and the last, into a CSV like ``elan run --trajectory`` (every value printed
-    so that it reads back to the same bits) or an .npz of arrays (step, time, body, and position,
-    orientation [w, x, y, z], linear_velocity, angular_velocity of shape (samples, bodies, k))."""
+    ``every``-th step and the last, into a CSV byte for byte as ``elan run --trajectory`` writes
+    it (every value printed so that it reads back to the same bits) or an .npz of arrays (step,
+    time, body, and position, orientation [w, x, y, z], linear_velocity, angular_velocity of shape
+    (samples, bodies, 3 or 4))."""
     import numpy as np
 
     t = case["trajectory"]
     steps, every = case["steps"], t["every"]
-    dt = float(world.timestep)
-    keep = np.flatnonzero(~np.array(_motion_is_static(world), dtype=bool))
+    dt = float(world.summary()["timestep"])  # s, the engine's value
+    # As elan run: %.9g identifies a float, %.17g a double (max_digits10).
+    real_format = "%.9g" if world.column("px").dtype.itemsize == 4 else "%.17g"
+    real = np.float32 if real_format == "%.9g" else np.float64
+    ids, indices = _trajectory_bodies(world)
     samples = []
 
     def take(step: int) -> None:
-        samples.append((step, step * dt, _sample(world, keep)))
+        samples.append((step, float(step) * dt, _sample(world, ids)))
 
     take(0)
     done = 0
@@ -101,24 +110,25 @@ def _write_trajectory(world: Any, case: dict) -> None:
     # sees a half-written file from a worker that died.
     tmp = f"{path}.tmp{os.getpid()}"
     if t["format"] == "npz":
+        tmp += ".npz"  # else numpy appends it
+        values = np.stack([a for _, _, a in samples]).astype(real)  # exact: the values are Reals
         np.savez_compressed(
             tmp,
             step=np.array([s for s, _, _ in samples], dtype=np.uint64),
-            time=np.array([x for _, x, _ in samples]),
-            body=keep.astype(np.uint64),
-            position=np.stack([a[0] for _, _, a in samples]),
-            orientation=np.stack([a[1] for _, _, a in samples]),
-            linear_velocity=np.stack([a[2] for _, _, a in samples]),
-            angular_velocity=np.stack([a[3] for _, _, a in samples]),
+            time=np.array([x for _, x, _ in samples], dtype=np.float64),
+            body=np.array(indices, dtype=np.uint64),
+            position=values[:, :, 0:3],
+            orientation=values[:, :, 3:7],
+            linear_velocity=values[:, :, 7:10],
+            angular_velocity=values[:, :, 10:13],
         )
-        tmp += ".npz"  # numpy appends the suffix
     else:
-        with open(tmp, "w", encoding="ascii") as f:
+        with open(tmp, "w", encoding="ascii", newline="\n") as f:
             f.write(TRAJECTORY_HEADER + "\n")
-            for step, time_s, (p, q, v, w) in samples:
-                for row, body in enumerate(keep):
-                    values = [*p[row], *q[row], *v[row], *w[row]]
-                    f.write(f"{step},{time_s!r},{body}," + ",".join(repr(float(x)) for x in values) + "\n")
+            for step, time_s, values in samples:
+                prefix = f"{step},{'%.17g' % time_s},"
+                for row, body in enumerate(indices):
+                    f.write(prefix + str(body) + "," + ",".join(real_format % x for x in values[row]) + "\n")
     os.replace(tmp, path)
 
 
