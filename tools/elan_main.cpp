@@ -56,10 +56,6 @@ void print(const Json& out) {
   std::cout << out.dump(-1, ' ', false, Json::error_handler_t::replace) << std::endl;
 }
 
-Json vec(const Vec3& v) {
-  return Json::array({double(v.x()), double(v.y()), double(v.z())});
-}
-
 // The bytes of the recording `path`, a regular file whose magic is checked before the rest is
 // read (so /dev/zero, or a large file of anything else, is refused at once).
 std::string read_recording(const std::string& path) {
@@ -239,30 +235,14 @@ int run(const RunOptions& o) {
   keyframe(0);
   if (trajectory) trajectory->write(world, 0, 0.0);
 
-  StepProfile total;
-  uint32_t status = kStepOk;
-  double wall = 0;
+  RunTotals totals;
   Progress progress("run", o.steps);
   for (uint64_t step = 1; step <= o.steps; ++step) {
     const auto t0 = Clock::now();
     const uint32_t s = world.step(dt);
-    wall += std::chrono::duration<double>(Clock::now() - t0).count();
-    warn_status(s & ~status, step);
-    status |= s;
-    const StepProfile& p = world.last_step().profile;
-    total.bounds += p.bounds;
-    total.pairs += p.pairs;
-    total.collide += p.collide;
-    total.islands += p.islands;
-    total.split += p.split;
-    total.packets += p.packets;
-    total.color += p.color;
-    total.bundles += p.bundles;
-    total.prepare += p.prepare;
-    total.solve += p.solve;
-    total.ccd += p.ccd;
-    total.finalize += p.finalize;
-    total.total += p.total;
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    warn_status(s & ~totals.status, step);
+    totals.add(world, s, seconds);
     if (!hashes.empty()) hashes.push_back(world.state_hash());
     keyframe(step);
     if (trajectory && (step % o.every == 0 || step == o.steps)) {
@@ -292,46 +272,9 @@ int run(const RunOptions& o) {
     if (!record) throw std::runtime_error(o.record + ": writing the recording failed");
   }
 
-  const StepStats& last = world.last_step();
-  std::size_t awake = last.awake;
-  if (o.steps == 0) {
-    awake = 0;
-    for (std::size_t i = 0; i < world.body_count(); ++i) {
-      const BodyId id = world.body_at(i);
-      awake += world.motion_type(id) == MotionType::Dynamic && world.is_awake(id);
-    }
-  }
-  Json out;
-  out["scene"] = o.scene;
-  out["bodies"] = world.body_count();
-  out["joints"] = world.joint_count();  // still in the world: broken ones are gone
-  out["steps"] = o.steps;
-  out["threads"] = def.threads;
-  out["broadphase"] = broadphase_name(def.broadphase);
-  out["timestep"] = double(dt);
-  out["substeps"] = world.settings().substeps;
-  out["iterations"] = world.settings().iterations;
-  out["wall_seconds"] = wall;
-  out["ms_per_step"] = o.steps == 0 ? 0.0 : 1000.0 * wall / double(o.steps);
-  out["state_hash"] = hex(world.state_hash());
-  out["kinetic_energy"] = double(world.kinetic_energy());
-  out["linear_momentum"] = vec(world.linear_momentum());
-  out["angular_momentum"] = vec(world.angular_momentum());
-  out["pairs"] = o.steps == 0 ? 0 : last.pairs;
-  out["manifolds"] = o.steps == 0 ? 0 : last.manifolds;
-  out["contacts"] = o.steps == 0 ? 0 : last.contacts;
-  out["awake"] = awake;
-  out["colors"] = o.steps == 0 ? 0 : last.colors;
-  out["overflow"] = o.steps == 0 ? 0 : last.overflow;
-  out["status"] = status;
-  out["profile_ms"] = {
-      {"bounds", total.bounds},   {"pairs", total.pairs},     {"collide", total.collide},
-      {"islands", total.islands}, {"split", total.split},     {"packets", total.packets},
-      {"color", total.color},     {"bundles", total.bundles}, {"prepare", total.prepare},
-      {"solve", total.solve},     {"ccd", total.ccd},         {"finalize", total.finalize},
-      {"total", total.total}};
-  print(out);
-  return unsound_run_status(out, status);
+  const std::string summary = run_summary_json(world, o.scene, dt, totals);
+  std::cout << summary << std::endl;
+  return unsound_run_status(Json::parse(summary), totals.status);
 }
 
 // A world holding a keyframe, settings as recorded. A keyframe that does not load is a corrupt
@@ -567,7 +510,7 @@ int view(const ViewOptions& o) {
   std::optional<Recording> recording;
   Scene scene;
   WorldDef def;
-  [[maybe_unused]] Real dt = 0;  // read by the viewer only
+  [[maybe_unused]] Real dt = 0;
   std::string name = o.file;
   if (starts_like_recording(o.file)) {
     recording = decode_recording(read_recording(o.file), o.file);

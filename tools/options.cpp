@@ -3,8 +3,6 @@
 // justify a dependency (CLI11 is not in Debian's default set of installed packages).
 #include "tools/options.hpp"
 
-#include <tbb/global_control.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -411,25 +409,6 @@ ViewOptions parse_view_options(std::span<const std::string> args) {
     throw UsageError("elan view: --screenshot and --frames exclude each other");
   }
   return o;
-}
-
-const char* broadphase_name(BroadphaseType type) {
-  switch (type) {
-    case BroadphaseType::AllPairs:
-      return "all-pairs";
-    case BroadphaseType::Tree:
-      return "tree";
-    case BroadphaseType::SweepAndPrune:
-      break;
-  }
-  return "sap";
-}
-
-int resolve_threads(int threads) {
-  // The most threads oneTBB runs at once: the machine's cores, unless a global_control lowers it.
-  const int available = std::max(
-      1, int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
-  return threads > 0 ? std::min(threads, available) : available;
 }
 
 }  // namespace elan::cli

@@ -11,6 +11,7 @@
 
 #include "elan/defs.hpp"
 #include "elan/one_line.hpp"
+#include "elan/run_summary.hpp"
 
 namespace elan::cli {
 
@@ -93,11 +94,6 @@ RunOptions parse_run_options(std::span<const std::string> args);
 ReplayOptions parse_replay_options(std::span<const std::string> args);
 DivergeOptions parse_diverge_options(std::span<const std::string> args);
 ViewOptions parse_view_options(std::span<const std::string> args);
-
-const char* broadphase_name(BroadphaseType type);
-/// Worker count that `threads` (0 = all cores) stands for: at most the threads oneTBB runs at
-/// once (the machine's cores).
-int resolve_threads(int threads);
 
 extern const char* const kMainUsage;
 extern const char* const kRunUsage;

@@ -16,7 +16,7 @@ namespace elan::detail::scene_file {
   if (!ctx.where.empty()) s += ctx.where + ": ";
   if (!field.empty()) s += ctx.prefix + field + ": ";
   s += message;
-  throw SceneError(s);
+  throw SceneError(s, field.empty() ? std::string() : ctx.prefix + field);
 }
 
 // A short rendering of a value for "got ..." (containers by kind only: they may be huge).

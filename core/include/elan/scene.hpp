@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "elan/defs.hpp"
@@ -20,7 +21,14 @@ namespace elan {
 class SceneError : public std::runtime_error {
  public:
   /// Control characters in `message` (from a body name, a key, a path) are escaped (one_line).
-  explicit SceneError(const std::string& message) : std::runtime_error(one_line(message)) {}
+  /// `field` is the field at fault as the message names it (e.g. "shape.radius"), or empty when
+  /// the error is not about one field (unreadable file, malformed JSON).
+  explicit SceneError(const std::string& message, std::string field = {})
+      : std::runtime_error(one_line(message)), field_(std::move(field)) {}
+  const std::string& field() const { return field_; }
+
+ private:
+  std::string field_;
 };
 
 struct SceneBody {
