@@ -14,7 +14,14 @@ from elan._elan import (  # noqa: F401
     World,
 )
 
+from elan._columns import BodyColumns, body_columns, positions
+
+World.body_columns = body_columns
+World.positions = positions
+del body_columns, positions
+
 __all__ = [
+    "BodyColumns",
     "Error",
     "World",
     "STEP_OK",

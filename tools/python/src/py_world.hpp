@@ -34,5 +34,13 @@ void bind_world_class(pybind11::module_& m);
 void bind_errors(pybind11::module_& m);
 void bind_loading(pybind11::class_<PyWorld>& c);
 void bind_stepping(pybind11::class_<PyWorld>& c);
+void bind_settings(pybind11::class_<PyWorld>& c);
+void bind_shapes(pybind11::class_<PyWorld>& c);
+void bind_bodies(pybind11::class_<PyWorld>& c);
+void bind_joints(pybind11::class_<PyWorld>& c);
+void bind_queries(pybind11::class_<PyWorld>& c);
+void bind_events(pybind11::class_<PyWorld>& c);
+void bind_columns(pybind11::class_<PyWorld>& c);
+void bind_snapshots(pybind11::class_<PyWorld>& c);
 
 }  // namespace elan::py
