@@ -56,7 +56,7 @@ def _trajectory_path(case: dict) -> str:
 def _trajectory_bodies(world: Any) -> tuple:
     """The non-static bodies (a trajectory lists them, as ``elan run`` does): ids and indices."""
     ids, indices = [], []
-    for i in range(world.body_count()):
+    for i in range(world.body_count):
         body = world.body_at(i)
         if world.motion_type(body) != "static":
             ids.append(body)

@@ -164,7 +164,11 @@ def test_trajectories_hold_what_elan_run_writes(elan_bin, tmp_path, fmt):
     # Steps 0, 5, 10 and the last, 12; the 8 pile bodies (the ground is static); the values to
     # the bit, as both sides print them so that they read back exactly.
     assert got.shape == (4 * 8, 16)
-    np.testing.assert_array_equal(got, expected)
+    # step, time (a double, %.17g) and body exactly; the state as the engine's Real, which the
+    # CSV's %.9g identifies (for a float build) and the .npz stores as is.
+    np.testing.assert_array_equal(got[:, :3], expected[:, :3])
+    real = np.dtype(elan.World.from_scene_json(case["scene_text"]).column("px").dtype)
+    np.testing.assert_array_equal(got[:, 3:].astype(real), expected[:, 3:].astype(real))
     assert (tmp_path / "out" / "results.csv").is_file()
 
 
