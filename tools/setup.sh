@@ -9,6 +9,8 @@ cd "$root"
 packages=(build-essential cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libgtest-dev
           libgmock-dev libbenchmark-dev libbullet-dev libtinyobjloader-dev clang-format python3
           gnuplot-nox
+          # the Python module (import elan) and its tests
+          pybind11-dev python3-dev python3-numpy python3-pytest
           # the viewer (elan view), its off-screen pictures and tools/make_pictures.sh
           libglfw3-dev libimgui-dev libstb-dev libgl-dev libgl1-mesa-dri xvfb xauth imagemagick)
 missing=()
