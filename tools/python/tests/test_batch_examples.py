@@ -2,12 +2,15 @@
 """The examples in examples/python run, with quick settings: the energy plot writes a PNG, the
 replay regression test passes, and the sweep prints its table."""
 
-import os
-import pathlib
 import subprocess
 import sys
 
+import pytest
 from conftest import SOURCE_DIR
+
+# The examples' dependencies (Debian: python3-distributed, python3-pandas, python3-matplotlib).
+for module in ("distributed", "pandas", "matplotlib"):
+    pytest.importorskip(module)
 
 EXAMPLES = SOURCE_DIR / "examples" / "python"
 
