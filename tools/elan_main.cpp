@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The elan command: `elan run` simulates a scene file and prints a JSON summary, `elan replay`
 // re-simulates a recording and compares every step's state hash, `elan diverge` steps a scene
-// under two settings side by side. Every error exits with status 2.
+// under two settings side by side, `elan batch` runs a sweep of simulations on a Dask cluster
+// (in Python). Every error exits with status 2.
 #include <algorithm>
 #include <chrono>
 #include <cinttypes>
@@ -26,6 +27,7 @@
 #include "elan/elan.hpp"
 #include "elan/one_line.hpp"
 #include "elan/snapshot.hpp"
+#include "tools/batch_command.hpp"
 #include "tools/options.hpp"
 #include "tools/recording.hpp"
 #include "tools/trajectory.hpp"
@@ -742,6 +744,7 @@ int dispatch(const std::vector<std::string>& args) {
     }
     return view(o);
   }
+  if (command == "batch") exec_batch(rest);  // --help included: the Python side has the options
   throw UsageError("unknown command '" + command + "'");
 }
 

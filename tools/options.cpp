@@ -26,6 +26,9 @@ const char* const kMainUsage =
     "                             first step, body and field that differ\n"
     "  view SCENE.json|RECORDING  open a window on a scene (or play a recording); with\n"
     "                             --screenshot, render a picture off screen and exit\n"
+    "  batch SWEEP.json [options] run many simulations (a sweep of parameters or a list of\n"
+    "                             scenes) on a Dask cluster; a table of their summaries\n"
+    "                             (Python: python3 -m elan.batch, docs/batch.md)\n"
     "\n"
     "'elan COMMAND --help' lists a command's options.\n";
 

@@ -11,6 +11,7 @@ packages=(build-essential cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libg
           gnuplot-nox
           # the Python module (import elan) and its tests
           pybind11-dev python3-dev python3-numpy python3-pytest
+          python3-distributed python3-pandas python3-tqdm python3-yaml python3-matplotlib  # elan batch, examples
           # the viewer (elan view), its off-screen pictures and tools/make_pictures.sh
           libglfw3-dev libimgui-dev libstb-dev libgl-dev libgl1-mesa-dri xvfb xauth imagemagick)
 missing=()
