@@ -465,7 +465,8 @@ TEST(Cli, EndlessInputIsRefusedAtOnce) {
   for (const char* device : {"/dev/zero", "/dev/urandom"}) {
     expect_one_line_refusal(run_elan({"run", device}, 10), device,
                             "is a character device, not a scene file");
-    expect_one_line_refusal(run_elan({"diverge", device}, 10), device, "not a scene file");
+    expect_one_line_refusal(run_elan({"diverge", device}, 10), device,
+                            "not a scene or recording file");
     expect_one_line_refusal(run_elan({"replay", device}, 10), device,
                             "is a character device, not a recording file");
   }
