@@ -202,12 +202,14 @@ double least_overlap(const Shape& a, const Transform& xa, const Shape& b, const 
 }
 
 // Found by fuzz_narrowphase (tests/fuzz/corpus/narrowphase/regression_epa_infinite_depth): a
-// cylinder and a capsule overlapping by about 1.5 m, for which EPA reported ok with an infinite
-// depth. The face buffer ran out mid-expansion and the answer was read from the slot of the face
-// just removed, by then refilled with a sliver (zero normal, distance kInf). The depth must be
-// finite, and correct: the overlap along EPA's normal is its depth (the support gap EPA stops at,
-// 1e-5 relative, plus the polytope's flattening of the curved cylinder), and no direction overlaps
-// less than the depth by more than that.
+// cylinder and a capsule overlapping by about 0.82 m, for which EPA (in clang's build) reported
+// ok with an infinite depth: rounding on faces nearly coplanar with a new support point (the
+// cylinder's flat cap) gave a wrong horizon, a new face turned inwards, the polytope stopped
+// being convex, the face buffer filled, and the answer was read from a reused slot holding a
+// sliver (distance kInf). The depth must be finite and correct: within 0.2% of the least overlap
+// over all directions (EPA stops at a support gap of 1e-5 relative, or, at an inverted face, at
+// the last convex polytope's gap, here 3e-4 relative), and the overlap along EPA's normal is its
+// depth.
 TEST(Epa, CylinderAgainstCapsuleGivesTheLeastOverlap) {
   const Shape a = cylinder(0x1.ea2fdp-1f, 0x1.d1b286p-1f);
   const Shape b = capsule(0x1.67db4ep-1f, 0x1.5f0bdep+0f);
