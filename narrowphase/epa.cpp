@@ -170,19 +170,35 @@ EpaResult run_epa(const Support& minkowski, const Simplex& simplex) {
   set_face(p, 3, 1, 3, 2, &centre);
   p.face_count = 4;
 
-  int best = 0;
+  // The answer is read from a copy of the closest face, taken before the expansion kills it and
+  // may reuse its slot: when a budget ends the loop halfway through an expansion, the answer is
+  // still a face of the last whole polytope (finite distance, unit normal), not whatever the
+  // slot holds by then.
+  Face answer{{0, 0, 0}, Vec3::UnitY(), kInf, false};
+  bool have_answer = false;
+  // The least support h(n) = max over the difference of n . w seen along a chosen face normal:
+  // moving B by h(n) along n separates the shapes, so h(n) bounds the depth from above, as the
+  // closest face's distance bounds it from below.
+  Real upper_d = kInf;
+  Vec3 upper_n = Vec3::UnitY();
+  Vec3 upper_a = Vec3::Zero(), upper_b = Vec3::Zero();  // A's and B's supports along upper_n
+  bool broken = false;
   int edges[kMaxEdges][2];
   for (int iter = 0; iter < kEpaMaxIterations; ++iter) {
-    // determinism: lowest slot wins ties.
-    best = -1;
+    // determinism: lowest slot wins ties. Slivers (d = kInf) are never chosen.
+    int best = -1;
     Real best_d = kInf;
     for (int i = 0; i < p.face_count; ++i) {
       if (p.face[i].alive && p.face[i].d < best_d) best_d = p.face[i].d, best = i;
     }
     if (best < 0) break;
-    const Face& f = p.face[best];
+    answer = p.face[best];
+    have_answer = true;
+    const Face& f = answer;
     const SimplexVertex w = minkowski(f.n);
-    const Real gap = w.w.dot(f.n) - f.d;
+    const Real upper = w.w.dot(f.n);
+    if (upper < upper_d) upper_d = upper, upper_n = f.n, upper_a = w.a, upper_b = w.b;
+    const Real gap = upper - f.d;
     if (gap <= kEpaRelTol * std::abs(f.d) + 16 * kEpaEps * scale) break;
     if (p.vertex_count == kMaxVertices) break;
     const int wi = p.vertex_count++;
@@ -207,10 +223,13 @@ EpaResult run_epa(const Support& minkowski, const Simplex& simplex) {
           --edge_count;
         } else if (edge_count < kMaxEdges) {
           edges[edge_count][0] = u, edges[edge_count][1] = v, ++edge_count;
+        } else {
+          broken = true;  // a horizon edge lost: the polytope would not be closed
         }
       }
     }
     bool full = false;
+    bool inverted = false;
     for (int k = 0; k < edge_count; ++k) {
       const int slot = free_face_slot(p);
       if (slot < 0) {
@@ -219,12 +238,34 @@ EpaResult run_epa(const Support& minkowski, const Simplex& simplex) {
       }
       // Horizon edges keep their winding, so the new faces stay outward.
       set_face(p, slot, edges[k][0], edges[k][1], wi, nullptr);
+      // ... unless rounding decided the visibility of a face nearly coplanar with w (the flat
+      // cap of a cylinder gives many): then the horizon is wrong and a new face turns towards
+      // `centre`, which stays inside the growing polytope. Such a polytope is no longer convex
+      // (its faces' distances no longer bound the depth from below), so the expansion stops and
+      // the answer is the face closest before it.
+      const Face& g = p.face[slot];
+      inverted = inverted || g.n.dot(centre - p.vert[g.v[0]].w) > 0;
     }
-    if (full) break;
+    if (inverted) break;
+    if (full) broken = true;
+    if (broken) break;
   }
-  if (best < 0) return flat_result(simplex, simplex.count, Vec3::UnitY());
+  if (!have_answer) return flat_result(simplex, simplex.count, Vec3::UnitY());
+  if (broken && upper_d < kInf) {
+    // The face or edge buffer ran out: rounding made the horizon of some expansion other than one
+    // simple loop, the polytope is no longer closed, and its closest face need not bound the depth
+    // from below. The least upper bound found is still a correct answer: a unit normal along which
+    // B moves out by a finite depth, with A's and B's supports along it as witnesses.
+    EpaResult r;
+    r.ok = true;
+    r.depth = std::max(upper_d, Real(0));
+    r.normal = upper_n;
+    r.point_a = upper_a;
+    r.point_b = upper_b;
+    return r;
+  }
 
-  const Face& f = p.face[best];
+  const Face& f = answer;
   EpaResult r;
   r.ok = true;
   r.depth = std::max(f.d, Real(0));

@@ -17,6 +17,14 @@ namespace {
 
 using Vec3d = Eigen::Vector3d;
 
+// A hull is rebuilt at most this many times, the tolerance growing by kHullTolGrowth each time;
+// the first attempt is quickhull's own tolerance. A merged face is within tol of its seed
+// triangle's plane, so its Newell plane is within a few tol of every point on it: kConvexBand
+// tolerances above a face plane still count as below it.
+constexpr int kHullAttempts = 3;
+constexpr double kHullTolGrowth = 16;
+constexpr double kConvexBand = 8;
+
 [[noreturn]] void fail(const std::string& message) {
   throw Error("points", message);
 }
@@ -315,6 +323,53 @@ Vec3d newell_normal(const std::vector<int>& loop, const std::vector<Vec3d>& p) {
   return n;
 }
 
+// Quickhull's triangles at tolerance `tol`, merged into polygon faces, without the vertices that
+// only lie on an edge.
+std::vector<Polygon> hull_polygons(const std::vector<Vec3d>& p, double tol) {
+  const std::vector<Tri> tris = Quickhull(p, tol).run();
+  std::vector<Polygon> polys = merge_coplanar(tris, p, tol);
+
+  // A vertex on only two faces lies on their common edge (an input point on a hull edge that
+  // quickhull kept): it is not an extreme point. It leaves both loops or neither (a loop keeps
+  // three vertices), so the two faces still share the shortened edge.
+  std::vector<std::vector<int>> faces_of(p.size());
+  for (int f = 0; f < static_cast<int>(polys.size()); ++f) {
+    for (int v : polys[f].loop) faces_of[v].push_back(f);
+  }
+  for (size_t v = 0; v < p.size(); ++v) {
+    const std::vector<int>& fs = faces_of[v];
+    if (fs.size() != 2 || polys[fs[0]].loop.size() <= 3 || polys[fs[1]].loop.size() <= 3) continue;
+    for (int f : fs) std::erase(polys[f].loop, static_cast<int>(v));
+  }
+  return polys;
+}
+
+struct FacePlane {
+  Vec3d normal;
+  double offset;
+};
+
+// A face's unit Newell normal, and as offset its vertices' largest height, so every vertex of
+// the loop satisfies dot(n, x) <= offset.
+FacePlane face_plane(const Polygon& f, const std::vector<Vec3d>& p) {
+  Vec3d n = newell_normal(f.loop, p);
+  n = n.norm() > 0 ? Vec3d(n.normalized()) : f.normal;
+  double off = -std::numeric_limits<double>::infinity();
+  for (int v : f.loop) off = std::max(off, n.dot(p[v]));
+  return {n, off};
+}
+
+// Whether every point lies below every face plane, or above it by at most `band`: the faces
+// bound a convex solid holding the cloud.
+bool points_below(const std::vector<FacePlane>& planes, const std::vector<Vec3d>& p, double band) {
+  for (const FacePlane& f : planes) {
+    for (const Vec3d& q : p) {
+      if (!(f.normal.dot(q) - f.offset <= band)) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 ConvexHull build_convex_hull(std::span<const Vec3> points) {
@@ -337,23 +392,26 @@ ConvexHull build_convex_hull(std::span<const Vec3> points) {
   // proportional to their size, so a cloud far from the origin gets a proportionally wider band.
   Vec3d max_abs = Vec3d::Zero();
   for (const Vec3d& q : p) max_abs = max_abs.cwiseMax(q.cwiseAbs());
-  const double tol = 32 * double(std::numeric_limits<Real>::epsilon()) * max_abs.sum();
+  const double base_tol = 32 * double(std::numeric_limits<Real>::epsilon()) * max_abs.sum();
 
-  const std::vector<Tri> tris = Quickhull(p, tol).run();
-  std::vector<Polygon> polys = merge_coplanar(tris, p, tol);
-
-  // A vertex on only two faces lies on their common edge (an input point on a hull edge that
-  // quickhull kept): it is not an extreme point. It leaves both loops or neither (a loop keeps
-  // three vertices), so the two faces still share the shortened edge.
-  std::vector<std::vector<int>> faces_of(p.size());
-  for (int f = 0; f < static_cast<int>(polys.size()); ++f) {
-    for (int v : polys[f].loop) faces_of[v].push_back(f);
+  // A cloud with points closer together than a few tolerances (two points 6e-5 m apart in a
+  // 4 m cloud, found by fuzz_narrowphase) can come out of quickhull and the merge folded: two
+  // faces lying back to back, with hull points metres above a face's plane. The SAT trusts
+  // every face plane to bound the solid, and reads such a face as a separating axis of shapes
+  // that overlap. So the result is checked (every input point below every face plane, within a
+  // band of a few tolerances), and a cloud that fails is rebuilt with a wider tolerance, which
+  // absorbs the near-coincident points; one that still fails is refused.
+  std::vector<Polygon> polys;
+  std::vector<FacePlane> planes;
+  bool convex = false;
+  for (int attempt = 0; attempt < kHullAttempts && !convex; ++attempt) {
+    const double tol = base_tol * std::pow(kHullTolGrowth, attempt);
+    polys = hull_polygons(p, tol);
+    planes.clear();
+    for (const Polygon& f : polys) planes.push_back(face_plane(f, p));
+    convex = points_below(planes, p, kConvexBand * tol);
   }
-  for (size_t v = 0; v < p.size(); ++v) {
-    const std::vector<int>& fs = faces_of[v];
-    if (fs.size() != 2 || polys[fs[0]].loop.size() <= 3 || polys[fs[1]].loop.size() <= 3) continue;
-    for (int f : fs) std::erase(polys[f].loop, static_cast<int>(v));
-  }
+  if (!convex) fail("numerically degenerate cloud (no convex hull within the tolerance)");
 
   // Renumber the vertices in order of first appearance in the input.
   std::vector<int> new_index(p.size(), -1);
@@ -367,15 +425,11 @@ ConvexHull build_convex_hull(std::span<const Vec3> points) {
     hull.vertices.push_back(points[i]);
   }
   std::map<std::pair<uint32_t, uint32_t>, int> edges;
-  for (const Polygon& f : polys) {
-    Vec3d n = newell_normal(f.loop, p);
-    n = n.norm() > 0 ? Vec3d(n.normalized()) : f.normal;
-    // The offset is the largest vertex height, so every hull vertex satisfies dot(n, x) <= offset.
-    double off = -std::numeric_limits<double>::infinity();
-    for (int v : f.loop) off = std::max(off, n.dot(p[v]));
+  for (std::size_t i = 0; i < polys.size(); ++i) {
+    const Polygon& f = polys[i];
     HullFace face;
-    face.normal = n.cast<Real>();
-    face.offset = Real(off);
+    face.normal = planes[i].normal.cast<Real>();
+    face.offset = Real(planes[i].offset);
     face.first = static_cast<uint32_t>(hull.face_vertices.size());
     face.count = static_cast<uint32_t>(f.loop.size());
     for (size_t k = 0; k < f.loop.size(); ++k) {

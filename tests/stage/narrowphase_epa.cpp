@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -149,6 +150,80 @@ TEST(Epa, DegenerateInputsStayFinite) {
   expect_finite_unit(e);
   EXPECT_NEAR(e.depth, 0.005, 1e-4);
   EXPECT_NEAR(e.normal.y(), -1, 1e-4);
+}
+
+// Support of a cylinder (axis y in its frame) or a capsule (segment along y, swept by its
+// radius) placed at x, in double: the brute-force reference below needs no engine code.
+double support_along(const Shape& s, const Transform& x, const oracle::V3& n) {
+  const Eigen::Matrix3d r = x.rotation.toRotationMatrix().cast<double>();
+  const oracle::V3 d = r.transpose() * n;  // n in the shape's frame
+  const double h = double(s.half_height), rad = double(s.radius);
+  double local;
+  if (s.type == ShapeType::Cylinder) {
+    local = std::abs(d.y()) * h + rad * std::hypot(d.x(), d.z());
+  } else {
+    local = std::abs(d.y()) * h + rad * d.norm();
+  }
+  return local + n.dot(x.position.cast<double>());
+}
+
+// The overlap of A and B along unit n: how far B must move along n to leave A.
+double overlap_along(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                     const oracle::V3& n) {
+  return support_along(a, xa, n) + support_along(b, xb, -n);
+}
+
+// Penetration depth by brute force: the least overlap over unit directions, first on a
+// golden-angle spiral of 40,000 directions (about 0.018 rad apart), then by a local search whose
+// step halves down to 1e-9 rad.
+double least_overlap(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
+  const int n = 40000;
+  oracle::V3 best_n(0, 1, 0);
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    const double y = 1 - 2 * (i + 0.5) / n, r = std::sqrt(1 - y * y), t = 2.399963229728653 * i;
+    const oracle::V3 d(r * std::cos(t), y, r * std::sin(t));
+    const double o = overlap_along(a, xa, b, xb, d);
+    if (o < best) best = o, best_n = d;
+  }
+  for (double step = 0.02; step > 1e-9; step *= 0.5) {
+    for (bool moved = true; moved;) {
+      moved = false;
+      const oracle::V3 u = best_n.unitOrthogonal(), v = best_n.cross(u);
+      for (int k = 0; k < 16; ++k) {
+        const double ang = 2 * std::numbers::pi * k / 16;
+        const oracle::V3 d = (best_n + step * (std::cos(ang) * u + std::sin(ang) * v)).normalized();
+        const double o = overlap_along(a, xa, b, xb, d);
+        if (o < best) best = o, best_n = d, moved = true;
+      }
+    }
+  }
+  return best;
+}
+
+// Found by fuzz_narrowphase (tests/fuzz/corpus/narrowphase/regression_epa_infinite_depth): a
+// cylinder and a capsule overlapping by about 0.82 m, for which EPA (in clang's build) reported
+// ok with an infinite depth: rounding on faces nearly coplanar with a new support point (the
+// cylinder's flat cap) gave a wrong horizon, a new face turned inwards, the polytope stopped
+// being convex, the face buffer filled, and the answer was read from a reused slot holding a
+// sliver (distance kInf). The depth must be finite and correct: within 0.2% of the least overlap
+// over all directions (EPA stops at a support gap of 1e-5 relative, or, at an inverted face, at
+// the last convex polytope's gap, here 3e-4 relative), and the overlap along EPA's normal is its
+// depth.
+TEST(Epa, CylinderAgainstCapsuleGivesTheLeastOverlap) {
+  const Shape a = cylinder(0x1.ea2fdp-1f, 0x1.d1b286p-1f);
+  const Shape b = capsule(0x1.67db4ep-1f, 0x1.5f0bdep+0f);
+  const Transform xa = at(0x1.b242p-6f, -0x1.86dc86p+0f, -0x1.39663ap+0f,
+                          Quat(0x1.3c494p-3f, -0x1.cb5bccp-1f, -0x1.fe1bfep-1f, -1).normalized());
+  const Transform xb = at(-0x1.09db08p-1f, -0x1.beddcp-2f, -0x1.131414p+0f,
+                          Quat(0x1.a451ap-4f, -0x1.ed79fp-3f, 0x1.bc1fbcp-1f, -1).normalized());
+  const EpaResult e = epa_penetration(a, xa, b, xb);
+  ASSERT_TRUE(e.ok);
+  expect_finite_unit(e);
+  const double ref = least_overlap(a, xa, b, xb);
+  const double tol = 2e-3 * ref;
+  EXPECT_NEAR(e.depth, ref, tol);
+  EXPECT_NEAR(overlap_along(a, xa, b, xb, e.normal.cast<double>()), e.depth, tol);
 }
 
 }  // namespace narrowphase_epa_test

@@ -9,6 +9,8 @@
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/polyhedron.hpp"
 #include "narrowphase/sat.hpp"
+#include "narrowphase/sat_common.hpp"
+#include "narrowphase_oracle.hpp"
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
@@ -305,6 +307,66 @@ TEST(SatSegment, FaceQueryGivesTheDistanceOverAFaceAndABoundBesideIt) {
   }
   EXPECT_GT(over, 100);
   EXPECT_GT(beside, 100);
+}
+
+// Found by fuzz_narrowphase (tests/fuzz/corpus/narrowphase/regression_folded_hull_no_contact): two
+// hulls overlapping by 1.75 m (the oracle's SAT depth over all face and edge-pair axes) got no
+// contact: the first hull's cloud has three collinear points, two of them 6e-5 m apart, and its
+// hull came out folded, so an edge pair of the fold read as separating. The SAT's axis has the
+// largest separation (-depth) up to its tolerances: a face is kept against a better edge pair
+// within kEdgeRelTol and kAbsTol, and against the better other face within kFaceRelTol and
+// kAbsTol; a clipped point of the convex incident face is no deeper than the incident hull
+// along that axis. So no point is deeper than (1 + kFaceRelTol) (depth + kAbsTol) /
+// (1 - kEdgeRelTol) + kAbsTol.
+TEST(Sat, HullWithNearlyCoincidentCollinearPointsTouches) {
+  ShapeDef da;
+  da.type = ShapeType::ConvexHull;
+  da.points = {
+      {0x1.8fb59p-1f, -0x1.d521ep-4f, -0x1.b88bb8p+0f},
+      {0x1.6fa57p-1f, -0x1.ed25ecp-1f, -0x1.d13fd2p+0f},
+      {0x1.51575p+0f, -0x1.aaa9a8p-2f, 0x1.b96db8p-1f},
+      {-0x1.885d88p-1f, -0x1.667f66p+0f, 0x1.d56dd8p-1f},
+      {0x1.62b96p-2f, -0x1.354b34p+0f, 0x1.669f68p+0f},
+      {-0x1.461346p+0f, 0x1.a093ap+0f, 0x1.71618p-4f},
+      {-0x1.ab71bp-3f, -0x1.ff94p+0f, -2},
+      {-2, -2, -2},
+      {-2, -2, -0x1.fffcp+0f},
+      {-2, -2, -0x1.ebffecp+0f},
+      {0x1.480548p-1f, 0x1.e43de8p-1f, -0x1.dcafdcp+0f},
+  };
+  ShapeDef db;
+  db.type = ShapeType::ConvexHull;
+  db.points = {
+      {0x1.b973b8p+0f, 0x1.31c93p-2f, 0x1.47094p-2f},
+      {-0x1.90bd9p-1f, -0x1.561b56p+0f, -0x1.1ee12p-4f},
+      {-0x1.91ab92p+0f, 0x1.44d14p-3f, -0x1.e942p-5f},
+      {-0x1.ffc4p+0f, -2, -2},
+      {-2, -0x1.4fff5p+0f, -0x1.6a936cp+0f},
+      {-0x1.bae1cp-4f, -0x1.10c51p-1f, 0x1.43d54p-1f},
+      {0x1.c3c5cp-1f, 0x1.932794p+0f, -0x1.55e756p+0f},
+      {0x1.2b2b2cp+0f, 0x1.2b2b2cp+0f, 0x1.2b2b2cp+0f},
+      {0x1.2b2b2cp+0f, 0x1.2b2b2cp+0f, -0x1.b4d7b4p+0f},
+      {-0x1.bd35bcp-1f, 0x1.c4f7c4p+0f, -2},
+  };
+  const Shape a = make_shape(da), b = make_shape(db);
+  const Transform xa =
+      pose(Vec3(-0x1.2734a8p+1f, -0x1.2767a8p+1f, -0x1.55aed6p+1f),
+           Quat(0x1.6ea57p-2f, 0x1.e342p-6f, -0x1.9a4998p-3f, -0x1.f94bfap-1f).normalized());
+  const Transform xb = pose(Vec3(-3, -3, -3), Quat(-1, -1, -1, -1).normalized());
+  const double depth = oracle::sat_depth(oracle::place_hull(a, xa), oracle::place_hull(b, xb));
+  ASSERT_NEAR(depth, 1.748, 0.01);
+
+  Manifold m;
+  ASSERT_TRUE(collide(a, xa, b, xb, 0, m));
+  ASSERT_GE(m.point_count, 1u);
+  EXPECT_NEAR(m.normal.norm(), 1, 1e-5);
+  const double bound = (1 + kFaceRelTol) * (depth + kAbsTol) / (1 - kEdgeRelTol) + kAbsTol;
+  Real deepest = 0;
+  for (uint32_t k = 0; k < m.point_count; ++k) {
+    deepest = std::min(deepest, m.points[k].separation);
+    EXPECT_GE(m.points[k].separation, -bound);
+  }
+  EXPECT_LT(deepest, 0);
 }
 
 }  // namespace narrowphase_sat_test

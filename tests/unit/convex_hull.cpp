@@ -259,6 +259,29 @@ TEST(ConvexHull, RandomCloudInvariants) {
   }
 }
 
+// Found by fuzz_narrowphase (tests/fuzz/corpus/narrowphase/regression_folded_hull_no_contact):
+// three collinear points 6e-5 m and 0.08 m apart on an edge of a 4 m cloud (the last three below
+// but one) came out folded, the triangles (x, 7, 9) and (x, 8, 7) back to back in one plane, with
+// hull points 2.9 m above the first's plane; the SAT then read that face as separating two
+// hulls overlapping by 1.7 m. Every input point must lie below every face plane.
+TEST(ConvexHull, NearlyCoincidentCollinearPointsDoNotFoldTheHull) {
+  const std::vector<Vec3> pts = {
+      {0x1.8fb59p-1f, -0x1.d521ep-4f, -0x1.b88bb8p+0f},
+      {0x1.6fa57p-1f, -0x1.ed25ecp-1f, -0x1.d13fd2p+0f},
+      {0x1.51575p+0f, -0x1.aaa9a8p-2f, 0x1.b96db8p-1f},
+      {-0x1.885d88p-1f, -0x1.667f66p+0f, 0x1.d56dd8p-1f},
+      {0x1.62b96p-2f, -0x1.354b34p+0f, 0x1.669f68p+0f},
+      {-0x1.461346p+0f, 0x1.a093ap+0f, 0x1.71618p-4f},
+      {-0x1.ab71bp-3f, -0x1.ff94p+0f, -2},
+      {-2, -2, -2},
+      {-2, -2, -0x1.fffcp+0f},
+      {-2, -2, -0x1.ebffecp+0f},
+      {0x1.480548p-1f, 0x1.e43de8p-1f, -0x1.dcafdcp+0f},
+  };
+  const ConvexHull hull = build_convex_hull(pts);
+  expect_valid_hull(hull, pts);
+}
+
 TEST(ConvexHull, PointsOnASphereAreAllVertices) {
   // Well-separated points on a sphere are all extreme; none may be lost to the tolerance.
   std::vector<Vec3> pts;
