@@ -201,6 +201,7 @@ int run(const RunOptions& o) {
     if (o.iterations) def.iterations = *o.iterations;
     def.threads = workers(o.threads);
     def.broadphase = o.broadphase;
+    def.simd = o.simd;
     dt = o.timestep ? Real(*o.timestep) : scene.timestep;
     World w = make_world(def, o.scene);
     load_into(scene, w, o.scene);
@@ -306,6 +307,7 @@ int run(const RunOptions& o) {
   out["steps"] = o.steps;
   out["threads"] = def.threads;
   out["broadphase"] = broadphase_name(def.broadphase);
+  out["simd"] = simd_path_name(world.simd_path());
   out["timestep"] = double(dt);
   out["substeps"] = world.settings().substeps;
   out["iterations"] = world.settings().iterations;
@@ -565,7 +567,7 @@ int view(const ViewOptions& o) {
   std::optional<Recording> recording;
   Scene scene;
   WorldDef def;
-  Real dt = 0;
+  [[maybe_unused]] Real dt = 0;  // read by the viewer only
   std::string name = o.file;
   if (starts_like_recording(o.file)) {
     recording = decode_recording(read_recording(o.file), o.file);
