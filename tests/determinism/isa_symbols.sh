@@ -24,8 +24,8 @@ check_objects() {
   for o in $list; do
     IFS=$old_ifs
     "$nm_tool" --defined-only -P "$o" |
-      awk -v t="$tag" '($2 == "T" || $2 == "W" || ($2 == "V" && $1 ~ /^_ZTV/)) && index($1, t) == 0 {
-        print FILENAME ": " $1 " (" $2 ") has no " t " tag" }' FILENAME="$o" >>"$tmp/untagged"
+      awk -v t="$tag" -v f="$o" '($2 == "T" || $2 == "W" || ($2 == "V" && $1 ~ /^_ZTV/)) && index($1, t) == 0 {
+        print f ": " $1 " (" $2 ") has no " t " tag" }' >>"$tmp/untagged"
     IFS=';'
   done
   IFS=$old_ifs
