@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "core/base/fixed_math.hpp"
+
 namespace elan::detail {
 
 void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const Vec3& origin,
@@ -58,7 +60,8 @@ void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const
         const Real y = dl.y() >= 0 ? s.half_height : -s.half_height;
         for (int k = 0; k < kCapSides; ++k) {
           const Real t = Real(2 * M_PI) * Real(k) / Real(kCapSides);
-          put(k, Vec3(s.radius * std::cos(t), y, -s.radius * std::sin(t)));
+          const FixedSinCos sc = fixed_sin_cos(t);
+          put(k, Vec3(s.radius * Real(sc.cos), y, -s.radius * Real(sc.sin)));
         }
         f.count = kCapSides;
         f.id = dl.y() >= 0 ? 0u : 1u;
@@ -69,7 +72,7 @@ void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const
         put(0, Vec3(cx, -s.half_height, cz));
         put(1, Vec3(cx, s.half_height, cz));
         f.count = 2;
-        const Real angle = std::atan2(dl.z(), dl.x()) + Real(M_PI);
+        const Real angle = Real(fixed_atan2(dl.z(), dl.x())) + Real(M_PI);
         f.id = 2u + (uint32_t(angle * Real(8 / M_PI)) & 15u);
         return;
       }

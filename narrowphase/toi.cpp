@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/base/compound.hpp"
+#include "core/base/fixed_math.hpp"
 #include "core/base/heightfield.hpp"
 #include "core/base/triangle_mesh.hpp"
 #include "narrowphase/collide.hpp"
@@ -28,7 +29,7 @@ Transform pose_at(const Transform& x0, const Transform& x1, Real t) {
 // Rotation angle from q0 to q1 along the shorter arc: |omega| over the unit interval.
 Real rotation_angle(const Quat& q0, const Quat& q1) {
   const Real c = std::min(std::abs(q0.dot(q1)), Real(1));
-  return 2 * std::acos(c);
+  return 2 * Real(fixed_acos(c));
 }
 
 Transform compose(const Transform& outer, const Transform& inner) {

@@ -12,13 +12,13 @@
 #include <cstddef>
 #include <cstdint>
 
-#if defined(__AVX512F__) && defined(__AVX512VL__) && !defined(ELAN_DOUBLE)
+#include "solver/solver_types.hpp"
+#include "solver/wide.hpp"
+
+#if defined(ELAN_WIDE_AVX512) && defined(__AVX512VL__)
 #include <immintrin.h>
 #define ELAN_TRANSPOSED_LANES 1
 #endif
-
-#include "solver/solver_types.hpp"
-#include "solver/wide.hpp"
 
 namespace elan::detail {
 

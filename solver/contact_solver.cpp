@@ -384,8 +384,14 @@ void refresh_contacts(ContactSolverContext& ctx, const BodyStore& bodies,
       p.normal_mass = used ? normal_mass_of(r, ma, mb, m_sum) : p.normal_mass;
       p.separation = used ? s0 : p.separation;
     }
-    // Lanes that were not refreshed get the current inertias' friction mass too.
+    // The refreshed lanes' friction mass, from the current inertias. determinism (rule 8): only
+    // theirs; a lane left alone keeps its own, so whether it is recomputed never depends on
+    // the other lanes of its bundle (which differ between 8 and 16 lanes).
+    const Wide k00 = c.inv_k00, k01 = c.inv_k01, k11 = c.inv_k11;
     set_friction_mass(c, ma, mb);
+    c.inv_k00 = refresh ? c.inv_k00 : k00;
+    c.inv_k01 = refresh ? c.inv_k01 : k01;
+    c.inv_k11 = refresh ? c.inv_k11 : k11;
   }
 }
 

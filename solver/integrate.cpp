@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/fixed_math.hpp"
 #include "solver/body_lanes.hpp"
 
 namespace elan::detail {
@@ -80,7 +81,7 @@ bool all_of(WideMask m, int count) {
 // here Taylor to y^4: for x <= 1/2 the first term left out is y^5 / 10! < 3e-10, far below float
 // rounding. No square root, no division, no libm, and the same bits on every platform (libm's sin
 // and cos are not). Lanes that turn faster (|w| > 1/h: 240 rad/s at 4 substeps of 60 Hz) take
-// libm.
+// the engine's own sine and cosine (core/base/fixed_math.hpp), for the same reason.
 WideQuat exp_map(const WideVec3& w, Real h) {
   const Wide y = Real(0.25) * h * h * dot(w, w);
   const Wide cos_x = 1 - y * (Real(1.0 / 2) -
@@ -95,8 +96,9 @@ WideQuat exp_map(const WideVec3& w, Real h) {
     for (int l = 0; l < kLanes; ++l) {
       if (!fast[l]) continue;
       const Real x = std::sqrt(y[l]);
-      q.w[l] = std::cos(x);
-      k[l] = std::sin(x) / x * Real(0.5) * h;
+      const FixedSinCos sc = fixed_sin_cos(x);
+      q.w[l] = Real(sc.cos);
+      k[l] = Real(sc.sin) / x * Real(0.5) * h;
     }
   }
   q.x = k * w.x;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/fixed_math.hpp"
 #include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
 #include "solver/direct_solve.hpp"
@@ -34,7 +35,7 @@ Quat relative_frame(const Quat& frame_a, const Quat& frame_b) {
 
 // The twist of rel about x (the hinge angle, the cone's twist), rad in (-pi, pi].
 Real twist_angle(const Quat& rel) {
-  return wrap_angle(2 * std::atan2(rel.x(), rel.w()));
+  return wrap_angle(2 * Real(fixed_atan2(rel.x(), rel.w())));
 }
 
 Mat3 to_mat(const SymMat3& m) {
@@ -334,7 +335,7 @@ void solve_swing(const JointSolverContext& ctx, JointRow& j, const Pose& p, Side
   const Vec3 n = axis_b.cross(axis_a);
   const Real sin_swing = n.norm();
   if (!(sin_swing > Real(1e-6))) return;
-  const Real swing = std::atan2(sin_swing, axis_a.dot(axis_b));
+  const Real swing = Real(fixed_atan2(sin_swing, axis_a.dot(axis_b)));
   const AngularRow row = angular_row(a, b, n / sin_swing);
   const Real c = j.swing_limit - swing;
   Real bias = 0, mass_scale = 1, impulse_scale = 0;

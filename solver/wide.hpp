@@ -10,7 +10,21 @@
 #include <cstdint>
 #include <cstring>
 
-#if defined(__AVX512F__) && !defined(ELAN_DOUBLE)
+// The lane count as a macro too, for the #if of the intrinsic paths below and in body_lanes.hpp.
+// ELAN_LANES (the CMake cache option of that name) overrides the ISA's default.
+#if defined(ELAN_LANES)
+#define ELAN_WIDE_LANES ELAN_LANES
+#elif defined(__AVX512F__) || (defined(ELAN_DISPATCH) && !defined(ELAN_DOUBLE))
+#define ELAN_WIDE_LANES 16
+#else
+#define ELAN_WIDE_LANES 8
+#endif
+#if ELAN_WIDE_LANES != 8 && ELAN_WIDE_LANES != 16
+#error "ELAN_LANES must be 8 or 16"
+#endif
+// The AVX-512 intrinsic paths: sixteen float lanes in one zmm register.
+#if defined(__AVX512F__) && !defined(ELAN_DOUBLE) && ELAN_WIDE_LANES == 16
+#define ELAN_WIDE_AVX512 1
 #include <immintrin.h>
 #endif
 
@@ -24,13 +38,9 @@ namespace elan::detail {
 // the later, smaller colours carry more padding. Without it (Box2D v3 bundles 8 on AVX2), 16 lanes
 // would take two registers each and spill.
 // A portable build that dispatches at run time (ELAN_DISPATCH, core/base/isa.hpp) has one bundle
-// layout for all its paths, so 16 lanes on each: the SSE2 and AVX2 paths take four or two
-// registers per value.
-#if defined(__AVX512F__) || (defined(ELAN_DISPATCH) && !defined(ELAN_DOUBLE))
-inline constexpr int kLanes = 16;
-#else
-inline constexpr int kLanes = 8;
-#endif
+// layout for all its paths, so 16 lanes on each (ELAN_WIDE_LANES above): the SSE2 and AVX2 paths
+// take four or two registers per value.
+inline constexpr int kLanes = ELAN_WIDE_LANES;
 
 // Aligned to its size whatever the instruction set (GCC aligns a 64-byte vector to 16 bytes
 // without AVX-512), so the bundles have one layout on every path of a dispatching build.
@@ -65,7 +75,7 @@ inline Wide wide_min(Wide a, Wide b) {
 // std::sqrt lane by lane; the lane loop compiles to scalar calls (errno), the intrinsic to one
 // instruction.
 inline Wide wide_sqrt(Wide x) {
-#if defined(__AVX512F__) && !defined(ELAN_DOUBLE)
+#if defined(ELAN_WIDE_AVX512)
   // A zeroing mask of all lanes: _mm512_sqrt_ps passes GCC 12 an undefined merge operand, which it
   // reports as used uninitialized in some callers (GCC bug 105593; see body_lanes.hpp).
   return Wide(_mm512_maskz_sqrt_ps(__mmask16(0xFFFF), __m512(x)));

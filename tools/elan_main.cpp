@@ -567,7 +567,8 @@ int view(const ViewOptions& o) {
   std::optional<Recording> recording;
   Scene scene;
   WorldDef def;
-  [[maybe_unused]] Real dt = 0;  // read by the viewer only
+  // Read only by the viewer: a build without it checks the file and the options all the same.
+  [[maybe_unused]] Real dt = 0;
   std::string name = o.file;
   if (starts_like_recording(o.file)) {
     recording = decode_recording(read_recording(o.file), o.file);

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/fixed_math.hpp"
+
 namespace elan::detail::scene_file {
 
 TerrainDef parse_terrain(const Ctx& ctx, const Json& j) {
@@ -46,9 +48,12 @@ TerrainDef parse_terrain(const Ctx& ctx, const Json& j) {
 
 double terrain_height(const TerrainDef& t, double x, double z) {
   const double k = 2 * std::numbers::pi / double(t.wavelength);
-  return double(t.amplitude) * (0.5 * std::sin(k * x) * std::cos(k * z) +
-                                0.3 * std::sin(1.7 * k * x + 0.4) * std::sin(1.3 * k * z + 1.1) +
-                                0.2 * std::cos(0.6 * k * (x + z)));
+  // determinism: the engine's own sine and cosine (core/base/fixed_math.hpp), not the C
+  // library's, whose last bits differ between libraries and CPUs.
+  using detail::fixed_cos, detail::fixed_sin;
+  return double(t.amplitude) * (0.5 * fixed_sin(k * x) * fixed_cos(k * z) +
+                                0.3 * fixed_sin(1.7 * k * x + 0.4) * fixed_sin(1.3 * k * z + 1.1) +
+                                0.2 * fixed_cos(0.6 * k * (x + z)));
 }
 
 // Heights are rounded to float, as a heightfield stores them (which also confines a last-bit

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/fixed_math.hpp"
+#include "core/base/rotation_between.hpp"
 #include "core/world/query_common.hpp"
 #include "core/world/shape_queries.hpp"
 #include "elan/world.hpp"
@@ -131,9 +133,13 @@ CharacterMoveResult World::move_character(const Vec3& position, const Vec3& disp
   capsule_def.half_height = std::max(def.half_height, Real(1e-4));
   const Vec3 g = s.def.gravity;
   const Vec3 up = g.squaredNorm() > 0 ? Vec3(-g.normalized()) : Vec3::UnitY();
-  detail::Mover m{
-      s,  def,          detail::make_shape(capsule_def), Quat::FromTwoVectors(Vec3::UnitY(), up),
-      up, def.skin / 2, std::cos(def.max_slope)};
+  detail::Mover m{s,
+                  def,
+                  detail::make_shape(capsule_def),
+                  detail::rotation_between(Vec3::UnitY(), up),
+                  up,
+                  def.skin / 2,
+                  Real(detail::fixed_cos(def.max_slope))};
 
   Vec3 pos = position;
   Vec3 remaining = displacement;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/base/compound.hpp"
+#include "core/base/fixed_math.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
 #include "narrowphase/collide.hpp"
@@ -32,7 +33,7 @@ Real min_extent(const Shape& s) {
 }
 
 Real rotation_angle(const Quat& dq) {
-  return 2 * std::acos(std::min(std::abs(dq.w()), Real(1)));
+  return 2 * Real(fixed_acos(std::min(std::abs(dq.w()), Real(1))));
 }
 
 // Whether the bounding spheres of two bodies moving linearly over the step come within `gap`:

@@ -9,6 +9,7 @@
 #include "core/base/id_slots.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/range_checks.hpp"
+#include "core/base/rotation_between.hpp"
 #include "core/world/events.hpp"
 #include "core/world/world_access.hpp"
 #include "elan/limits.hpp"
@@ -171,7 +172,7 @@ JointId World::create_joint(const JointDef& def) {
   // The joint frame, x along the axis, shared by both sides at creation.
   const Vec3 axis = needs_axis ? Vec3(def.axis.normalized()) : Vec3(Vec3::UnitX());
   j.def.axis = axis;
-  const Quat frame = Quat::FromTwoVectors(Vec3::UnitX(), axis).normalized();
+  const Quat frame = detail::rotation_between(Vec3::UnitX(), axis).normalized();
   j.frame_a = (a.q.conjugate() * frame).normalized();
   j.frame_b = (b.q.conjugate() * frame).normalized();
   if (def.type == JointType::Distance) {

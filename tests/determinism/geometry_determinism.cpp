@@ -102,7 +102,11 @@ TEST(GeometryDeterminism, HashEqualEveryStepForOneAndTwoThreadsAndBothBroadphase
   EXPECT_EQ(reference, hashes(2, BroadphaseType::SweepAndPrune));
   EXPECT_EQ(reference, hashes(2, BroadphaseType::AllPairs));
   EXPECT_EQ(reference, hashes(2, BroadphaseType::Tree));
-  EXPECT_EQ(reference, hashes(1, BroadphaseType::SweepAndPrune)) << "rerun in process";
+  // Sanitized, a rerun adds nothing the runs above do not (Determinism.SameHashesWhenRunTwice
+  // InProcess reruns in every build).
+  if (!test::kSanitized) {
+    EXPECT_EQ(reference, hashes(1, BroadphaseType::SweepAndPrune)) << "rerun in process";
+  }
 }
 
 }  // namespace geometry_determinism_test

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: MIT
+// The engine's own sin, cos, atan2 and acos (core/base/fixed_math.hpp) against long double
+// references, within the bounds its comment states, and the C library's signs at the edges.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "core/base/fixed_math.hpp"
+
+namespace elan::detail {
+namespace fixed_math_test {
+
+// The bound is for the double result; the long double reference (x87, 64-bit mantissa) is good
+// to about 1e-19 here, far below it.
+constexpr double kTrigBound = 1e-15;
+constexpr double kAngleBound = 2e-15;
+
+TEST(FixedMath, SinAndCosWithinTheirBoundUpToAMillionRadians) {
+  std::mt19937_64 rng(41);
+  double worst = 0;
+  for (const double range : {1.0, 4.0, 100.0, 1e6}) {
+    std::uniform_real_distribution<double> pick(-range, range);
+    for (int i = 0; i < 20000; ++i) {
+      const double x = pick(rng);
+      const FixedSinCos sc = fixed_sin_cos(x);
+      const double es = std::abs(double(sc.sin - std::sin(static_cast<long double>(x))));
+      const double ec = std::abs(double(sc.cos - std::cos(static_cast<long double>(x))));
+      worst = std::max(worst, std::max(es, ec));
+      ASSERT_LE(es, kTrigBound) << "sin " << x;
+      ASSERT_LE(ec, kTrigBound) << "cos " << x;
+    }
+  }
+  // A bound that cannot be met by a wrong quadrant or a missing term, which err by 1e-3 or more.
+  EXPECT_GT(worst, 0.0);
+}
+
+TEST(FixedMath, SinAndCosExactAtZeroAndNanAtInfinity) {
+  EXPECT_EQ(fixed_sin(0.0), 0.0);
+  EXPECT_EQ(fixed_cos(0.0), 1.0);
+  EXPECT_TRUE(std::isnan(fixed_sin(std::numeric_limits<double>::infinity())));
+  EXPECT_TRUE(std::isnan(fixed_cos(std::numeric_limits<double>::quiet_NaN())));
+  // Beyond the reduction's range the values stay on the unit circle's bounds.
+  const FixedSinCos far = fixed_sin_cos(1e300);
+  EXPECT_LE(std::abs(far.sin), 1.0);
+  EXPECT_LE(std::abs(far.cos), 1.0);
+}
+
+TEST(FixedMath, Atan2WithinItsBoundInEveryQuadrant) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
+  std::uniform_real_distribution<double> log_radius(-20, 20);
+  for (int i = 0; i < 100000; ++i) {
+    const double t = angle(rng), r = std::exp(log_radius(rng));
+    const double y = r * std::sin(t), x = r * std::cos(t);
+    const long double reference =
+        std::atan2(static_cast<long double>(y), static_cast<long double>(x));
+    ASSERT_LE(std::abs(double(fixed_atan2(y, x) - reference)), kAngleBound) << y << ", " << x;
+  }
+}
+
+TEST(FixedMath, Atan2SignsAndEdgesAsTheCLibrary) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double cases[][2] = {{0.0, 1.0},  {-0.0, 1.0}, {0.0, -1.0}, {-0.0, -1.0}, {1.0, 0.0},
+                             {-1.0, 0.0}, {0.0, 0.0},  {-0.0, 0.0}, {0.0, -0.0},  {-0.0, -0.0},
+                             {inf, 1.0},  {1.0, inf},  {1.0, -inf}, {inf, inf},   {-inf, -inf},
+                             {1.0, 1.0},  {-2.0, 2.0}, {3.0, -3.0}};
+  for (const auto& c : cases) {
+    const double got = fixed_atan2(c[0], c[1]), want = std::atan2(c[0], c[1]);
+    EXPECT_NEAR(got, want, kAngleBound) << c[0] << ", " << c[1];
+    EXPECT_EQ(std::signbit(got), std::signbit(want)) << c[0] << ", " << c[1];
+  }
+  EXPECT_TRUE(std::isnan(fixed_atan2(std::nan(""), 1.0)));
+}
+
+TEST(FixedMath, AcosWithinItsBoundAndClampedOutsideOne) {
+  for (int i = -1000; i <= 1000; ++i) {
+    const double c = i / 1000.0;
+    EXPECT_NEAR(fixed_acos(c), double(std::acos(static_cast<long double>(c))), kAngleBound) << c;
+  }
+  EXPECT_EQ(fixed_acos(1.0), 0.0);
+  EXPECT_NEAR(fixed_acos(-1.0), M_PI, kAngleBound);
+  EXPECT_EQ(fixed_acos(1.5), 0.0);
+  EXPECT_TRUE(std::isnan(fixed_acos(std::nan(""))));
+}
+
+}  // namespace fixed_math_test
+}  // namespace elan::detail
