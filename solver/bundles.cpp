@@ -8,6 +8,7 @@
 #include "core/base/parallel.hpp"
 
 namespace elan::detail {
+ELAN_ISA_BEGIN
 
 void build_bundles(std::span<const ManifoldHead> contacts, bool bouncy, SolverState& st,
                    StepScratch& scratch) {
@@ -81,4 +82,5 @@ void release_bundles(SolverState& st) {
   release(st.restitution);
 }
 
+ELAN_ISA_END
 }  // namespace elan::detail

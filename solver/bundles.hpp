@@ -7,10 +7,13 @@
 
 #include "core/base/body_store.hpp"
 #include "core/base/contact.hpp"
+#include "core/base/isa.hpp"
 #include "core/base/step_scratch.hpp"
 #include "solver/solve.hpp"
 
 namespace elan::detail {
+
+ELAN_ISA_BEGIN
 
 // Stage: lay out the bundles. Each colour's constraints go kLanes at a time in colour order; an
 // overflow's one per bundle (its constraints may share bodies, so they cannot be lanes of one
@@ -36,5 +39,7 @@ void prepare_contacts(const BodyStore& bodies, std::span<const ManifoldHead> con
 
 // Gives back what build_bundles took: the end of the bundles' life, after solve().
 void release_bundles(SolverState& st);
+
+ELAN_ISA_END
 
 }  // namespace elan::detail

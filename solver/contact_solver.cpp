@@ -11,31 +11,7 @@
 #include "solver/direct_solve.hpp"
 
 namespace elan::detail {
-
-SymMat3 rotate_diagonal(const Quat& q, const Vec3& d) {
-  const Mat3 r = q.toRotationMatrix();
-  SymMat3 m;
-  // (R D R^T)_ij = sum_k R_ik d_k R_jk
-  m.xx = r(0, 0) * d.x() * r(0, 0) + r(0, 1) * d.y() * r(0, 1) + r(0, 2) * d.z() * r(0, 2);
-  m.yy = r(1, 0) * d.x() * r(1, 0) + r(1, 1) * d.y() * r(1, 1) + r(1, 2) * d.z() * r(1, 2);
-  m.zz = r(2, 0) * d.x() * r(2, 0) + r(2, 1) * d.y() * r(2, 1) + r(2, 2) * d.z() * r(2, 2);
-  m.xy = r(0, 0) * d.x() * r(1, 0) + r(0, 1) * d.y() * r(1, 1) + r(0, 2) * d.z() * r(1, 2);
-  m.xz = r(0, 0) * d.x() * r(2, 0) + r(0, 1) * d.y() * r(2, 1) + r(0, 2) * d.z() * r(2, 2);
-  m.yz = r(1, 0) * d.x() * r(2, 0) + r(1, 1) * d.y() * r(2, 1) + r(1, 2) * d.z() * r(2, 2);
-  return m;
-}
-
-Softness make_softness(Real hertz, Real damping_ratio, Real h) {
-  if (hertz == 0) return {0, 1, 0};
-  // Catto, "Solver2D" (2024): a damped spring of angular frequency omega integrated implicitly
-  // over h becomes bias_rate = omega / (2 zeta + h omega), mass_scale = a2 / (1 + a2),
-  // impulse_scale = 1 / (1 + a2) with a2 = h omega (2 zeta + h omega).
-  const Real omega = Real(2 * M_PI) * hertz;
-  const Real a1 = 2 * damping_ratio + h * omega;
-  const Real a2 = h * omega * a1;
-  const Real a3 = 1 / (1 + a2);
-  return {omega / a1, a2 * a3, a3};
-}
+ELAN_ISA_BEGIN
 
 namespace {
 
@@ -199,7 +175,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   WideVec3 b_from_a;
   if (!ctx.push_cap.empty()) {
     // The push-out share (color_contacts.hpp): the cap over the larger deep count of the two.
-    Wide& cap = ctx.push_cap[bundle];
+    Wide& cap = ctx.push_cap[bundle].v;
     cap = splat(ctx.max_push_velocity);
     for (int l = 0; l < lane_count; ++l) {
       const ManifoldHead& m = manifolds[lanes[l]];
@@ -516,7 +492,7 @@ void solve_contacts(ContactSolverContext& ctx, uint32_t begin, uint32_t end, boo
     }
     const Wide inv_h = splat(ctx.inv_h);
     const Wide max_push =
-        ctx.push_cap.empty() ? splat(-ctx.max_push_velocity) : Wide{} - ctx.push_cap[i];
+        ctx.push_cap.empty() ? splat(-ctx.max_push_velocity) : Wide{} - ctx.push_cap[i].v;
     const auto fixed_b = mb.inv_mass == zero;
     const Wide bias_rate = fixed_b ? splat(fix.bias_rate) : splat(dyn.bias_rate);
     const Wide soft_mass = fixed_b ? splat(fix.mass_scale) : splat(dyn.mass_scale);
@@ -604,4 +580,5 @@ void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t en
   }
 }
 
+ELAN_ISA_END
 }  // namespace elan::detail

@@ -18,6 +18,7 @@
 
 #include "core/base/body_store.hpp"
 #include "core/base/contact.hpp"
+#include "core/base/isa.hpp"
 #include "solver/solver_types.hpp"
 
 namespace elan::detail {
@@ -69,7 +70,7 @@ struct ContactSolverContext {
   // The push-out share (color_contacts.hpp): per packet its deep manifolds; per bundle the
   // lanes' caps (written by prepare_bundle), empty when every lane has max_push_velocity.
   std::span<const uint32_t> deep_count;
-  std::span<Wide> push_cap;
+  std::span<WideValue> push_cap;
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
   // Per bundle, written by prepare_bundle: the lanes whose rows carry a load their soft spring
   // would give under by more than kDirectGive (direct_solve.hpp), a bit a lane. Empty: not
@@ -89,6 +90,8 @@ struct ContactSolverContext {
     return lane_manifolds.subspan(lane_start[j], lane_start[j + 1] - lane_start[j]);
   }
 };
+
+ELAN_ISA_BEGIN
 
 // Builds bundle `bundle` from its manifolds (ctx.manifolds_of(bundle): at most kLanes, sharing
 // no dynamic body). Its rows (ctx.row_start) must be one fewer than the most points of its
@@ -118,5 +121,7 @@ void apply_restitution(ContactSolverContext& ctx, uint32_t begin, uint32_t end);
 // Copies accumulated impulses back into the manifolds (for next step's warm start and events).
 void store_impulses(const ContactSolverContext& ctx, uint32_t begin, uint32_t end,
                     std::span<ManifoldHead> manifolds, std::span<ManifoldTail> tails);
+
+ELAN_ISA_END
 
 }  // namespace elan::detail

@@ -9,6 +9,7 @@
 #include "solver/body_lanes.hpp"
 
 namespace elan::detail {
+ELAN_ISA_BEGIN
 
 void integrate_velocities(std::span<SolverBody> packets, std::span<const SolverBodyMass> masses,
                           const BodyStore& bodies, const Vec3& gravity, Real h, uint32_t begin,
@@ -254,4 +255,5 @@ void integrate_positions(std::span<SolverBody> packets, std::span<SolverBodyMass
   }
 }
 
+ELAN_ISA_END
 }  // namespace elan::detail

@@ -9,9 +9,12 @@
 #include <span>
 
 #include "core/base/body_store.hpp"
+#include "core/base/isa.hpp"
 #include "solver/solver_types.hpp"
 
 namespace elan::detail {
+
+ELAN_ISA_BEGIN
 
 // v += h (s g + F/m), s the body's gravity scale, w += h I^-1 tau, then implicit damping v /= (1 +
 // h d) (dv/dt = -d v). The force, torque and damping are the body's (masses[i].body) in the store;
@@ -37,5 +40,7 @@ inline Vec3 principal_moments(const BodyStore& bodies, uint32_t i) {
 // Rotation by angle |w| h about w, as a unit quaternion (the exponential map): one body through
 // the map integrate_positions applies to its lanes, to within float rounding of the closed form.
 Quat rotation_from_angular_velocity(const Vec3& w, Real h);
+
+ELAN_ISA_END
 
 }  // namespace elan::detail

@@ -14,6 +14,7 @@
 #include "solver/joint_solver.hpp"
 
 namespace elan::detail {
+ELAN_ISA_BEGIN
 
 namespace {
 
@@ -222,4 +223,5 @@ uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
   return status;
 }
 
+ELAN_ISA_END
 }  // namespace elan::detail

@@ -15,6 +15,7 @@
 
 #include "core/base/body_store.hpp"
 #include "core/base/contact.hpp"
+#include "core/base/isa.hpp"
 #include "core/base/shape.hpp"
 #include "core/base/step_scratch.hpp"
 #include "solver/coloring.hpp"
@@ -116,8 +117,10 @@ struct SolverState {
   // bundle, its lanes' caps, m/s, kept only while some body has more than one such manifold.
   std::vector<uint32_t> deep_count;
   uint32_t most_deep = 0;
-  std::vector<Wide> push_cap;
+  std::vector<WideValue> push_cap;
 };
+
+ELAN_ISA_BEGIN
 
 // The separation below which a manifold between dynamic bodies pushes out at the cap,
 // settings.max_push_velocity: where the soft spring's bias_rate * (-s) reaches it, m (negative).
@@ -138,5 +141,7 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
 // clears applied forces. Returns StepStatus flags.
 uint32_t finalize_bodies(BodyStore& bodies, std::span<const Shape> shapes,
                          const SolveSettings& settings, SolverState& state);
+
+ELAN_ISA_END
 
 }  // namespace elan::detail

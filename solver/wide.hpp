@@ -14,7 +14,7 @@
 // ELAN_LANES (the CMake cache option of that name) overrides the ISA's default.
 #if defined(ELAN_LANES)
 #define ELAN_WIDE_LANES ELAN_LANES
-#elif defined(__AVX512F__)
+#elif defined(__AVX512F__) || (defined(ELAN_DISPATCH) && !defined(ELAN_DOUBLE))
 #define ELAN_WIDE_LANES 16
 #else
 #define ELAN_WIDE_LANES 8
@@ -37,9 +37,22 @@ namespace elan::detail {
 // work per step of that chain. With AVX-512, 16 lanes in one register do better than 8, though
 // the later, smaller colours carry more padding. Without it (Box2D v3 bundles 8 on AVX2), 16 lanes
 // would take two registers each and spill.
+// A portable build that dispatches at run time (ELAN_DISPATCH, core/base/isa.hpp) has one bundle
+// layout for all its paths, so 16 lanes on each (ELAN_WIDE_LANES above): the SSE2 and AVX2 paths
+// take four or two registers per value.
 inline constexpr int kLanes = ELAN_WIDE_LANES;
 
-typedef Real Wide __attribute__((vector_size(kLanes * sizeof(Real))));
+// Aligned to its size whatever the instruction set (GCC aligns a 64-byte vector to 16 bytes
+// without AVX-512), so the bundles have one layout on every path of a dispatching build.
+typedef Real Wide
+    __attribute__((vector_size(kLanes * sizeof(Real)), aligned(kLanes * sizeof(Real))));
+static_assert(alignof(Wide) == sizeof(Wide));
+// A Wide as a container's element: a template argument drops the typedef's alignment, a struct
+// member keeps it.
+struct WideValue {
+  Wide v{};
+};
+static_assert(alignof(WideValue) == sizeof(Wide));
 
 // Lane masks, as comparisons of Wide values give them (all bits set where true).
 typedef decltype(Wide{} < Wide{}) WideMask;

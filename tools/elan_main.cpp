@@ -199,6 +199,7 @@ int run(const RunOptions& o) {
     if (o.iterations) def.iterations = *o.iterations;
     def.threads = workers(o.threads);
     def.broadphase = o.broadphase;
+    def.simd = o.simd;
     dt = o.timestep ? Real(*o.timestep) : scene.timestep;
     World w = make_world(def, o.scene);
     load_into(scene, w, o.scene);

@@ -43,6 +43,8 @@ const char* const kRunUsage =
     "                       the engine's)\n"
     "  --threads T          worker threads, at most the cores (default: all cores)\n"
     "  --broadphase B       sap, all-pairs or tree (default sap)\n"
+    "  --simd P             SIMD path: sse2, avx2, avx512 (default: ELAN_SIMD, else the widest\n"
+    "                       this CPU runs; a native build has only native)\n"
     "  --trajectory F.csv   write every non-static body's state at step 0, every K-th and the "
     "last\n"
     "  --every K            trajectory interval in steps (default 1)\n"
@@ -155,6 +157,13 @@ BroadphaseType parse_broadphase(const std::string& option, const std::string& te
   throw UsageError(option + ": expected sap, all-pairs or tree, got '" + text + "'");
 }
 
+SimdPath parse_simd(const std::string& option, const std::string& text) {
+  for (const SimdPath p : {SimdPath::Sse2, SimdPath::Avx2, SimdPath::Avx512, SimdPath::Native}) {
+    if (text == simd_path_name(p)) return p;
+  }
+  throw UsageError(option + ": expected sse2, avx2, avx512 or native, got '" + text + "'");
+}
+
 Perturbation parse_perturbation(const std::string& option, const std::string& text) {
   const std::size_t colon = text.find(':');
   if (colon == std::string::npos) {
@@ -225,7 +234,7 @@ RunOptions parse_run_options(std::span<const std::string> args) {
   const auto takes_value = [](const std::string& n) {
     return n == "--steps" || n == "--timestep" || n == "--substeps" || n == "--iterations" ||
            n == "--threads" || n == "--broadphase" || n == "--trajectory" || n == "--every" ||
-           n == "--record" || n == "--keyframe-every";
+           n == "--record" || n == "--keyframe-every" || n == "--simd";
   };
   const auto on_option = [&o](const std::string& n, const std::string& v) {
     if (n == "--steps") {
@@ -240,6 +249,8 @@ RunOptions parse_run_options(std::span<const std::string> args) {
       o.threads = int(parse_count(n, v, 1, kMaxThreads));
     } else if (n == "--broadphase") {
       o.broadphase = parse_broadphase(n, v);
+    } else if (n == "--simd") {
+      o.simd = parse_simd(n, v);
     } else if (n == "--trajectory" || n == "--record") {
       if (v.empty()) throw UsageError(n + ": empty file name");
       (n == "--trajectory" ? o.trajectory : o.record) = v;

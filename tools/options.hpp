@@ -31,7 +31,8 @@ struct RunOptions {
   std::optional<int> iterations;
   int threads = 0;  // 0 = all cores
   BroadphaseType broadphase = BroadphaseType::SweepAndPrune;
-  std::string trajectory;  // CSV path, empty = none
+  SimdPath simd = SimdPath::Best;  // --simd; Best: ELAN_SIMD, else the CPU's widest
+  std::string trajectory;          // CSV path, empty = none
   uint64_t every = 1;
   bool has_every = false;
   std::string record;            // recording path, empty = none

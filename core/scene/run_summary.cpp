@@ -84,6 +84,8 @@ std::string run_summary_json(const World& world, const std::string& scene, Real 
   out["steps"] = steps;
   out["threads"] = world.settings().threads;
   out["broadphase"] = broadphase_name(world.settings().broadphase);
+  out["simd"] =
+      simd_path_name(world.simd_path());  // the solver path that ran (docs/determinism.md)
   out["timestep"] = double(timestep);
   out["substeps"] = world.settings().substeps;
   out["iterations"] = world.settings().iterations;

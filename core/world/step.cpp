@@ -16,6 +16,7 @@
 #include "solver/color_contacts.hpp"
 #include "solver/joint_solver.hpp"
 #include "solver/packets.hpp"
+#include "solver/solver_kernels.hpp"
 
 namespace elan::detail {
 
@@ -101,10 +102,13 @@ uint32_t run_step(WorldState& w, Real dt) {
   // inelastic bodies they would be read by a pass that finds nothing to do.
   build_bundles(w.contacts.heads(), bodies.trait_table.any_restitution(), w.solver, w.scratch);
   const auto t_bundles = clock::now();
-  prepare_contacts(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
+  // The solver kernels of the world's SIMD path (solver/solver_kernels.hpp): chosen once.
+  const SolverKernels& kernels = *w.kernels;
+  kernels.prepare_contacts(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings,
+                           w.solver);
   prepare_joints(bodies, w.joints, w.slot_index, solve_settings, w.solver);
   const auto t4 = clock::now();
-  solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
+  kernels.solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
   release_bundles(w.solver);
   if (!w.joints.empty()) {
     store_joint_impulses(w.solver.joint_rows, make_joint_context(solve_settings, w.solver),
@@ -116,7 +120,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   const ApartCandidates candidates = w.contacts.continuous_candidates();
   solve_continuous(bodies, w.shapes, candidates.separated, candidates.keys, w.solver);
   const auto t6 = clock::now();
-  const uint32_t status = finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
+  const uint32_t status = kernels.finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   if (!w.broken_joints.empty()) remove_broken_joints(w);
   update_sensors(w);
   query_tree_after_step(w);

@@ -62,6 +62,7 @@ int resolve_threads(int threads) {
 World::World(const WorldDef& def) : state_(std::make_unique<WorldState>()) {
   validate(def);
   state_->def = def;
+  state_->kernels = &detail::select_solver_kernels(def.simd);
   if (def.thread_pool) {
     state_->threads = def.thread_pool->threads();
   } else {
@@ -318,6 +319,10 @@ MotionType World::motion_type(BodyId id) const {
 bool World::is_awake(BodyId id) const {
   const std::size_t i = index_of(*state_, id);
   return state_->bodies.is_dynamic(i) && state_->bodies.is_awake(i);
+}
+
+SimdPath World::simd_path() const {
+  return state_->kernels->path;
 }
 
 const WorldDef& World::settings() const {

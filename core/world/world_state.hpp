@@ -21,6 +21,7 @@
 #include "narrowphase/collide.hpp"
 #include "solver/joint_store.hpp"
 #include "solver/solve.hpp"
+#include "solver/solver_kernels.hpp"
 
 namespace elan::detail {
 
@@ -81,6 +82,8 @@ struct WorldState {
   bool bodies_placed = false;
 
   SolverState solver;
+  // The solver kernels of def.simd's path, chosen when the world is made (never null).
+  const SolverKernels* kernels = nullptr;
   ApiState api;
   // Every body's box for the scene queries, kept in step by the step's last stage and the API.
   QueryTree query;

@@ -218,6 +218,45 @@ TEST(Cli, HelpGoesToStdoutWithStatusZero) {
   EXPECT_NE(run_elan({"run", "--help"}).out.find("--trajectory"), std::string::npos);
 }
 
+// The summary names the SIMD path that ran; --simd and ELAN_SIMD force one, with the same bits,
+// and a path the build or the CPU lacks, or no path at all, is a usage error.
+TEST(Cli, SummaryNamesTheSimdPath) {
+  const std::vector<std::string> run = {"run", small_scene(), "--steps", "20", "--threads", "1"};
+  const Result best = run_elan(run);
+  ASSERT_EQ(best.status, 0) << best.err;
+  const Json b = Json::parse(best.out);
+  const std::string path = b["simd"];
+  EXPECT_TRUE(path == "sse2" || path == "avx2" || path == "avx512" || path == "native") << path;
+  std::vector<std::string> sse2 = run;
+  sse2.insert(sse2.end(), {"--simd", "sse2"});
+  const Result forced = run_elan(sse2);
+  const Result by_env = run_elan(run, 0, "env ELAN_SIMD=sse2");
+  if (path == "native") {
+    // A native build has its one path.
+    EXPECT_EQ(forced.status, 2) << forced.out;
+    EXPECT_NE(forced.err.find("native"), std::string::npos) << forced.err;
+    EXPECT_EQ(by_env.status, 2) << by_env.out;
+  } else {
+    ASSERT_EQ(forced.status, 0) << forced.err;
+    EXPECT_EQ(Json::parse(forced.out)["simd"], "sse2");
+    EXPECT_EQ(Json::parse(forced.out)["state_hash"], b["state_hash"]);
+    ASSERT_EQ(by_env.status, 0) << by_env.err;
+    EXPECT_EQ(Json::parse(by_env.out)["simd"], "sse2");
+    EXPECT_EQ(Json::parse(by_env.out)["state_hash"], b["state_hash"]);
+  }
+  std::vector<std::string> bogus = run;
+  bogus.insert(bogus.end(), {"--simd", "mmx"});
+  const Result bad = run_elan(bogus);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("--simd: expected sse2, avx2, avx512 or native, got 'mmx'"),
+            std::string::npos)
+      << bad.err;
+  const Result bad_env = run_elan(run, 0, "env ELAN_SIMD=mmx");
+  EXPECT_EQ(bad_env.status, 2);
+  EXPECT_NE(bad_env.err.find("ELAN_SIMD: 'mmx' is not a SIMD path"), std::string::npos)
+      << bad_env.err;
+}
+
 TEST(Cli, SummaryHasTheContractKeys) {
   const Result r = run_elan({"run", small_scene(), "--steps", "10", "--threads", "1"});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -226,7 +265,7 @@ TEST(Cli, SummaryHasTheContractKeys) {
   for (const char* key :
        {"bodies", "steps", "threads", "broadphase", "wall_seconds", "ms_per_step", "state_hash",
         "kinetic_energy", "linear_momentum", "angular_momentum", "pairs", "contacts", "awake",
-        "timestep", "substeps", "iterations", "profile_ms", "joints"}) {
+        "timestep", "substeps", "iterations", "profile_ms", "joints", "simd"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["bodies"], 4);

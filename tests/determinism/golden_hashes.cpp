@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -88,6 +89,41 @@ TEST_P(GoldenHash, SameHashForOneAndTwoThreadsAndBothBroadphases) {
     EXPECT_EQ(hex(hash_after(scene, all[k].threads, all[k].broadphase)), hex(first))
         << scene << " with " << all[k].threads << " threads, "
         << (all[k].broadphase == BroadphaseType::AllPairs ? "all-pairs" : "sap");
+  }
+}
+
+// Every SIMD path this CPU runs (ELAN_SIMD forces one: solver/solver_kernels.hpp) gives the
+// scene's constant, at one thread with the sweep; in a native build, its one path.
+TEST_P(GoldenHash, SameHashOnEverySimdPath) {
+  const std::string scene = GetParam();
+  const char* const saved = std::getenv("ELAN_SIMD");
+  const std::string restore = saved ? saved : "";
+  int ran = 0;
+  std::map<std::string, uint64_t> hashes;
+  for (const SimdPath path : {SimdPath::Sse2, SimdPath::Avx2, SimdPath::Avx512, SimdPath::Native}) {
+    WorldDef def;
+    def.simd = path;
+    try {
+      World probe(def);
+      EXPECT_EQ(probe.simd_path(), path);
+    } catch (const Error&) {
+      continue;  // not in this build, or not on this CPU
+    }
+    ::setenv("ELAN_SIMD", simd_path_name(path), 1);
+    hashes[simd_path_name(path)] = hash_after(scene, 1, BroadphaseType::SweepAndPrune);
+    ++ran;
+  }
+  if (saved) {
+    ::setenv("ELAN_SIMD", restore.c_str(), 1);
+  } else {
+    ::unsetenv("ELAN_SIMD");
+  }
+  ASSERT_GE(ran, 1);
+  for (const auto& [name, h] : hashes) {
+    if (kCompareConstants) {
+      EXPECT_EQ(hex(h), hex(golden().at(scene))) << scene << " on " << name;
+    }
+    EXPECT_EQ(hex(h), hex(hashes.begin()->second)) << scene << " on " << name;
   }
 }
 

@@ -34,6 +34,14 @@ struct CompoundChild;
 /// bounding-volume tree (the one the queries use) and wins on large, mostly static worlds.
 enum class BroadphaseType : uint8_t { SweepAndPrune, AllPairs, Tree };
 
+/// The instruction set the step's solver kernels run on (docs/api.md, "SIMD paths"). A portable
+/// build carries three paths and takes the widest the CPU has (`Best`, or the environment variable
+/// ELAN_SIMD=sse2|avx2|avx512 when set); a native build (ELAN_NATIVE) has the one path `Native`.
+/// Every path gives the same bits.
+enum class SimdPath : uint8_t { Best, Sse2, Avx2, Avx512, Native };
+/// "best", "sse2", "avx2", "avx512" or "native": the names ELAN_SIMD and `elan run --simd` take.
+const char* simd_path_name(SimdPath path);
+
 /// A shape in its own frame. Capsule and cylinder axes are local Y.
 struct ShapeDef {
   ShapeType type = ShapeType::Sphere;
@@ -114,6 +122,8 @@ struct WorldDef {
   /// The caller's pool: when set, the world runs its step in it (with its thread count as the
   /// worker count) instead of making its own. Must outlive the world.
   ThreadPool* thread_pool = nullptr;
+  /// The SIMD path; asking for one this CPU or this build lacks is an `Error` on field "simd".
+  SimdPath simd = SimdPath::Best;
 };
 
 }  // namespace elan

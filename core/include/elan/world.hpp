@@ -282,6 +282,9 @@ class World {
   CharacterMoveResult move_character(const Vec3& position, const Vec3& displacement,
                                      const CharacterMoveDef& def) const;
 
+  /// The SIMD path the step runs (WorldDef::simd resolved: never `Best`).
+  SimdPath simd_path() const;
+
   /// Settings that may change between steps.
   const WorldDef& settings() const;
   void set_substeps(int substeps);

@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+// Choosing the solver kernels' instruction set: once per world, from CPUID and ELAN_SIMD.
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+#include "elan/error.hpp"
+#include "solver/solver_kernels.hpp"
+
+namespace elan::detail {
+
+#if defined(ELAN_DISPATCH)
+namespace isa_avx2 {
+extern const SolverKernels kSolverKernels;
+}
+namespace isa_avx512 {
+extern const SolverKernels kSolverKernels;
+}
+#endif
+
+namespace {
+
+#if defined(ELAN_DISPATCH)
+// What each path's units are compiled with (cmake/isa_variants.cmake): the CPU must have all of
+// it. __builtin_cpu_supports also asks the OS (XGETBV) whether it saves the AVX and AVX-512
+// registers.
+bool cpu_runs(SimdPath path) {
+  __builtin_cpu_init();
+  switch (path) {
+    case SimdPath::Sse2:
+      return true;
+    case SimdPath::Avx2:
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
+             __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("popcnt");
+    case SimdPath::Avx512:
+      return cpu_runs(SimdPath::Avx2) && __builtin_cpu_supports("avx512f") &&
+             __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512cd");
+    default:
+      return false;
+  }
+}
+
+const SolverKernels& kernels_of(SimdPath path) {
+  switch (path) {
+    case SimdPath::Avx512:
+      return isa_avx512::kSolverKernels;
+    case SimdPath::Avx2:
+      return isa_avx2::kSolverKernels;
+    default:
+      return isa_sse2::kSolverKernels;
+  }
+}
+
+SimdPath widest() {
+  if (cpu_runs(SimdPath::Avx512)) return SimdPath::Avx512;
+  if (cpu_runs(SimdPath::Avx2)) return SimdPath::Avx2;
+  return SimdPath::Sse2;
+}
+#else
+bool cpu_runs(SimdPath path) {
+  return path == SimdPath::Native;
+}
+const SolverKernels& kernels_of(SimdPath) {
+  return kSolverKernels;
+}
+SimdPath widest() {
+  return SimdPath::Native;
+}
+#endif
+
+const SolverKernels& checked(SimdPath path, const char* field) {
+  if (!cpu_runs(path)) {
+#if defined(ELAN_DISPATCH)
+    throw Error(field, std::string("this CPU cannot run the ") + simd_path_name(path) +
+                           " path (it runs up to " + simd_path_name(widest()) + ")");
+#else
+    throw Error(field, std::string("this build was compiled for one CPU (ELAN_NATIVE) and has "
+                                   "only the native path, not ") +
+                           simd_path_name(path));
+#endif
+  }
+  return kernels_of(path);
+}
+
+}  // namespace
+
+}  // namespace elan::detail
+
+namespace elan {
+
+const char* simd_path_name(SimdPath path) {
+  switch (path) {
+    case SimdPath::Best:
+      return "best";
+    case SimdPath::Sse2:
+      return "sse2";
+    case SimdPath::Avx2:
+      return "avx2";
+    case SimdPath::Avx512:
+      return "avx512";
+    case SimdPath::Native:
+      return "native";
+  }
+  return "unknown";
+}
+
+}  // namespace elan
+
+namespace elan::detail {
+
+const SolverKernels& select_solver_kernels(SimdPath want) {
+  if (want != SimdPath::Best) return checked(want, "simd");
+  const char* env = std::getenv("ELAN_SIMD");
+  if (env == nullptr || *env == '\0') return kernels_of(widest());
+  const std::string_view name(env);
+  for (const SimdPath p : {SimdPath::Sse2, SimdPath::Avx2, SimdPath::Avx512, SimdPath::Native}) {
+    if (name == simd_path_name(p)) return checked(p, "ELAN_SIMD");
+  }
+  throw Error("ELAN_SIMD", "'" + std::string(name.substr(0, 32)) +
+                               "' is not a SIMD path (sse2, avx2, avx512 or native)");
+}
+
+}  // namespace elan::detail
