@@ -45,9 +45,9 @@ const std::map<std::string, uint64_t>& golden() {
       {"pile4k", 0x4ec4ee15178436d8ull},         {"pyramid10", 0x3043830915c9b8b9ull},
       {"pyramid20", 0x81f2803d6709df6eull},      {"rain", 0x6588e882e27057cfull},
       {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xf0dc0b28f203b46full},
-      {"towers", 0xefd2e01bd19bcdcbull},         {"tumbler", 0xcdd16ab35584d0b6ull},
-      {"compounds", 0x3ca2ed5a51885b83ull},      {"convex_vs_mesh", 0xeb2d5096ad751ba3ull},
-      {"geometry_demo", 0xb690630bc4c80eadull},  {"heightfield_rain", 0x132842894a6e6df3ull},
+      {"towers", 0xefd2e01bd19bcdcbull},         {"tumbler", 0xf8f5843e9315bcd4ull},
+      {"compounds", 0x3ca2ed5a51885b83ull},      {"convex_vs_mesh", 0xe3efac85f1a90edeull},
+      {"geometry_demo", 0xb690630bc4c80eadull},  {"heightfield_rain", 0xc1b89532a72b2d95ull},
   };
   return table;
 }
