@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Paired `elan run` of two elan binaries A and B (bench/results/amd-epyc/dispatch.md): each round
 runs A and B back to back per scene and thread count, alternating which goes first; prints the
 medians of ms_per_step and their ratio. Usage: pair_runs.py A_ELAN B_ELAN ROUNDS (from the root)."""
