@@ -11,7 +11,8 @@
 namespace elan {
 namespace {
 
-using Json = nlohmann::ordered_json;
+// Its own name: the scene reader's `Json` (unordered) meets this file in a unity build.
+using SummaryJson = nlohmann::ordered_json;
 
 std::string hex(uint64_t h) {
   char buf[17];
@@ -19,8 +20,8 @@ std::string hex(uint64_t h) {
   return buf;
 }
 
-Json vec(const Vec3& v) {
-  return Json::array({double(v.x()), double(v.y()), double(v.z())});
+SummaryJson vec(const Vec3& v) {
+  return SummaryJson::array({double(v.x()), double(v.y()), double(v.z())});
 }
 
 }  // namespace
@@ -77,7 +78,7 @@ std::string run_summary_json(const World& world, const std::string& scene, Real 
     }
   }
   const StepProfile& total = totals.profile;
-  Json out;
+  SummaryJson out;
   out["scene"] = scene;
   out["bodies"] = world.body_count();
   out["joints"] = world.joint_count();  // still in the world: broken ones are gone
@@ -110,7 +111,7 @@ std::string run_summary_json(const World& world, const std::string& scene, Real 
       {"total", total.total}};
   // A path or body name need not be valid UTF-8 (a file name may be any bytes): such bytes are
   // printed as U+FFFD, where nlohmann's default would throw after the whole run.
-  return out.dump(-1, ' ', false, Json::error_handler_t::replace);
+  return out.dump(-1, ' ', false, SummaryJson::error_handler_t::replace);
 }
 
 }  // namespace elan
