@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "physics/physics_util.hpp"
 
@@ -93,22 +94,29 @@ TEST_P(GoldenHash, SameHashForOneAndTwoThreadsAndBothBroadphases) {
 }
 
 // Every SIMD path this CPU runs (ELAN_SIMD forces one: solver/solver_kernels.hpp) gives the
-// scene's constant, at one thread with the sweep; in a native build, its one path.
+// scene's constant, at one thread with the sweep.
 TEST_P(GoldenHash, SameHashOnEverySimdPath) {
   const std::string scene = GetParam();
   const char* const saved = std::getenv("ELAN_SIMD");
   const std::string restore = saved ? saved : "";
-  int ran = 0;
-  std::map<std::string, uint64_t> hashes;
+  std::vector<SimdPath> paths;
   for (const SimdPath path : {SimdPath::Sse2, SimdPath::Avx2, SimdPath::Avx512, SimdPath::Native}) {
     WorldDef def;
     def.simd = path;
     try {
       World probe(def);
       EXPECT_EQ(probe.simd_path(), path);
+      paths.push_back(path);
     } catch (const Error&) {
-      continue;  // not in this build, or not on this CPU
+      // not in this build, or not on this CPU
     }
+  }
+  ASSERT_GE(paths.size(), 1u);
+  // A build with one path (native, sanitized, double) runs it in the test above.
+  if (paths.size() == 1) GTEST_SKIP() << "one SIMD path in this build";
+  int ran = 0;
+  std::map<std::string, uint64_t> hashes;
+  for (const SimdPath path : paths) {
     ::setenv("ELAN_SIMD", simd_path_name(path), 1);
     hashes[simd_path_name(path)] = hash_after(scene, 1, BroadphaseType::SweepAndPrune);
     ++ran;
