@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Fuzz target: the recording reader on any bytes. The first byte's bit 0 re-seals the file's
-// checksum (FNV-1a over every byte before the last eight, as core/world/recording.cpp writes it) over
-// the mutated bytes, so mutations reach the parser behind it. A recording is either refused with
-// one RecordingError line, or it decodes, encodes back to bytes that decode to the same bytes
+// checksum (FNV-1a over every byte before the last eight, as core/world/recording.cpp writes it)
+// over the mutated bytes, so mutations reach the parser behind it. A recording is either refused
+// with one RecordingError line, or it decodes, encodes back to bytes that decode to the same bytes
 // again, and each keyframe's snapshot loads or is refused with one elan::Error line.
 #include <string>
 
