@@ -121,6 +121,8 @@ Json camera_json(const Camera& c) {
 void go_to(Simulation& sim, Timeline* timeline, uint64_t step) {
   if (timeline != nullptr) {
     timeline->seek(sim, step);
+    // Off screen, a recorded call that fails on replay ends the run as `elan replay` would.
+    if (!timeline->error().empty()) throw cli::RecordingError(timeline->error());
     return;
   }
   while (sim.step_count() < step) sim.step();
@@ -145,7 +147,8 @@ int headless(const cli::ViewOptions& o, Simulation& sim, Timeline* timeline) {
   double step_seconds = 0;
   const auto render = [&](const std::string& path) {
     const auto t0 = Clock::now();
-    view.update(sim, renderer, std::nullopt, highlight);
+    view.update(sim, renderer, std::nullopt, highlight, o.draw);
+    draw_overlays(sim.world(), o.draw, renderer);
     target.bind();
     renderer.draw(camera.projection(aspect) * camera.view(), camera.eye(), o.width, o.height);
     const std::vector<uint8_t> rgb = target.read_rgb();
@@ -309,6 +312,7 @@ void advance(AppState& app, double frame_seconds, double& owed, double& step_sec
     app.dragger.apply(app.sim->world(), app.drag_stiffness);
     if (app.timeline) {
       app.timeline->advance(*app.sim);
+      if (!app.timeline->error().empty()) app.paused = true;
     } else {
       app.sim->step();
     }
@@ -383,7 +387,7 @@ int interactive(const cli::ViewOptions& o, AppState& app) {
           app.sim->world().position(app.sim->world().body_at(*app.selected)).cast<float>();
     }
 
-    view.update(*app.sim, renderer, app.selected, app.highlighted);
+    view.update(*app.sim, renderer, app.selected, app.highlighted, app.overlays);
     draw_overlays(app.sim->world(), app.overlays, renderer);
     if (app.dragger.active()) {
       renderer.add_line(app.dragger.grab_point(app.sim->world()).cast<float>(),
@@ -431,6 +435,7 @@ int run(const cli::ViewOptions& o, Source source, World world) {
   if (!o.screenshot.empty() || !o.frames.empty()) return headless(o, *app.sim, app.timeline.get());
 
   app.paused = o.paused;
+  app.overlays = o.draw;
   app.drag_stiffness = drag_stiffness(app.sim->world());
   if (o.body) {
     app.highlighted = std::size_t(*o.body);
