@@ -109,16 +109,19 @@ void SceneView::assign(const Simulation& sim, Renderer& renderer, std::size_t i)
   const ShapeDef& def = sim.body_shape(i);
   const MeshKind kind = mesh_kind(def);
   body_scale_[i] = instance_scale(def);
+  body_radius_[i] = bounding_radius(def);
   body_shape_[i] = sim.world().shape(sim.world().body_at(i));
   if (kind != MeshKind::Own) {
-    body_mesh_[i] = unit_meshes_[int(kind)];
+    body_mesh_[i] = {unit_meshes_[0][int(kind)], unit_meshes_[1][int(kind)]};
     return;
   }
   std::string key;
   shape_key(def, key);
   auto it = own_meshes_.find(key);
   if (it == own_meshes_.end()) {
-    it = own_meshes_.emplace(std::move(key), renderer.add_mesh(shape_mesh(def))).first;
+    const int fine = renderer.add_mesh(shape_mesh(def, kFine));
+    const int coarse = is_curved(def) ? renderer.add_mesh(shape_mesh(def, kCoarse)) : fine;
+    it = own_meshes_.emplace(std::move(key), std::array<int, 2>{fine, coarse}).first;
   }
   body_mesh_[i] = it->second;
 }
@@ -126,13 +129,16 @@ void SceneView::assign(const Simulation& sim, Renderer& renderer, std::size_t i)
 void SceneView::rebuild(const Simulation& sim, Renderer& renderer) {
   renderer.clear_meshes();
   own_meshes_.clear();
-  constexpr int kRings = 12, kSegments = 20;
-  unit_meshes_[0] = renderer.add_mesh(unit_sphere(kRings, kSegments));
-  unit_meshes_[1] = renderer.add_mesh(unit_box());
-  unit_meshes_[2] = renderer.add_mesh(unit_cylinder(kSegments));
+  for (int level = 0; level < 2; ++level) {
+    const Tessellation t = level == 0 ? kFine : kCoarse;
+    unit_meshes_[level][0] = renderer.add_mesh(unit_sphere(t.rings, t.segments));
+    unit_meshes_[level][1] = level == 0 ? renderer.add_mesh(unit_box()) : unit_meshes_[0][1];
+    unit_meshes_[level][2] = renderer.add_mesh(unit_cylinder(t.segments));
+  }
   const std::size_t n = sim.world().body_count();
-  body_mesh_.assign(n, -1);
+  body_mesh_.assign(n, {-1, -1});
   body_scale_.assign(n, Eigen::Vector3f::Ones());
+  body_radius_.assign(n, 0.0f);
   body_shape_.assign(n, ShapeId{});
   for (std::size_t i = 0; i < n; ++i) assign(sim, renderer, i);
   version_ = sim.version();
@@ -141,7 +147,7 @@ void SceneView::rebuild(const Simulation& sim, Renderer& renderer) {
 
 void SceneView::update(const Simulation& sim, Renderer& renderer,
                        std::optional<std::size_t> selected, std::optional<std::size_t> highlighted,
-                       uint32_t overlays) {
+                       uint32_t overlays, const DetailView* detail) {
   if (sim.version() != version_ || &sim != sim_ || body_mesh_.size() != sim.world().body_count()) {
     rebuild(sim, renderer);
   }
@@ -172,12 +178,20 @@ void SceneView::update(const Simulation& sim, Renderer& renderer,
     if (selected && *selected == i) c = {1.0f, 0.85f, 0.2f, sensor ? kSensorColor[3] : 1.0f};
     if (highlighted && *highlighted == i) c = {1.0f, 0.15f, 0.1f, 1.0f};
     const Eigen::Vector3f& s = body_scale_[i];
+    // The coarse mesh when the bounding sphere is small on the picture: radius r at distance d
+    // spans r k / d pixels (k = detail->pixels_per_unit).
+    int level = 0;
+    if (detail != nullptr) {
+      const float r = body_radius_[i];
+      const float d = (detail->eye - p.cast<float>()).norm();
+      level = r * detail->pixels_per_unit < kCoarseBelowPixels * d ? 1 : 0;
+    }
     Instance inst{{float(p.x()), float(p.y()), float(p.z())},
                   {float(q.x()), float(q.y()), float(q.z()), float(q.w())},
                   {s.x(), s.y(), s.z()},
                   {c[0], c[1], c[2], c[3]},
                   motion == MotionType::Static && !sensor ? 1.0f : 0.0f};
-    renderer.add_instance(body_mesh_[i], inst);
+    renderer.add_instance(body_mesh_[i][level], inst);
   }
   // A recorded program's joints are not the scene's: the library draws them.
   if (sim.joints().empty() && world.joint_count() > 0) {

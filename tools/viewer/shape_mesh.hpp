@@ -38,8 +38,19 @@ MeshData triangle_mesh(const std::vector<Vec3>& vertices,
 MeshData heightfield(const ShapeDef& def);
 /// A square of kPlaneHalfSize around the plane's point nearest the shape frame's origin.
 MeshData plane_quad(const Vec3& normal, Real offset);
+/// How finely curved surfaces (spheres, capsules, cylinders) are cut into triangles.
+struct Tessellation {
+  int rings = 12;     ///< from pole to pole (a capsule's hemispheres take half each)
+  int segments = 20;  ///< around the axis
+};
+/// What a body near the eye gets (480 triangles a sphere), and one a few pixels across (120):
+/// under software rendering the triangle count of a large pile sets the frame rate.
+inline constexpr Tessellation kFine{12, 20};
+inline constexpr Tessellation kCoarse{6, 10};
 /// Any shape kind at its own size (unit meshes scaled, compound children placed).
-MeshData shape_mesh(const ShapeDef& def);
+MeshData shape_mesh(const ShapeDef& def, Tessellation t = kFine);
+/// Whether shape_mesh depends on the tessellation (the shape or a compound child is curved).
+bool is_curved(const ShapeDef& def);
 
 /// The radius of a sphere about the shape frame's origin that holds the shape, m (infinite for
 /// a plane).

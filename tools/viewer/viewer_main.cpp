@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cinttypes>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -117,6 +118,10 @@ Json camera_json(const Camera& c) {
   return Json::array({e.x(), e.y(), e.z(), c.target.x(), c.target.y(), c.target.z()});
 }
 
+DetailView detail_view(const Camera& camera, int height) {
+  return {camera.eye(), float(height) / 2 / std::tan(camera.fov_y / 2)};
+}
+
 // Moves to the requested step: stepping a scene, seeking a recording.
 void go_to(Simulation& sim, Timeline* timeline, uint64_t step) {
   if (timeline != nullptr) {
@@ -147,7 +152,8 @@ int headless(const cli::ViewOptions& o, Simulation& sim, Timeline* timeline) {
   double step_seconds = 0;
   const auto render = [&](const std::string& path) {
     const auto t0 = Clock::now();
-    view.update(sim, renderer, std::nullopt, highlight, o.draw);
+    const DetailView detail = detail_view(camera, o.height);
+    view.update(sim, renderer, std::nullopt, highlight, o.draw, &detail);
     draw_overlays(sim.world(), o.draw, renderer);
     target.bind();
     renderer.draw(camera.projection(aspect) * camera.view(), camera.eye(), o.width, o.height);
@@ -387,7 +393,8 @@ int interactive(const cli::ViewOptions& o, AppState& app) {
           app.sim->world().position(app.sim->world().body_at(*app.selected)).cast<float>();
     }
 
-    view.update(*app.sim, renderer, app.selected, app.highlighted, app.overlays);
+    const DetailView detail = detail_view(app.camera, height);
+    view.update(*app.sim, renderer, app.selected, app.highlighted, app.overlays, &detail);
     draw_overlays(app.sim->world(), app.overlays, renderer);
     if (app.dragger.active()) {
       renderer.add_line(app.dragger.grab_point(app.sim->world()).cast<float>(),
