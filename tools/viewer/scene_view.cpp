@@ -111,6 +111,12 @@ void SceneView::assign(const Simulation& sim, Renderer& renderer, std::size_t i)
   body_scale_[i] = instance_scale(def);
   body_radius_[i] = bounding_radius(def);
   body_shape_[i] = sim.world().shape(sim.world().body_at(i));
+  body_capsule_[i] = Eigen::Vector2f::Zero();
+  if (def.type == ShapeType::Capsule) {
+    body_capsule_[i] = {float(def.radius), float(def.half_height)};
+    body_mesh_[i] = {unit_meshes_[0][3], unit_meshes_[1][3]};
+    return;
+  }
   if (kind != MeshKind::Own) {
     body_mesh_[i] = {unit_meshes_[0][int(kind)], unit_meshes_[1][int(kind)]};
     return;
@@ -134,11 +140,14 @@ void SceneView::rebuild(const Simulation& sim, Renderer& renderer) {
     unit_meshes_[level][0] = renderer.add_mesh(unit_sphere(t.rings, t.segments));
     unit_meshes_[level][1] = level == 0 ? renderer.add_mesh(unit_box()) : unit_meshes_[0][1];
     unit_meshes_[level][2] = renderer.add_mesh(unit_cylinder(t.segments));
+    unit_meshes_[level][3] = renderer.add_mesh(unit_hemisphere(t.rings, t.segments));
+    unit_meshes_[level][4] = renderer.add_mesh(unit_tube(t.segments));
   }
   const std::size_t n = sim.world().body_count();
   body_mesh_.assign(n, {-1, -1});
   body_scale_.assign(n, Eigen::Vector3f::Ones());
   body_radius_.assign(n, 0.0f);
+  body_capsule_.assign(n, Eigen::Vector2f::Zero());
   body_shape_.assign(n, ShapeId{});
   for (std::size_t i = 0; i < n; ++i) assign(sim, renderer, i);
   version_ = sim.version();
@@ -191,6 +200,30 @@ void SceneView::update(const Simulation& sim, Renderer& renderer,
                   {s.x(), s.y(), s.z()},
                   {c[0], c[1], c[2], c[3]},
                   motion == MotionType::Static && !sensor ? 1.0f : 0.0f};
+    const Eigen::Vector2f cap = body_capsule_[i];
+    if (cap.x() > 0) {
+      // Upper hemisphere at +h along the shape's y, the lower one turned half a turn about x
+      // (y -> -y) at -h, the tube between them scaled to (r, h, r).
+      const Eigen::Quaternionf qf = q.cast<float>();
+      const Eigen::Vector3f up = qf * Eigen::Vector3f(0, cap.y(), 0);
+      const Eigen::Quaternionf down = qf * Eigen::Quaternionf(0, 1, 0, 0);
+      const Eigen::Vector3f pf = p.cast<float>();
+      Instance part = inst;
+      part.scale[0] = part.scale[1] = part.scale[2] = cap.x();
+      for (int k = 0; k < 3; ++k) part.position[k] = pf[k] + up[k];
+      renderer.add_instance(unit_meshes_[level][3], part);
+      for (int k = 0; k < 3; ++k) part.position[k] = pf[k] - up[k];
+      part.rotation[0] = down.x();
+      part.rotation[1] = down.y();
+      part.rotation[2] = down.z();
+      part.rotation[3] = down.w();
+      renderer.add_instance(unit_meshes_[level][3], part);
+      Instance tube = inst;
+      tube.scale[0] = tube.scale[2] = cap.x();
+      tube.scale[1] = cap.y();
+      renderer.add_instance(unit_meshes_[level][4], tube);
+      continue;
+    }
     renderer.add_instance(body_mesh_[i][level], inst);
   }
   // A recorded program's joints are not the scene's: the library draws them.

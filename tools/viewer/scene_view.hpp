@@ -49,7 +49,11 @@ class SceneView {
   std::vector<Eigen::Vector3f> body_scale_;
   std::vector<float> body_radius_;   // m, of the bounding sphere about the shape frame's origin
   std::vector<ShapeId> body_shape_;  // the shape each body had when its mesh was chosen
-  int unit_meshes_[2][3] = {{-1, -1, -1}, {-1, -1, -1}};  // fine, coarse: sphere, box, cylinder
+  // Capsules are drawn as three instances of shared unit meshes (two hemispheres and a tube),
+  // so that a pile of capsules of many sizes costs three draw calls, not one per size.
+  std::vector<Eigen::Vector2f> body_capsule_;  // radius, half height; radius 0: not a capsule
+  int unit_meshes_[2][5] = {{-1, -1, -1, -1, -1}, {-1, -1, -1, -1, -1}};  // fine, coarse:
+  // sphere, box, cylinder, hemisphere, tube
   std::map<std::string, std::array<int, 2>> own_meshes_;  // shape key -> fine, coarse mesh
   std::vector<Eigen::Vector4f> island_colors_;
 };

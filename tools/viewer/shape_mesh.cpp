@@ -81,6 +81,20 @@ MeshData unit_sphere(int rings, int segments) {
   return revolve(profile, segments);
 }
 
+MeshData unit_hemisphere(int rings, int segments) {
+  std::vector<Eigen::Vector4f> profile;
+  const int half = std::max(rings / 2, 2);
+  for (int r = 0; r <= half; ++r) {
+    const float t = kPi / 2 * float(r) / float(half);
+    profile.emplace_back(std::cos(t), std::sin(t), std::cos(t), std::sin(t));
+  }
+  return revolve(profile, segments);
+}
+
+MeshData unit_tube(int segments) {
+  return revolve({{1, -1, 1, 0}, {1, 1, 1, 0}}, segments);
+}
+
 MeshData unit_box() {
   MeshData m;
   // Each face: its normal axis and sign; corners counter-clockwise seen from outside.

@@ -29,6 +29,9 @@ inline constexpr float kPlaneHalfSize = 250;
 MeshData unit_sphere(int rings, int segments);  ///< radius 1
 MeshData unit_box();                            ///< [-1, 1]^3
 MeshData unit_cylinder(int segments);           ///< radius 1, y in [-1, 1]
+/// The upper half of unit_sphere (y >= 0, open at the equator), with the capsule's ring count.
+MeshData unit_hemisphere(int rings, int segments);
+MeshData unit_tube(int segments);  ///< unit_cylinder's side alone (no end discs)
 MeshData capsule(float radius, float half_height, int rings, int segments);
 /// The convex hull of `points` (faces found by testing every triple's plane against all points,
 /// O(n^4): hull inputs are small clouds; larger ones are thinned first).
