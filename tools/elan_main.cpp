@@ -641,56 +641,48 @@ int diverge(const DivergeOptions& o) {
 // here, before any window opens, so a bad file exits 2 with the usual message whether or not the
 // viewer is built, and with no display needed.
 int view(const ViewOptions& o) {
-  std::string text;
   std::optional<Recording> recording;
   Scene scene;
   WorldDef def;
+  std::optional<World> world;
   // Read only by the viewer: a build without it checks the file and the options all the same.
   [[maybe_unused]] Real dt = 0;
   std::string name = o.file;
   if (starts_like_recording(o.file)) {
     recording = load_recording(o.file);
     const Recording& r = *recording;
-    name = "recorded scene" + (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
-    if (r.is_program()) {
-      // The viewer draws a scene's bodies and steps without re-applying calls: a program
-      // recording would show the wrong world, so it is refused until the timeline plays one.
-      throw std::runtime_error("view: " + o.file +
-                               " is a program recording, which the viewer does not play yet; "
-                               "use 'elan replay --until STEP --save-snapshot OUT'");
-    }
-    try {
-      scene = parse_scene(r.scene_text, name);
-    } catch (const SceneError& e) {
-      throw RecordingError(o.file + ": corrupt recording: " + e.what());
-    }
-    def = scene.world;
-    def.substeps = r.substeps;
-    def.iterations = r.iterations;
-    def.broadphase = BroadphaseType(r.broadphase);
-    dt = Real(r.timestep);
+    name = std::string(r.is_program() ? "recorded program" : "recorded scene") +
+           (r.scene_name.empty() ? std::string() : " \"" + r.scene_name + "\"");
     if (o.step && *o.step > r.steps) {
       throw UsageError("--step: " + std::to_string(*o.step) + " is past the recording's " +
                        std::to_string(r.steps) + " steps");
     }
+    // As `elan replay` starts it: the recorded scene, or a program's starting snapshot.
+    const BroadphaseType broadphase = BroadphaseType(r.broadphase);
+    world.emplace(start_world(r, o.file, workers(o.threads), broadphase, scene));
+    def = world->settings();
+    def.thread_pool = nullptr;
+    def.broadphase = broadphase;
+    dt = Real(r.timestep);
   } else {
     if (o.step) throw UsageError("--step: only with a RECORDING");
-    text = detail::read_scene_file(o.file);
+    std::string text = detail::read_scene_file(o.file);
     scene = parse_scene(text, o.file);
     std::string().swap(text);
     def = scene.world;
     dt = scene.timestep;
+    def.threads = workers(o.threads);
+    world.emplace(make_world(def, name));
+    load_into(scene, *world, name);
   }
-  def.threads = workers(o.threads);
-  World world = make_world(def, name);
-  load_into(scene, world, name);
-  if (o.body && *o.body >= world.body_count()) {
-    throw UsageError("--body: " + std::to_string(*o.body) + " out of range (the scene has " +
-                     std::to_string(world.body_count()) + " bodies)");
+  if (o.body && *o.body >= world->body_count()) {
+    throw UsageError("--body: " + std::to_string(*o.body) + " out of range (the " +
+                     (recording ? "recording starts with " : "scene has ") +
+                     std::to_string(world->body_count()) + " bodies)");
   }
 #if defined(ELAN_HAVE_VIEWER)
   viewer::Source source{name, std::move(scene), def, dt, std::move(recording)};
-  return viewer::run(o, std::move(source), std::move(world));
+  return viewer::run(o, std::move(source), std::move(*world));
 #else
   throw std::runtime_error(
       "view: this elan was built without the viewer (GLFW, Dear ImGui or OpenGL was not found "

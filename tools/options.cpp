@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "core/base/range_checks.hpp"
+#include "elan/debug_draw.hpp"
 #include "elan/limits.hpp"
 
 namespace elan::cli {
@@ -107,6 +109,8 @@ const char* const kViewUsage =
     "  --step N             recording: open at step N (e.g. the first_mismatch_step of\n"
     "                       'elan replay')\n"
     "  --body K             recording: select and highlight body K (e.g. the divergence's body)\n"
+    "  --draw LIST          overlays, comma-separated: bounds, contacts (points and normals),\n"
+    "                       joints, islands (bodies coloured by island), com (centres of mass)\n"
     "\n"
     "Off screen (--screenshot, --frames) one JSON line is printed on stdout: the state hash and\n"
     "step count, as 'elan run' prints them. A display is needed (under no X server, run it under\n"
@@ -387,6 +391,34 @@ void parse_camera(const std::string& option, const std::string& text, double (&o
   }
 }
 
+// "bounds,contacts,..." -> elan::DebugDrawFlags; each name once at most.
+uint32_t parse_overlays(const std::string& option, const std::string& text) {
+  static constexpr std::pair<const char*, uint32_t> kNames[] = {{"bounds", kDrawBounds},
+                                                                {"contacts", kDrawContacts},
+                                                                {"joints", kDrawJoints},
+                                                                {"islands", kDrawIslands},
+                                                                {"com", kDrawCentersOfMass}};
+  uint32_t flags = 0;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    const std::string name =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    uint32_t bit = 0;
+    for (const auto& [known, b] : kNames) {
+      if (name == known) bit = b;
+    }
+    if (bit == 0) {
+      throw UsageError(option + ": unknown overlay '" + name +
+                       "' (bounds, contacts, joints, islands, com)");
+    }
+    if (flags & bit) throw UsageError(option + ": '" + name + "' given twice");
+    flags |= bit;
+    if (comma == std::string::npos) return flags;
+    start = comma + 1;
+  }
+}
+
 }  // namespace
 
 ViewOptions parse_view_options(std::span<const std::string> args) {
@@ -403,7 +435,8 @@ ViewOptions parse_view_options(std::span<const std::string> args) {
   }
   const auto takes_value = [](const std::string& n) {
     return n == "--threads" || n == "--screenshot" || n == "--frames" || n == "--every" ||
-           n == "--steps" || n == "--size" || n == "--camera" || n == "--step" || n == "--body";
+           n == "--steps" || n == "--size" || n == "--camera" || n == "--step" || n == "--body" ||
+           n == "--draw";
   };
   const auto on_option = [&](const std::string& n, const std::string& v) {
     if (n == "--threads") {
@@ -423,6 +456,8 @@ ViewOptions parse_view_options(std::span<const std::string> args) {
       o.has_camera = true;
     } else if (n == "--step") {
       o.step = parse_count(n, v, 0, kMaxSteps);
+    } else if (n == "--draw") {
+      o.draw = parse_overlays(n, v);
     } else {
       o.body = parse_count(n, v, 0, UINT32_MAX);
     }

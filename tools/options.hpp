@@ -91,6 +91,7 @@ struct ViewOptions {
   double camera[6] = {0, 0, 0, 0, 0, 0};  // eye x y z, target x y z (m, world)
   std::optional<uint64_t> step;           // recording: open at this step
   std::optional<uint64_t> body;           // recording: highlight this body
+  uint32_t draw = 0;                      // overlays (elan::DebugDrawFlags) from --draw
 };
 
 /// `args` are the words after the command name. Throw UsageError.

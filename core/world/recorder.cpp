@@ -195,6 +195,7 @@ constexpr const char* kCallNames[] = {
     "set_iterations",
     "restore_snapshot",
     "restore_rollback",
+    "set_sleep_enabled",
 };
 static_assert(std::size(kCallNames) == std::size_t(Call::End) - 1, "a name for every call");
 
@@ -616,6 +617,9 @@ void apply_call(World& w, Call op, Args& a) {
       break;
     case Call::RestoreRollback:
       restore_rollback(w, a.bytes());
+      break;
+    case Call::SetSleepEnabled:
+      w.set_sleep_enabled(a.flag());
       break;
     case Call::End:
       break;

@@ -76,6 +76,7 @@ enum class Call : uint16_t {
   SetIterations,
   RestoreSnapshot,
   RestoreRollback,
+  SetSleepEnabled,
   End,  // one past the last
 };
 

@@ -340,6 +340,21 @@ void World::set_iterations(int iterations) {
             in_range(1, kMaxIterations));
   state_->def.iterations = iterations;
 }
+void World::set_sleep_enabled(bool enabled) {
+  ELAN_RECORDED(SetSleepEnabled, set_sleep_enabled(enabled), enabled);
+  WorldState& s = *state_;
+  if (s.def.allow_sleep == enabled) return;
+  s.def.allow_sleep = enabled;
+  if (enabled) return;
+  // Off: nothing may stay asleep, and no timer may carry time rested before (the step does not
+  // advance the timers while sleep is off, so they restart from zero when it is back on).
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    if (s.bodies.is_dynamic(i)) detail::wake_index(s, i);
+  }
+}
+bool World::sleep_enabled() const {
+  return state_->def.allow_sleep;
+}
 void World::set_broadphase(BroadphaseType type) {
   state_->def.broadphase = type;
 }

@@ -5,13 +5,17 @@
 // set (the script runs them under `xvfb-run -a`).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "cli/cli_runner.hpp"
+#include "determinism/recorded_program.hpp"
 #include "stb/stb_image.h"
 
 namespace elan::test {
@@ -209,6 +213,212 @@ TEST_F(ViewerTest, StateHashIsTheRunsForTheSameSceneAndSteps) {
   EXPECT_EQ(view["steps"], 100);
 }
 
+// Where a camera looking along -z from (0, cy, d) at (0, cy, 0) puts the world point (x, y, z)
+// in a picture of height h (45 degrees of vertical field, square pixels): f = (h / 2) /
+// tan(22.5 deg) pixels per unit of x / depth.
+struct Projection {
+  double width, height, cy, d;
+  double f() const { return height / 2 / std::tan(3.14159265358979 / 8); }
+  double px(double x, double z) const { return width / 2 + f() * x / (d - z); }
+  double py(double y, double z) const { return height / 2 - f() * (y - cy) / (d - z); }
+};
+
+// The pixels that differ between two pictures of the same size.
+std::vector<std::pair<int, int>> changed(const Image& a, const Image& b) {
+  std::vector<std::pair<int, int>> out;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      if (std::memcmp(a.at(x, y), b.at(x, y), 3) != 0) out.emplace_back(x, y);
+    }
+  }
+  return out;
+}
+
+// Chromaticity: the colour with its brightness divided out. Lighting scales a body's colour by
+// one factor per pixel (renderer.cpp), so the faces of one colour share it.
+std::array<double, 3> chroma(const Image& img, double cx, double cy) {
+  // The mean of a 5x5 patch.
+  double sum[3] = {0, 0, 0};
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx)
+      for (int k = 0; k < 3; ++k) sum[k] += img.at(int(cx) + dx, int(cy) + dy)[k];
+  const double t = sum[0] + sum[1] + sum[2];
+  return {sum[0] / t, sum[1] / t, sum[2] / t};
+}
+
+double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])});
+}
+
+// --draw bounds: a sphere of radius 1 at the origin has the box [-1, 1]^3, whose twelve edges are
+// drawn over everything. Seen from z = 10 its front square (z = 1) projects to f / 9 pixels each
+// way from the centre and its back one (z = -1) to f / 11, both outside or across the sphere's
+// outline (radius f / sqrt(99)). Every pixel the overlay changes lies within the front square;
+// outside the sphere it is the bounds' yellow over the background; without --draw none is.
+TEST_F(ViewerTest, BoundsOverlayOutlinesTheBodyWhereTheProjectionPutsIt) {
+  const std::string s = scene("ball", R"({"gravity": [0, 0, 0], "bodies": [
+    {"shape": {"type": "sphere", "radius": 1}, "position": [0, 0, 0]}]})");
+  const std::vector<std::string> view = {"--size", "320x240", "--camera", "0,0,10,0,0,0"};
+  std::vector<std::string> with = view;
+  with.insert(with.end(), {"--draw", "bounds"});
+  const Image plain = shot(s, png("plain"), view), bounds = shot(s, png("bounds"), with);
+  ASSERT_EQ(plain.rgb.size(), bounds.rgb.size());
+  const Projection cam{320, 240, 0, 10};
+  const double front = cam.f() / 9, back = cam.f() / 11, ball = cam.f() / std::sqrt(99.0);
+  // A yellow pixel: red and green well above blue (the background is bluish grey).
+  const auto yellow = [](const Image& img, int x, int y) {
+    const uint8_t* c = img.at(x, y);
+    return int(c[0]) - int(c[2]) > 50 && int(c[1]) - int(c[2]) > 50;
+  };
+  std::size_t outside_square = 0, yellow_outside_ball = 0;
+  for (const auto& [x, y] : changed(plain, bounds)) {
+    const double dx = std::abs(x + 0.5 - 160), dy = std::abs(y + 0.5 - 120);
+    outside_square += dx > front + 2 || dy > front + 2;
+    if (std::hypot(dx, dy) > ball + 2) yellow_outside_ball += yellow(bounds, x, y);
+    // Every changed pixel is on one of the projected edges: the front or back square's sides,
+    // or a corner-to-corner edge along z (on the diagonals |dx| = |dy|).
+    const bool on_front = (std::abs(dx - front) < 2 && dy < front + 2) ||
+                          (std::abs(dy - front) < 2 && dx < front + 2);
+    const bool on_back =
+        (std::abs(dx - back) < 2 && dy < back + 2) || (std::abs(dy - back) < 2 && dx < back + 2);
+    const bool on_diagonal = std::abs(dx - dy) < 2.5 && dx > back - 2 && dx < front + 2;
+    EXPECT_TRUE(on_front || on_back || on_diagonal) << x << "," << y;
+  }
+  EXPECT_EQ(outside_square, 0u);
+  // The front square's perimeter is 8 f / 9 = 257 pixels, most of it outside the ball.
+  EXPECT_GT(yellow_outside_ball, 150u);
+  std::size_t yellow_plain = 0;
+  for (int y = 0; y < plain.height; ++y) {
+    for (int x = 0; x < plain.width; ++x) {
+      const bool outside_ball = std::hypot(x + 0.5 - 160, y + 0.5 - 120) > ball + 2;
+      yellow_plain += outside_ball && yellow(plain, x, y);
+    }
+  }
+  EXPECT_EQ(yellow_plain, 0u) << "no overlay without --draw";
+}
+
+// --draw contacts: a box of half extents 0.5 resting on the ground touches it at its four bottom
+// corners (y = 0, x and z = +-0.5); each point is drawn as a small cross and its normal (from
+// body A to body B, up or down by the pair's order) as a white line 0.2 m long. Every changed
+// pixel lies around those points; white appears only with the overlay.
+TEST_F(ViewerTest, ContactOverlayDrawsPointsAndNormalsAtTheContact) {
+  const std::string s = scene("resting", R"({"bodies": [
+    {"motion": "static", "shape": {"type": "box", "half_extents": [10, 1, 10]}, "position": [0, -1, 0]},
+    {"shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]}, "position": [0, 0.5, 0]}]})");
+  const std::vector<std::string> view = {"--size",          "320x240", "--camera",
+                                         "0,0.5,6,0,0.5,0", "--steps", "20"};
+  std::vector<std::string> with = view;
+  with.insert(with.end(), {"--draw", "contacts"});
+  const Image plain = shot(s, png("plain"), view), contacts = shot(s, png("contacts"), with);
+  ASSERT_EQ(plain.rgb.size(), contacts.rgb.size());
+  const Projection cam{320, 240, 0.5, 6};
+  // The points and normals span x in [-0.55, 0.55], y in [-0.21, 0.21], z in [-0.55, 0.55]
+  // (crosses of 0.05 m half length, normals 0.2 m; a margin of 3 pixels for the lines' width).
+  const double x_max = cam.f() * 0.55 / 5.45 + 3;
+  // The highest point on the picture is the farthest top one, the lowest the nearest bottom one.
+  const double y_lo = cam.py(0.21, -0.55) - 3, y_hi = cam.py(-0.21, 0.55) + 3;
+  const auto white = [](const Image& img, int x, int y) {
+    const uint8_t* c = img.at(x, y);
+    return std::min({c[0], c[1], c[2]}) > 200;
+  };
+  const std::vector<std::pair<int, int>> diff = changed(plain, contacts);
+  std::size_t outside = 0, white_pixels = 0;
+  for (const auto& [x, y] : diff) {
+    outside += std::abs(x + 0.5 - 160) > x_max || y + 0.5 < y_lo || y + 0.5 > y_hi;
+    white_pixels += white(contacts, x, y);
+  }
+  EXPECT_GT(diff.size(), 40u);
+  EXPECT_EQ(outside, 0u);
+  EXPECT_GT(white_pixels, 4u) << "the normals";
+  std::size_t white_plain = 0;
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) white_plain += white(plain, x, y);
+  EXPECT_EQ(white_plain, 0u);
+}
+
+// --draw islands: two piles of two boxes, apart on the ground, are two islands (contacts with
+// the static ground link nothing): the boxes of one pile share a colour, the piles' differ.
+TEST_F(ViewerTest, IslandsAreColouredOneColourEach) {
+  const std::string s = scene("piles", R"({"bodies": [
+    {"motion": "static", "shape": {"type": "box", "half_extents": [10, 1, 10]}, "position": [0, -1, 0]},
+    {"shape": {"type": "box", "half_extents": [0.4, 0.4, 0.4]}, "position": [-1.5, 0.4, 0]},
+    {"shape": {"type": "box", "half_extents": [0.4, 0.4, 0.4]}, "position": [-1.5, 1.2, 0]},
+    {"shape": {"type": "box", "half_extents": [0.4, 0.4, 0.4]}, "position": [1.5, 0.4, 0]},
+    {"shape": {"type": "box", "half_extents": [0.4, 0.4, 0.4]}, "position": [1.5, 1.2, 0]}]})");
+  const Image img = shot(
+      s, png("islands"),
+      {"--size", "320x240", "--camera", "0,0.8,8,0,0.8,0", "--steps", "10", "--draw", "islands"});
+  ASSERT_EQ(img.width, 320);
+  const Projection cam{320, 240, 0.8, 8};
+  // The centres of the boxes' front faces (z = 0.4).
+  const auto at = [&](double x, double y) { return chroma(img, cam.px(x, 0.4), cam.py(y, 0.4)); };
+  const auto a_low = at(-1.5, 0.4), a_high = at(-1.5, 1.2);
+  const auto b_low = at(1.5, 0.4), b_high = at(1.5, 1.2);
+  // One colour per island, up to 8-bit rounding (about 1/300 of a channel at these levels).
+  EXPECT_LT(distance(a_low, a_high), 0.02);
+  EXPECT_LT(distance(b_low, b_high), 0.02);
+  // The library's island colours of roots 1 and 3 are blue and magenta: far apart.
+  EXPECT_GT(distance(a_low, b_low), 0.1);
+}
+
+// Sensors are drawn translucent green: a body behind a sensor shows through it, where a solid
+// body of the same shape hides it completely.
+TEST_F(ViewerTest, SensorsAreTranslucentAndGreen) {
+  const auto scene_text = [](bool sensor, bool behind) {
+    std::string t =
+        R"({"gravity": [0, 0, 0], "bodies": [
+      {"motion": "static", "sensor": )" +
+        std::string(sensor ? "true" : "false") +
+        R"(, "shape": {"type": "box", "half_extents": [1, 1, 1]}, "position": [0, 0, 0]})";
+    if (behind) {
+      t +=
+          R"(, {"shape": {"type": "box", "half_extents": [0.4, 0.4, 0.4]}, "position": [0, 0, -3]})";
+    }
+    return t + "]}";
+  };
+  const std::vector<std::string> view = {"--size", "320x240", "--camera", "0,0,10,0,0,0"};
+  const auto render = [&](bool sensor, bool behind) {
+    const std::string name = std::string(sensor ? "sensor" : "solid") + (behind ? "_behind" : "");
+    return shot(scene(name, scene_text(sensor, behind)), png(name), view);
+  };
+  const Image sensor = render(true, false), sensor_behind = render(true, true);
+  const Image solid = render(false, false), solid_behind = render(false, true);
+  // The small box (front face at z = -2.6) spans f 0.4 / 12.6 = 9.2 pixels each way from the
+  // centre: the central 12 x 12 pixels lie inside it and inside the big box's outline.
+  std::size_t through_sensor = 0, through_solid = 0, green = 0, centre = 0;
+  for (int y = 114; y < 126; ++y) {
+    for (int x = 154; x < 166; ++x) {
+      ++centre;
+      through_sensor += std::memcmp(sensor.at(x, y), sensor_behind.at(x, y), 3) != 0;
+      through_solid += std::memcmp(solid.at(x, y), solid_behind.at(x, y), 3) != 0;
+      const uint8_t* c = sensor.at(x, y);
+      green += c[1] > c[0] + 20 && c[1] > c[2] + 10;
+    }
+  }
+  EXPECT_EQ(through_sensor, centre) << "what is behind a sensor shows through it";
+  EXPECT_EQ(through_solid, 0u) << "a solid box hides it";
+  EXPECT_EQ(green, centre);
+  EXPECT_NE(sensor.rgb, solid.rgb);
+}
+
+// A program recording (elan/recorder.hpp) plays on the timeline: at any step the viewer's state
+// is the one `elan replay --until` reaches.
+TEST_F(ViewerTest, ProgramRecordingStateIsTheReplaysAtTheStep) {
+  const RecordedProgram program = record_program(2);
+  const std::string rec = temp_path("program_view.rec");
+  files_.push_back(rec);
+  write(rec, std::string(program.recording.begin(), program.recording.end()));
+  for (const char* step : {"0", "45", "120"}) {
+    Json view;
+    shot(rec, png("program"), {"--step", step, "--size", "64x64"}, &view);
+    const Result replay = run_elan({"replay", rec, "--until", step});
+    ASSERT_EQ(replay.status, 0) << replay.err;
+    const Json r = Json::parse(replay.out);
+    EXPECT_EQ(view["state_hash"], r["state_hash"]) << "step " << step;
+    EXPECT_EQ(view["steps"], std::stoi(step));
+  }
+}
+
 // Needs no display: the scene is checked before any window opens.
 TEST(ViewerErrors, BadSceneExitsTwoWithTheUsualMessageBeforeAnyWindow) {
   const std::string path = temp_path("bad.json");
@@ -240,7 +450,10 @@ TEST(ViewerErrors, BadOptionsExitTwo) {
                                                {"view", "x.json", "--size", "10x10"},
                                                {"view", "x.json", "--camera", "1,2,3"},
                                                {"view", "x.json", "--camera", "0,0,0,0,0,0"},
-                                               {"view", "x.json", "--every", "2"}}) {
+                                               {"view", "x.json", "--every", "2"},
+                                               {"view", "x.json", "--draw", "bounds,boxes"},
+                                               {"view", "x.json", "--draw", "com,com"},
+                                               {"view", "x.json", "--draw", ""}}) {
     const Result r = run_elan(args);
     EXPECT_EQ(r.status, 2) << args.back();
     EXPECT_EQ(count_lines(r.err), 1u) << r.err;

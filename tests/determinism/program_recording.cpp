@@ -79,7 +79,8 @@ TEST(ProgramRecording, RecordsEveryStepAndItsHash) {
                            "set_collision_filter",
                            "set_gravity_scale",
                            "set_transform",
-                           "set_damping"}) {
+                           "set_damping",
+                           "set_sleep_enabled"}) {
     EXPECT_TRUE(seen.count(name)) << name;
   }
 }

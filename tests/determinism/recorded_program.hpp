@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // A program that changes its world between steps in every way the recorder must capture: it
 // builds the world through the API, then creates and destroys bodies and joints, pushes bodies
-// (forces, torques, impulses), drives a kinematic body and a motor, changes materials, gravity and
-// solver settings, uses the bulk setters and rolls back once, all while being recorded.
+// (forces, torques, impulses), drives a kinematic body and a motor, changes materials, gravity,
+// solver and sleep settings, uses the bulk setters and rolls back once, all while being recorded.
 #pragma once
 
 #include <cmath>
@@ -157,6 +157,8 @@ inline RecordedProgram record_program(int threads, uint64_t keyframe_every = 10)
     if (step == 90) w.set_motion_type(balls[0], MotionType::Kinematic);
     if (step == 95) w.set_collision_filter(boxes[1], 2, ~uint32_t(0));
     if (step == 100) w.set_gravity_scale(boxes[5], Real(0.5));
+    if (step == 105) w.set_sleep_enabled(false);
+    if (step == 112) w.set_sleep_enabled(true);
     w.step(kProgramDt);
   }
   out.final_hash = w.state_hash();

@@ -15,7 +15,7 @@ class LineDrawer final : public DebugDrawer {
   explicit LineDrawer(Renderer& renderer) : renderer_(renderer) {}
   void draw_shape(BodyId, const ShapeDef&, const Transform&, DebugColor, bool) override {}
   void draw_line(const Vec3& a, const Vec3& b, DebugColor color) override {
-    renderer_.add_line(a.cast<float>(), b.cast<float>(), rgba(color));
+    renderer_.add_overlay_line(a.cast<float>(), b.cast<float>(), rgba(color));
   }
   // A point as three short crossed lines (a size in pixels would need the projection here; a
   // fixed length in metres reads as well at the distances a scene is seen from).
@@ -25,7 +25,7 @@ class LineDrawer final : public DebugDrawer {
     for (int axis = 0; axis < 3; ++axis) {
       Eigen::Vector3f d = Eigen::Vector3f::Zero();
       d[axis] = h;
-      renderer_.add_line(c - d, c + d, rgba(color));
+      renderer_.add_overlay_line(c - d, c + d, rgba(color));
     }
   }
   void draw_box(const Aabb& box, DebugColor color) override {
@@ -39,7 +39,7 @@ class LineDrawer final : public DebugDrawer {
         if (corner & (1 << axis)) continue;
         Eigen::Vector3f b = a;
         b[axis] = hi[axis];
-        renderer_.add_line(a, b, rgba(color));
+        renderer_.add_overlay_line(a, b, rgba(color));
       }
     }
   }
@@ -51,7 +51,8 @@ class LineDrawer final : public DebugDrawer {
 }  // namespace
 
 void draw_overlays(const World& world, uint32_t flags, Renderer& renderer) {
-  flags &= ~uint32_t(kDrawShapes);
+  // Shapes, island colours included, are the scene view's.
+  flags &= ~uint32_t(kDrawShapes | kDrawIslands);
   if (flags == 0) return;
   LineDrawer drawer(renderer);
   world.debug_draw(drawer, flags);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The debug-draw overlays (bounds, contacts, joints, centres of mass): the library's
 // World::debug_draw drives a DebugDrawer that turns its lines, points and boxes into the
-// renderer's lines. Shapes are drawn by the scene view, so draw_shape is not asked for.
+// renderer's overlay lines, drawn over the bodies. Shapes (and their island colours) are drawn
+// by the scene view, so draw_shape is not asked for.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +12,8 @@
 
 namespace elan::viewer {
 
-/// Adds the overlays `flags` (elan::DebugDrawFlags, without kDrawShapes) to this frame's lines.
+/// Adds the overlays `flags` (elan::DebugDrawFlags; kDrawShapes and kDrawIslands are ignored)
+/// to this frame's overlay lines.
 void draw_overlays(const World& world, uint32_t flags, Renderer& renderer);
 
 }  // namespace elan::viewer

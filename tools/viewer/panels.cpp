@@ -62,7 +62,6 @@ std::vector<std::string> scene_files(const std::string& current) {
 
 void controls(AppState& app) {
   Simulation& sim = *app.sim;
-  World& world = sim.world();
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Simulation");
@@ -83,19 +82,25 @@ void controls(AppState& app) {
   if (ImGui::Button("Frame all (F)")) app.frame_request = true;
 
   if (!replay && ImGui::CollapsingHeader("World", ImGuiTreeNodeFlags_DefaultOpen)) {
-    float g[3] = {float(sim.gravity.x()), float(sim.gravity.y()), float(sim.gravity.z())};
+    // The panel edits a copy of the world's settings; apply_settings changes what differs.
+    LiveSettings live = sim.settings();
+    bool changed = false;
+    float g[3] = {float(live.gravity.x()), float(live.gravity.y()), float(live.gravity.z())};
     if (ImGui::DragFloat3("gravity", g, 0.1f, -100.0f, 100.0f, "%.2f")) {
-      sim.gravity = Vec3(Real(g[0]), Real(g[1]), Real(g[2]));
-      world.set_gravity(sim.gravity);
+      live.gravity = Vec3(Real(g[0]), Real(g[1]), Real(g[2]));
+      changed = true;
     }
-    ImGui::Checkbox("sleeping", &sim.sleeping);
-    int substeps = world.settings().substeps, iterations = world.settings().iterations;
-    int threads = world.settings().threads;
-    if (ImGui::SliderInt("substeps", &substeps, 1, 16)) world.set_substeps(substeps);
-    if (ImGui::SliderInt("iterations", &iterations, 1, 16)) world.set_iterations(iterations);
-    if (ImGui::SliderInt("threads", &threads, 1,
-                         std::max(1, int(std::thread::hardware_concurrency())))) {
-      world.set_threads(threads);
+    changed |= ImGui::Checkbox("sleeping", &live.sleeping);
+    changed |= ImGui::SliderInt("substeps", &live.substeps, 1, 16);
+    changed |= ImGui::SliderInt("iterations", &live.iterations, 1, 16);
+    changed |= ImGui::SliderInt("threads", &live.threads, 1,
+                                std::max(1, int(std::thread::hardware_concurrency())));
+    if (changed) {
+      try {
+        sim.apply(live);
+      } catch (const std::exception& e) {
+        app.message = e.what();
+      }
     }
     static std::vector<std::string> files;
     if (ImGui::BeginCombo("open scene", nullptr, ImGuiComboFlags_NoPreview)) {
@@ -113,6 +118,7 @@ void controls(AppState& app) {
     ImGui::CheckboxFlags("contacts", &app.overlays, kDrawContacts);
     ImGui::CheckboxFlags("joints (anchors)", &app.overlays, kDrawJoints);
     ImGui::CheckboxFlags("centres of mass", &app.overlays, kDrawCentersOfMass);
+    ImGui::CheckboxFlags("islands (colours)", &app.overlays, kDrawIslands);
   }
   if (!app.message.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", app.message.c_str());
   ImGui::End();
@@ -210,6 +216,7 @@ void timeline(AppState& app) {
     ImGui::SameLine();
     ImGui::Text("(first difference at step %" PRIu64 ")", *t.first_mismatch());
   }
+  if (!t.error().empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", t.error().c_str());
   ImGui::End();
 }
 

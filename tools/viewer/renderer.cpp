@@ -193,12 +193,17 @@ void Renderer::clear_meshes() {
 }
 
 void Renderer::begin_frame() {
-  for (Mesh& m : meshes_) m.frame.clear();
+  for (Mesh& m : meshes_) {
+    m.frame.clear();
+    m.translucent.clear();
+  }
   lines_.clear();
+  overlay_lines_.clear();
 }
 
 void Renderer::add_instance(int mesh, const Instance& instance) {
-  meshes_[std::size_t(mesh)].frame.push_back(instance);
+  Mesh& m = meshes_[std::size_t(mesh)];
+  (instance.color[3] < 1.0f ? m.translucent : m.frame).push_back(instance);
 }
 
 void Renderer::add_line(const Eigen::Vector3f& a, const Eigen::Vector3f& b,
@@ -207,13 +212,49 @@ void Renderer::add_line(const Eigen::Vector3f& a, const Eigen::Vector3f& b,
   lines_.push_back({{b.x(), b.y(), b.z()}, {color[0], color[1], color[2], color[3]}});
 }
 
+void Renderer::add_overlay_line(const Eigen::Vector3f& a, const Eigen::Vector3f& b,
+                                const Eigen::Vector4f& color) {
+  overlay_lines_.push_back({{a.x(), a.y(), a.z()}, {color[0], color[1], color[2], color[3]}});
+  overlay_lines_.push_back({{b.x(), b.y(), b.z()}, {color[0], color[1], color[2], color[3]}});
+}
+
+void Renderer::draw_instances(bool translucent) {
+  glUseProgram(solid_);
+  for (Mesh& m : meshes_) {
+    const std::vector<Instance>& list = translucent ? m.translucent : m.frame;
+    if (list.empty() || m.index_count == 0) continue;
+    glBindVertexArray(m.vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m.instances);
+    // Orphaning the buffer each time: the driver hands a fresh one instead of waiting for the
+    // previous draw to finish reading it.
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(list.size() * sizeof(Instance)), list.data(),
+                 GL_STREAM_DRAW);
+    glDrawElementsInstanced(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr,
+                            GLsizei(list.size()));
+  }
+}
+
+void Renderer::draw_lines(const std::vector<LineVertex>& lines) {
+  if (lines.empty()) return;
+  glUseProgram(line_);
+  glUniformMatrix4fv(glGetUniformLocation(line_, "u_view_projection"), 1, GL_FALSE,
+                     view_projection_.data());
+  glBindVertexArray(line_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, line_buffer_);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(lines.size() * sizeof(LineVertex)), lines.data(),
+               GL_STREAM_DRAW);
+  glDrawArrays(GL_LINES, 0, GLsizei(lines.size()));
+}
+
 void Renderer::draw(const Eigen::Matrix4f& view_projection, const Eigen::Vector3f& eye, int width,
                     int height) {
+  view_projection_ = view_projection;
   glViewport(0, 0, width, height);
   glClearColor(kBackground[0], kBackground[1], kBackground[2], 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_TRUE);
   glDisable(GL_CULL_FACE);  // meshes and planes are two-sided
   glDisable(GL_BLEND);
 
@@ -223,28 +264,19 @@ void Renderer::draw(const Eigen::Matrix4f& view_projection, const Eigen::Vector3
   glUniform3f(glGetUniformLocation(solid_, "u_eye"), eye.x(), eye.y(), eye.z());
   const Eigen::Vector3f light = Eigen::Vector3f(0.4f, 1.0f, 0.3f).normalized();
   glUniform3f(glGetUniformLocation(solid_, "u_light"), light.x(), light.y(), light.z());
-  for (Mesh& m : meshes_) {
-    if (m.frame.empty() || m.index_count == 0) continue;
-    glBindVertexArray(m.vao);
-    glBindBuffer(GL_ARRAY_BUFFER, m.instances);
-    // Orphaning the buffer each frame: the driver hands a fresh one instead of waiting for the
-    // previous frame's draw to finish reading it.
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(m.frame.size() * sizeof(Instance)), m.frame.data(),
-                 GL_STREAM_DRAW);
-    glDrawElementsInstanced(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr,
-                            GLsizei(m.frame.size()));
-  }
-
-  if (!lines_.empty()) {
-    glUseProgram(line_);
-    glUniformMatrix4fv(glGetUniformLocation(line_, "u_view_projection"), 1, GL_FALSE,
-                       view_projection.data());
-    glBindVertexArray(line_vao_);
-    glBindBuffer(GL_ARRAY_BUFFER, line_buffer_);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(lines_.size() * sizeof(LineVertex)), lines_.data(),
-                 GL_STREAM_DRAW);
-    glDrawArrays(GL_LINES, 0, GLsizei(lines_.size()));
-  }
+  draw_instances(false);
+  draw_lines(lines_);
+  // Translucent bodies (sensors) over the solid ones: blended, and writing no depth, so that
+  // one behind another still shows.
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);
+  draw_instances(true);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  draw_lines(overlay_lines_);
+  glEnable(GL_DEPTH_TEST);
   glBindVertexArray(0);
   glUseProgram(0);
 }

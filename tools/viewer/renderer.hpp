@@ -45,7 +45,12 @@ class Renderer {
   void begin_frame();
   void add_instance(int mesh, const Instance& instance);
   void add_line(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector4f& color);
-  /// Clears the bound framebuffer's viewport and draws this frame's instances and lines.
+  /// A line drawn over everything (the debug-draw overlays: contacts inside a pile stay seen).
+  void add_overlay_line(const Eigen::Vector3f& a, const Eigen::Vector3f& b,
+                        const Eigen::Vector4f& color);
+  /// Clears the bound framebuffer's viewport and draws this frame: the solid instances, the
+  /// lines, the translucent instances (alpha < 1, blended over what is behind them, writing no
+  /// depth), then the overlay lines without depth test.
   void draw(const Eigen::Matrix4f& view_projection, const Eigen::Vector3f& eye, int width,
             int height);
 
@@ -53,10 +58,15 @@ class Renderer {
   struct Mesh {
     GLuint vao = 0, vertices = 0, indices = 0, instances = 0;
     GLsizei index_count = 0;
-    std::vector<Instance> frame;  // this frame's instances
+    std::vector<Instance> frame;        // this frame's solid instances
+    std::vector<Instance> translucent;  // and those with alpha < 1
   };
+  void draw_instances(bool translucent);
+  void draw_lines(const std::vector<LineVertex>& lines);
+
   std::vector<Mesh> meshes_;
-  std::vector<LineVertex> lines_;
+  std::vector<LineVertex> lines_, overlay_lines_;
+  Eigen::Matrix4f view_projection_ = Eigen::Matrix4f::Identity();
   GLuint solid_ = 0, line_ = 0;
   GLuint line_vao_ = 0, line_buffer_ = 0;
 };

@@ -5,6 +5,7 @@
 // The body poses are read from the world after each step; nothing is written back.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -16,26 +17,53 @@
 
 namespace elan::viewer {
 
+/// Where the picture is seen from, for choosing each body's tessellation: a curved body whose
+/// bounding sphere spans fewer than kCoarseBelowPixels pixels of radius is drawn with kCoarse.
+struct DetailView {
+  Eigen::Vector3f eye = Eigen::Vector3f::Zero();
+  /// Pixels per unit of (size / distance): (picture height / 2) / tan(vertical field / 2).
+  float pixels_per_unit = 0;
+};
+inline constexpr float kCoarseBelowPixels = 10;
+
 class SceneView {
  public:
   /// Fills the renderer with this frame's instances and joint lines (meshes are rebuilt when
   /// the simulation's bodies changed). `selected` and `highlighted` are dense body indices.
+  /// With kDrawIslands in `overlays`, dynamic bodies take their island's colour (the library's
+  /// debug draw) instead of their own.
+  /// Without `detail` every body gets the fine tessellation.
   void update(const Simulation& sim, Renderer& renderer, std::optional<std::size_t> selected,
-              std::optional<std::size_t> highlighted);
+              std::optional<std::size_t> highlighted, uint32_t overlays = 0,
+              const DetailView* detail = nullptr);
 
  private:
   void rebuild(const Simulation& sim, Renderer& renderer);
+  // The mesh and scale of body `i` for its current shape.
+  void assign(const Simulation& sim, Renderer& renderer, std::size_t i);
 
   uint64_t version_ = UINT64_MAX;
   const Simulation* sim_ = nullptr;
-  std::vector<int> body_mesh_;  // per dense body index
+  // Per dense body index: its mesh, fine and coarse (the same for a shape with no curve).
+  std::vector<std::array<int, 2>> body_mesh_;
   std::vector<Eigen::Vector3f> body_scale_;
-  int unit_meshes_[3] = {-1, -1, -1};      // sphere, box, cylinder
-  std::map<std::string, int> own_meshes_;  // shape key -> mesh
+  std::vector<float> body_radius_;   // m, of the bounding sphere about the shape frame's origin
+  std::vector<ShapeId> body_shape_;  // the shape each body had when its mesh was chosen
+  // Capsules are drawn as three instances of shared unit meshes (two hemispheres and a tube),
+  // so that a pile of capsules of many sizes costs three draw calls, not one per size.
+  std::vector<Eigen::Vector2f> body_capsule_;  // radius, half height; radius 0: not a capsule
+  int unit_meshes_[2][5] = {{-1, -1, -1, -1, -1}, {-1, -1, -1, -1, -1}};  // fine, coarse:
+  // sphere, box, cylinder, hemisphere, tube
+  std::map<std::string, std::array<int, 2>> own_meshes_;  // shape key -> fine, coarse mesh
+  std::vector<Eigen::Vector4f> island_colors_;
 };
 
 /// A body's colour: dynamic bodies from a palette by index, static grey, kinematic blue; dimmed
 /// when asleep.
 Eigen::Vector4f body_color(std::size_t index, MotionType motion, bool awake);
+
+/// A sensor's colour, whatever its motion: translucent green (drawn after the solid bodies,
+/// blended, so what is inside or behind it shows through).
+inline constexpr float kSensorColor[4] = {0.3f, 0.9f, 0.4f, 0.35f};
 
 }  // namespace elan::viewer

@@ -81,6 +81,20 @@ MeshData unit_sphere(int rings, int segments) {
   return revolve(profile, segments);
 }
 
+MeshData unit_hemisphere(int rings, int segments) {
+  std::vector<Eigen::Vector4f> profile;
+  const int half = std::max(rings / 2, 2);
+  for (int r = 0; r <= half; ++r) {
+    const float t = kPi / 2 * float(r) / float(half);
+    profile.emplace_back(std::cos(t), std::sin(t), std::cos(t), std::sin(t));
+  }
+  return revolve(profile, segments);
+}
+
+MeshData unit_tube(int segments) {
+  return revolve({{1, -1, 1, 0}, {1, 1, 1, 0}}, segments);
+}
+
 MeshData unit_box() {
   MeshData m;
   // Each face: its normal axis and sign; corners counter-clockwise seen from outside.
@@ -302,21 +316,37 @@ void append(MeshData& into, const MeshData& part, const Eigen::Affine3f& pose,
   for (uint32_t i : part.indices) into.indices.push_back(base + i);
 }
 
-MeshData shape_mesh(const ShapeDef& def) {
-  constexpr int kRings = 12, kSegments = 20;
+bool is_curved(const ShapeDef& def) {
+  switch (def.type) {
+    case ShapeType::Sphere:
+    case ShapeType::Capsule:
+    case ShapeType::Cylinder:
+      return true;
+    case ShapeType::Compound:
+      for (const CompoundChild& c : def.children) {
+        if (is_curved(c.shape)) return true;
+      }
+      return false;
+    default:
+      return false;
+  }
+}
+
+MeshData shape_mesh(const ShapeDef& def, Tessellation t) {
+  const int rings = t.rings, segments = t.segments;
   switch (def.type) {
     case ShapeType::Sphere:
     case ShapeType::Box:
     case ShapeType::Cylinder: {
-      const MeshData unit = def.type == ShapeType::Sphere ? unit_sphere(kRings, kSegments)
+      const MeshData unit = def.type == ShapeType::Sphere ? unit_sphere(rings, segments)
                             : def.type == ShapeType::Box  ? unit_box()
-                                                          : unit_cylinder(kSegments);
+                                                          : unit_cylinder(segments);
       MeshData m;
       append(m, unit, Eigen::Affine3f::Identity(), instance_scale(def));
       return m;
     }
     case ShapeType::Capsule:
-      return capsule(float(def.radius), float(def.half_height), kRings, kSegments);
+      return capsule(float(def.radius), float(def.half_height), rings, segments);
     case ShapeType::ConvexHull:
       return convex_hull(def.points);
     case ShapeType::Plane:
@@ -331,7 +361,7 @@ MeshData shape_mesh(const ShapeDef& def) {
         Eigen::Affine3f pose = Eigen::Affine3f::Identity();
         pose.translate(f3(c.position));
         pose.rotate(c.orientation.cast<float>().normalized());
-        append(m, shape_mesh(c.shape), pose);
+        append(m, shape_mesh(c.shape, t), pose);
       }
       return m;
     }

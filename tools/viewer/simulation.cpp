@@ -1,19 +1,21 @@
 // SPDX-License-Identifier: MIT
 #include "tools/viewer/simulation.hpp"
 
+#include "elan/recorder.hpp"
+#include "elan/scene.hpp"
 #include "elan/snapshot.hpp"
 
 namespace elan::viewer {
 
 Simulation::Simulation(Source source, World world)
     : source_(std::move(source)), world_(std::move(world)) {
-  gravity = world_.settings().gravity;
   load_joints();
 }
 
 const ShapeDef& Simulation::body_shape(std::size_t index) const {
-  if (index < source_.scene.bodies.size()) return source_.scene.bodies[index].shape;
-  return added_[index - source_.scene.bodies.size()];
+  const bool program = replaying() && source_.recording->is_program();
+  if (!program && index < source_.scene.bodies.size()) return source_.scene.bodies[index].shape;
+  return world_.shape_def(world_.shape(world_.body_at(index)));
 }
 
 void Simulation::load_joints() {
@@ -46,26 +48,29 @@ void Simulation::load_joints() {
 }
 
 uint32_t Simulation::step() {
-  if (!sleeping) {
-    for (std::size_t i = 0; i < world_.body_count(); ++i) {
-      const BodyId id = world_.body_at(i);
-      if (world_.motion_type(id) == MotionType::Dynamic && !world_.is_awake(id)) world_.wake(id);
-    }
-  }
+  const uint32_t status =
+      replaying() ? replay_step(world_, *source_.recording, steps_) : world_.step(source_.timestep);
   ++steps_;
-  return world_.step(source_.timestep);
+  return status;
 }
 
-void Simulation::reset() {
+World Simulation::start_world() const {
+  if (replaying() && source_.recording->is_program()) {
+    return recording_start_world(*source_.recording, world_.settings().threads,
+                                 source_.def.broadphase);
+  }
   WorldDef def = source_.def;
-  def.gravity = gravity;
-  def.substeps = world_.settings().substeps;
-  def.iterations = world_.settings().iterations;
   def.threads = world_.settings().threads;
   World fresh(def);
   load_into(source_.scene, fresh, source_.name);
-  world_ = std::move(fresh);
-  added_.clear();
+  return fresh;
+}
+
+void Simulation::reset() {
+  // A scene keeps the settings changed live; a recording replays its own.
+  const LiveSettings live = settings();
+  world_ = start_world();
+  if (!replaying()) apply(live);
   steps_ = 0;
   ++version_;
   load_joints();
@@ -73,7 +78,6 @@ void Simulation::reset() {
 
 void Simulation::restore(const cli::Keyframe& keyframe) {
   restore_snapshot(world_, keyframe.snapshot);
-  added_.clear();
   steps_ = keyframe.step;
   ++version_;
 }
@@ -87,7 +91,6 @@ void Simulation::shoot(const Vec3& origin, const Vec3& direction, Real radius, R
   body.position = origin;
   body.linear_velocity = direction * speed;
   world_.create_body(body);
-  added_.push_back(ball);
   ++version_;
 }
 

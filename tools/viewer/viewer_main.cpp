@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cinttypes>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -67,16 +68,29 @@ struct GlfwSession {
   }
 };
 
-GLFWwindow* open_window(int width, int height, bool visible, const std::string& title) {
+// `samples`: multisampling of a visible window's framebuffer (off screen the target has its own).
+GLFWwindow* open_window(int width, int height, bool visible, const std::string& title,
+                        int samples = 0) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
-  glfwWindowHint(GLFW_SAMPLES, visible ? 4 : 0);
+  glfwWindowHint(GLFW_SAMPLES, visible ? samples : 0);
   GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (w != nullptr) glfwMakeContextCurrent(w);
   return w;
+}
+
+// Whether the current context renders in software (Mesa's llvmpipe, softpipe or swrast).
+bool is_software_renderer() {
+  const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (name == nullptr) return false;
+  const std::string r(name);
+  for (const char* soft : {"llvmpipe", "softpipe", "swrast"}) {
+    if (r.find(soft) != std::string::npos) return true;
+  }
+  return false;
 }
 
 // The default view: every non-static body's bounding box (all bodies' when every body is
@@ -117,10 +131,16 @@ Json camera_json(const Camera& c) {
   return Json::array({e.x(), e.y(), e.z(), c.target.x(), c.target.y(), c.target.z()});
 }
 
+DetailView detail_view(const Camera& camera, int height) {
+  return {camera.eye(), float(height) / 2 / std::tan(camera.fov_y / 2)};
+}
+
 // Moves to the requested step: stepping a scene, seeking a recording.
 void go_to(Simulation& sim, Timeline* timeline, uint64_t step) {
   if (timeline != nullptr) {
     timeline->seek(sim, step);
+    // Off screen, a recorded call that fails on replay ends the run as `elan replay` would.
+    if (!timeline->error().empty()) throw cli::RecordingError(timeline->error());
     return;
   }
   while (sim.step_count() < step) sim.step();
@@ -145,7 +165,9 @@ int headless(const cli::ViewOptions& o, Simulation& sim, Timeline* timeline) {
   double step_seconds = 0;
   const auto render = [&](const std::string& path) {
     const auto t0 = Clock::now();
-    view.update(sim, renderer, std::nullopt, highlight);
+    const DetailView detail = detail_view(camera, o.height);
+    view.update(sim, renderer, std::nullopt, highlight, o.draw, &detail);
+    draw_overlays(sim.world(), o.draw, renderer);
     target.bind();
     renderer.draw(camera.projection(aspect) * camera.view(), camera.eye(), o.width, o.height);
     const std::vector<uint8_t> rgb = target.read_rgb();
@@ -309,6 +331,7 @@ void advance(AppState& app, double frame_seconds, double& owed, double& step_sec
     app.dragger.apply(app.sim->world(), app.drag_stiffness);
     if (app.timeline) {
       app.timeline->advance(*app.sim);
+      if (!app.timeline->error().empty()) app.paused = true;
     } else {
       app.sim->step();
     }
@@ -321,9 +344,16 @@ void advance(AppState& app, double frame_seconds, double& owed, double& step_sec
 }
 
 int interactive(const cli::ViewOptions& o, AppState& app) {
-  GLFWwindow* window =
-      open_window(o.width, o.height, true, "elan view - " + app.sim->source().name);
+  const std::string title = "elan view - " + app.sim->source().name;
+  GLFWwindow* window = open_window(o.width, o.height, true, title, 4);
   if (window == nullptr) return fail("no OpenGL 3.3 core context: " + g_glfw_error);
+  // A software renderer (Mesa's llvmpipe under Xvfb) spends more than half a frame of a large
+  // pile on 4x multisampling: the window is opened again without it.
+  if (is_software_renderer()) {
+    glfwDestroyWindow(window);
+    window = open_window(o.width, o.height, true, title, 0);
+    if (window == nullptr) return fail("no OpenGL 3.3 core context: " + g_glfw_error);
+  }
   glfwSwapInterval(1);
   glfwSetWindowUserPointer(window, &app);
   glfwSetScrollCallback(window, on_scroll);  // before ImGui's, which chains to it
@@ -383,7 +413,8 @@ int interactive(const cli::ViewOptions& o, AppState& app) {
           app.sim->world().position(app.sim->world().body_at(*app.selected)).cast<float>();
     }
 
-    view.update(*app.sim, renderer, app.selected, app.highlighted);
+    const DetailView detail = detail_view(app.camera, height);
+    view.update(*app.sim, renderer, app.selected, app.highlighted, app.overlays, &detail);
     draw_overlays(app.sim->world(), app.overlays, renderer);
     if (app.dragger.active()) {
       renderer.add_line(app.dragger.grab_point(app.sim->world()).cast<float>(),
@@ -431,6 +462,7 @@ int run(const cli::ViewOptions& o, Source source, World world) {
   if (!o.screenshot.empty() || !o.frames.empty()) return headless(o, *app.sim, app.timeline.get());
 
   app.paused = o.paused;
+  app.overlays = o.draw;
   app.drag_stiffness = drag_stiffness(app.sim->world());
   if (o.body) {
     app.highlighted = std::size_t(*o.body);

@@ -289,6 +289,14 @@ class World {
   const WorldDef& settings() const;
   void set_substeps(int substeps);
   void set_iterations(int iterations);
+  /// Whether resting islands may fall asleep (WorldDef::allow_sleep, on by default). Switching
+  /// it off wakes every dynamic body and zeroes its sleep timer; the timers then stay at zero
+  /// while it is off, so once it is switched on again a body sleeps only after resting for the
+  /// full time to sleep. Switching it on changes nothing else, and setting the value it already
+  /// has changes nothing at all. Bodies put to sleep by sleep() while it is off stay asleep until
+  /// woken. Snapshots keep it: restore_snapshot and load_snapshot take the snapshot's value.
+  void set_sleep_enabled(bool enabled);
+  bool sleep_enabled() const;
   void set_broadphase(BroadphaseType type);
   /// Changes the worker count (1 or more; 0 = all cores); the world then uses its own pool.
   void set_threads(int threads);
