@@ -3,7 +3,8 @@
 // steps (impulses on eight bodies and a velocity every step, a body created and one destroyed
 // every 30), stepped without recording, recording with keyframes every 60 steps (the default),
 // and recording without keyframes. Each iteration is one step with the program's calls before
-// it. Run: bench_api_recording --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+// it. BM_StateHash and BM_Keyframe time the recorder's own work per step and per keyframe.
+// Run: bench_api_recording --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
@@ -12,6 +13,7 @@
 
 #include "elan/recorder.hpp"
 #include "elan/scene.hpp"
+#include "elan/snapshot.hpp"
 
 namespace {
 
@@ -80,6 +82,28 @@ BENCHMARK(BM_ProgramStep)
     ->Iterations(240)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The recorder's own work per step, apart from the step: the state hash it stores after every
+// step, and the snapshot it keeps as a keyframe (once every keyframe_every steps).
+World settled_pile() {
+  const Scene scene = load_scene(std::string(ELAN_SCENE_DIR) + "/pile4k.json");
+  World w(scene.world);
+  load_into(scene, w, "pile4k.json");
+  for (int i = 0; i < kWarmSteps; ++i) w.step(kDt);
+  return w;
+}
+
+void BM_StateHash(benchmark::State& state) {
+  World w = settled_pile();
+  for (auto _ : state) benchmark::DoNotOptimize(w.state_hash());
+}
+BENCHMARK(BM_StateHash)->Unit(benchmark::kMicrosecond);
+
+void BM_Keyframe(benchmark::State& state) {
+  World w = settled_pile();
+  for (auto _ : state) benchmark::DoNotOptimize(save_snapshot(w));
+}
+BENCHMARK(BM_Keyframe)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
