@@ -16,7 +16,7 @@ for r in range(rounds):
                                      capture_output=True, text=True, check=True).stdout
                 d = json.loads(out)
                 res.setdefault((s, t, tag), []).append(d['ms_per_step'])
-                res[(s, t, tag + 'simd')] = d['simd']
+                res[(s, t, tag + 'simd')] = d.get('simd', '-')
 print('| scene | threads | portable (path) ms/step | native ms/step | portable / native |')
 print('| --- | --- | --- | --- | --- |')
 for s in scenes:

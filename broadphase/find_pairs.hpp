@@ -18,6 +18,7 @@
 #include "core/base/grow.hpp"
 #include "core/base/parallel.hpp"
 #include "core/base/step_scratch.hpp"
+#include "elan/defs.hpp"
 
 namespace elan::detail {
 
@@ -36,6 +37,9 @@ struct BroadphaseInput {
   std::span<const uint32_t> traits;         // per body: its entry of `trait_table`
   std::span<const BodyTraits> trait_table;  // the collision filters (BodyTraits::category, mask)
   std::span<const uint8_t> is_plane;        // 1 for plane shapes (infinite boxes)
+  // The instruction set of the sweep's kernel (broadphase/sweep_kernel.hpp); every path gives the
+  // same pairs. Best: core/base/simd_path.hpp's process_simd_path().
+  SimdPath simd = SimdPath::Best;
 };
 
 inline bool filter_pass(const BroadphaseInput& in, uint32_t a, uint32_t b) {
@@ -90,7 +94,6 @@ class SweepAndPrune {
   // Deals the sorted boxes into strips; takes the sweep's pair blocks, then the entries.
   void deal_strips(const BroadphaseInput& in, StepScratch& scratch);
   void take_pair_blocks(const BroadphaseInput& in, std::size_t entries, StepScratch& scratch);
-  void sweep_range(std::size_t begin, std::size_t end, ScratchVector<uint64_t>& out) const;
   void release_entries();         // once swept
   void release_update_buffers();  // the rest, once the pairs are sorted
   // Monotonic in v, which the sweep's dedup rule relies on; NaN and v <= strip_lo_ give 0.

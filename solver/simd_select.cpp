@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/base/simd_path.hpp"
 #include "elan/error.hpp"
 #include "solver/solver_kernels.hpp"
 
@@ -21,26 +22,6 @@ extern const SolverKernels kSolverKernels;
 namespace {
 
 #if defined(ELAN_DISPATCH)
-// What each path's units are compiled with (cmake/isa_variants.cmake): the CPU must have all of
-// it. __builtin_cpu_supports also asks the OS (XGETBV) whether it saves the AVX and AVX-512
-// registers.
-bool cpu_runs(SimdPath path) {
-  __builtin_cpu_init();
-  switch (path) {
-    case SimdPath::Sse2:
-      return true;
-    case SimdPath::Avx2:
-      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
-             __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("popcnt");
-    case SimdPath::Avx512:
-      return cpu_runs(SimdPath::Avx2) && __builtin_cpu_supports("avx512f") &&
-             __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
-             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512cd");
-    default:
-      return false;
-  }
-}
-
 const SolverKernels& kernels_of(SimdPath path) {
   switch (path) {
     case SimdPath::Avx512:
@@ -51,21 +32,9 @@ const SolverKernels& kernels_of(SimdPath path) {
       return isa_sse2::kSolverKernels;
   }
 }
-
-SimdPath widest() {
-  if (cpu_runs(SimdPath::Avx512)) return SimdPath::Avx512;
-  if (cpu_runs(SimdPath::Avx2)) return SimdPath::Avx2;
-  return SimdPath::Sse2;
-}
 #else
-bool cpu_runs(SimdPath path) {
-  return path == SimdPath::Native;
-}
 const SolverKernels& kernels_of(SimdPath) {
   return kSolverKernels;
-}
-SimdPath widest() {
-  return SimdPath::Native;
 }
 #endif
 
@@ -73,7 +42,7 @@ const SolverKernels& checked(SimdPath path, const char* field) {
   if (!cpu_runs(path)) {
 #if defined(ELAN_DISPATCH)
     throw Error(field, std::string("this CPU cannot run the ") + simd_path_name(path) +
-                           " path (it runs up to " + simd_path_name(widest()) + ")");
+                           " path (it runs up to " + simd_path_name(widest_simd_path()) + ")");
 #else
     throw Error(field, std::string("this build was compiled for one CPU (ELAN_NATIVE) and has "
                                    "only the native path, not ") +
@@ -112,7 +81,7 @@ namespace elan::detail {
 const SolverKernels& select_solver_kernels(SimdPath want) {
   if (want != SimdPath::Best) return checked(want, "simd");
   const char* env = std::getenv("ELAN_SIMD");
-  if (env == nullptr || *env == '\0') return kernels_of(widest());
+  if (env == nullptr || *env == '\0') return kernels_of(widest_simd_path());
   const std::string_view name(env);
   for (const SimdPath p : {SimdPath::Sse2, SimdPath::Avx2, SimdPath::Avx512, SimdPath::Native}) {
     if (name == simd_path_name(p)) return checked(p, "ELAN_SIMD");

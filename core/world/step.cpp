@@ -47,6 +47,7 @@ uint32_t run_step(WorldState& w, Real dt) {
 
   BroadphaseInput input{&w.bounds, w.broad_kind, bodies.traits, bodies.trait_table.entries(),
                         w.is_plane};
+  input.simd = w.kernels->path;
   take_from_back(w.pairs, w.scratch);
   if (w.def.broadphase == BroadphaseType::AllPairs) {
     w.all_pairs.find_pairs(input, w.pairs);

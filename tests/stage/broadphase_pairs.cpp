@@ -14,6 +14,7 @@
 
 #include "broadphase/find_pairs.hpp"
 #include "core/base/pair_key.hpp"
+#include "core/base/simd_path.hpp"
 
 namespace elan::detail {
 namespace broadphase_pairs_test {
@@ -231,6 +232,34 @@ TEST(SweepAndPrune, MatchesBruteForceOnRandomBoxes) {
       expect_all_methods_match(s, std::string(c.name) + ", planes " + std::to_string(planes));
     }
   }
+}
+
+// The sweep's kernel is compiled once per SIMD path in a dispatching build (sweep_kernel.hpp):
+// each path this CPU runs must give the oracle's list, whatever ELAN_SIMD picks for the others.
+TEST(SweepAndPrune, EverySimdPathMatchesBruteForce) {
+  int paths = 0;
+  uint32_t seed = 500;
+  for (const SimdPath path : {SimdPath::Sse2, SimdPath::Avx2, SimdPath::Avx512, SimdPath::Native}) {
+    if (!cpu_runs(path)) continue;
+    ++paths;
+    for (const Layout layout : {Layout::Uniform, Layout::Clustered, Layout::TouchingGrid}) {
+      const BoxSet s = make_boxes(layout, 2000, seed++, 2);
+      BroadphaseInput in = s.input();
+      in.simd = path;
+      std::vector<uint64_t> oracle;
+      find_pairs_brute_force(in, oracle);
+      ASSERT_FALSE(oracle.empty());
+      for (int threads : {1, 2}) {
+        SweepAndPrune sap;
+        const auto pairs = run_in_arena(threads, [&](auto& out) { sap.find_pairs(in, out); });
+        EXPECT_TRUE(pairs == oracle)
+            << "path " << int(path) << ", layout " << int(layout) << ", threads " << threads << ": "
+            << pairs.size() << " vs " << oracle.size() << " pairs";
+      }
+    }
+  }
+  // A dispatching build runs SSE2 at least; a native build its one path.
+  EXPECT_GE(paths, 1);
 }
 
 TEST(SweepAndPrune, MatchesBruteForceOnTwentyThousandBoxes) {

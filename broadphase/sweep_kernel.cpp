@@ -1,0 +1,201 @@
+// SPDX-License-Identifier: MIT
+// The sweep's kernel, compiled once per instruction set (broadphase/CMakeLists.txt): with AVX2 a
+// chunk of eight candidates is one set of vector compares and its hits are packed by one permute;
+// without it the same test runs as an `omp simd` loop and the hits are emitted one by one.
+#include "broadphase/sweep_kernel.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <type_traits>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
+#include "broadphase/find_pairs.hpp"
+#include "core/base/pair_key.hpp"
+
+namespace elan::detail {
+ELAN_ISA_BEGIN
+
+namespace {
+
+// Candidates tested at a time: the strips' sentinels make every chunk whole.
+constexpr std::size_t kChunk = SweepAndPrune::kStripPad;
+
+// One entry's side of the sweep test and the strip's candidate columns. A template so the float
+// SIMD path is discarded, not compiled, when Real is double.
+template <class R>
+struct ChunkTest {
+  const R *key, *lo1, *hi1, *lo2, *hi2;
+  const uint32_t *first, *category, *mask;
+  const uint8_t* kind;
+  R hi = 0, l1 = 0, h1 = 0, l2 = 0, h2 = 0;
+  uint32_t f = 0, strip = 0, cat = 0, msk = 0;
+  uint32_t partner_kinds = 0;  // bit c set when should_pair(this kind, c)
+};
+
+uint32_t partner_kinds(BroadKind k) {
+  uint32_t bits = 0;
+  for (uint32_t c = 0; c < 4; ++c) bits |= uint32_t(should_pair(k, BroadKind(c))) << c;
+  return bits;
+}
+
+// Bit q set when candidate j + q overlaps on all three axes (closed intervals), the pair's strip
+// is this one and accept_pair passes; `more` is false once the chunk's last key is past hi.
+template <class R>
+uint32_t chunk_hits(const ChunkTest<R>& t, std::size_t j, bool& more) {
+  static_assert(kChunk == 8);
+#if defined(__AVX2__)
+  if constexpr (std::is_same_v<R, float>) {
+    // perf: eight lanes, one movemask; ordered compares are false on NaN like <= is.
+    const __m256 below =
+        _mm256_cmp_ps(_mm256_loadu_ps(t.key + j), _mm256_set1_ps(t.hi), _CMP_LE_OQ);
+    __m256 m = _mm256_and_ps(
+        below, _mm256_cmp_ps(_mm256_loadu_ps(t.lo1 + j), _mm256_set1_ps(t.h1), _CMP_LE_OQ));
+    m = _mm256_and_ps(m,
+                      _mm256_cmp_ps(_mm256_set1_ps(t.l1), _mm256_loadu_ps(t.hi1 + j), _CMP_LE_OQ));
+    m = _mm256_and_ps(m,
+                      _mm256_cmp_ps(_mm256_loadu_ps(t.lo2 + j), _mm256_set1_ps(t.h2), _CMP_LE_OQ));
+    m = _mm256_and_ps(m,
+                      _mm256_cmp_ps(_mm256_set1_ps(t.l2), _mm256_loadu_ps(t.hi2 + j), _CMP_LE_OQ));
+    const auto load = [](const uint32_t* p) {
+      return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+    };
+    const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
+    const __m256i same =
+        _mm256_cmpeq_epi32(_mm256_max_epu32(load(t.first + j), _mm256_set1_epi32(int(t.f))),
+                           _mm256_set1_epi32(int(t.strip)));
+    const __m256i kinds =
+        _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(t.kind + j)));
+    const __m256i pairable = _mm256_cmpeq_epi32(
+        _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(t.partner_kinds)), kinds), one),
+        one);
+    const __m256i filtered = _mm256_or_si256(
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(t.cat)), load(t.mask + j)), zero),
+        _mm256_cmpeq_epi32(_mm256_and_si256(load(t.category + j), _mm256_set1_epi32(int(t.msk))),
+                           zero));
+    const __m256i accept = _mm256_andnot_si256(filtered, _mm256_and_si256(same, pairable));
+    m = _mm256_and_ps(m, _mm256_castsi256_ps(accept));
+    more = _mm256_movemask_ps(below) == 0xFF;
+    return uint32_t(_mm256_movemask_ps(m));
+  }
+#endif
+  uint32_t hits = 0;
+#pragma omp simd reduction(| : hits)
+  for (std::size_t q = 0; q < 8; ++q) {
+    const std::size_t c = j + q;
+    const bool hit = (t.key[c] <= t.hi) & (t.lo1[c] <= t.h1) & (t.l1 <= t.hi1[c]) &
+                     (t.lo2[c] <= t.h2) & (t.l2 <= t.hi2[c]) &
+                     (std::max(t.f, t.first[c]) == t.strip) &
+                     (((t.partner_kinds >> t.kind[c]) & 1u) != 0) & ((t.cat & t.mask[c]) != 0) &
+                     ((t.category[c] & t.msk) != 0);
+    hits |= uint32_t(hit) << q;
+  }
+  more = t.key[j + 7] <= t.hi;
+  return hits;
+}
+
+#if defined(__AVX2__)
+// Per 8-bit hit mask, the lanes of its set bits in order, a nibble each: the shuffle that packs
+// hits to the front.
+constexpr std::array<uint32_t, 256> make_compress_table() {
+  std::array<uint32_t, 256> table{};
+  for (uint32_t m = 0; m < 256; ++m) {
+    uint32_t lanes = 0, count = 0;
+    for (uint32_t q = 0; q < 8; ++q) {
+      if ((m >> q) & 1u) lanes |= q << (4 * count++);
+    }
+    table[m] = lanes;
+  }
+  return table;
+}
+constexpr std::array<uint32_t, 256> kCompress = make_compress_table();
+#endif
+
+// Writes the keys of body i0 with body[q] for every set bit q of hits to dst[0, popcount), and
+// may write anything to dst[popcount, 8). Returns popcount.
+inline uint32_t emit_pairs(uint32_t hits, uint32_t i0, const uint32_t* body, uint64_t* dst) {
+#if defined(__AVX2__)
+  // perf: branch-free: hits are as likely as not in a chunk, so a loop over them mispredicts.
+  const __m256i lanes =
+      _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(int(kCompress[hits])),
+                                         _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28)),
+                       _mm256_set1_epi32(7));
+  const __m256i b = _mm256_permutevar8x32_epi32(
+      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(body)), lanes);
+  const __m256i a = _mm256_set1_epi32(int(i0));
+  const __m256i lo = _mm256_min_epu32(a, b), hi = _mm256_max_epu32(a, b);
+  const auto keys = [](__m128i l, __m128i h) {
+    return _mm256_or_si256(_mm256_slli_epi64(_mm256_cvtepu32_epi64(l), 32),
+                           _mm256_cvtepu32_epi64(h));
+  };
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst),
+                      keys(_mm256_castsi256_si128(lo), _mm256_castsi256_si128(hi)));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + 4),
+                      keys(_mm256_extracti128_si256(lo, 1), _mm256_extracti128_si256(hi, 1)));
+  return uint32_t(std::popcount(hits));
+#else
+  uint32_t count = 0;
+  while (hits != 0) {
+    dst[count++] = make_pair_key(i0, body[std::countr_zero(hits)]);
+    hits &= hits - 1;
+  }
+  return count;
+#endif
+}
+
+}  // namespace
+
+// Pairs of each entry in [begin, end) with the later entries of its strip. Within a strip a pair
+// is met once, from whichever box comes first (ties in min included: key_j == key_i <= max_i). A
+// pair overlapping on the strip axis shares every strip holding m = max(lo_a, lo_b), and is kept
+// only in strip_of(m), so it is reported once; strip_of is monotonic, so
+// strip_of(m) = max(strip_of(lo_a), strip_of(lo_b)) = max(first).
+void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end,
+                  ScratchVector<uint64_t>& out) {
+  ChunkTest<Real> t{s.min, s.lo1, s.hi1, s.lo2, s.hi2, s.first, s.category, s.mask, s.kind};
+  const uint32_t* body = s.body;
+  const std::span<const uint32_t> strip_begin = s.strip_begin;
+  // perf: pairs gather in a small local buffer, 8 slots of slack for emit_pairs.
+  constexpr std::size_t kBuffer = 512;
+  uint64_t buffer[kBuffer + 8];
+  std::size_t used = 0;
+  std::size_t strip =
+      std::size_t(std::upper_bound(strip_begin.begin(), strip_begin.end(), uint32_t(begin)) -
+                  strip_begin.begin() - 1);
+  for (std::size_t k = begin; k < end; ++strip) {
+    const std::size_t stop = strip_begin[strip + 1] - kChunk;
+    t.strip = uint32_t(strip);
+    for (; k < std::min(end, stop); ++k) {
+      t.hi = s.max[k];
+      t.l1 = s.lo1[k];
+      t.h1 = s.hi1[k];
+      t.l2 = s.lo2[k];
+      t.h2 = s.hi2[k];
+      t.f = s.first[k];
+      t.cat = s.category[k];
+      t.msk = s.mask[k];
+      t.partner_kinds = partner_kinds(BroadKind(s.kind[k]));
+      // perf: candidates in chunks of kChunk with a branch-free test; a chunk may run into
+      // the strip's sentinels, which fail it. Sorted keys: once the chunk's last key is past
+      // hi, so is every later one.
+      for (std::size_t j = k + 1; j < stop; j += kChunk) {
+        bool more;
+        const uint32_t hits = chunk_hits(t, j, more);
+        used += emit_pairs(hits, body[k], body + j, buffer + used);
+        if (used > kBuffer) {
+          out.insert(out.end(), buffer, buffer + used);
+          used = 0;
+        }
+        if (!more) break;
+      }
+    }
+    k = std::max<std::size_t>(k, strip_begin[strip + 1]);
+  }
+  out.insert(out.end(), buffer, buffer + used);
+}
+
+ELAN_ISA_END
+}  // namespace elan::detail
