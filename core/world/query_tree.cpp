@@ -40,6 +40,7 @@ void query_tree_update(WorldState& s, uint32_t index) {
   QueryTree& q = s.query;
   if (q.tree.item_count() < s.bodies.size()) q.tree.resize_items(s.bodies.size());
   const Shape& shape = s.shapes[s.bodies.shape[index]];
+  q.max_radius = std::max(q.max_radius, shape.bounding_radius);
   Vec3 lo, hi;
   shape_bounds(shape, s.bodies.position(index), s.bodies.orientation(index), lo, hi);
   if (shape.type != ShapeType::Plane) drop_plane(q.planes, index);
