@@ -32,6 +32,47 @@ void DynamicTree::clear() {
   std::fill(leaf_of_.begin(), leaf_of_.end(), kNull);
   root_ = kNull;
   free_ = kNull;
+  inserts_since_compact_ = 0;
+}
+
+void DynamicTree::compact() {
+  inserts_since_compact_ = 0;
+  std::vector<uint32_t>& new_index = scratch_index_;
+  new_index.assign(nodes_.size(), kNull);
+  std::vector<Node>& out = scratch_nodes_;
+  out.clear();
+  if (root_ != kNull) {
+    // Preorder, child1 first: a subtree's nodes are contiguous, each node before its children.
+    uint32_t stack[kMaxStack];
+    int top = 0;
+    stack[top++] = root_;
+    while (top > 0) {
+      const uint32_t n = stack[--top];
+      new_index[n] = uint32_t(out.size());
+      out.push_back(nodes_[n]);
+      if (!nodes_[n].leaf()) {
+        stack[top++] = nodes_[n].child2;
+        stack[top++] = nodes_[n].child1;
+      }
+    }
+  }
+  for (Node& n : out) {
+    if (n.parent != kNull) n.parent = new_index[n.parent];
+    if (!n.leaf()) {
+      n.child1 = new_index[n.child1];
+      n.child2 = new_index[n.child2];
+    }
+  }
+  for (uint32_t& l : leaf_of_) {
+    if (l != kNull) l = new_index[l];
+  }
+  root_ = out.empty() ? kNull : 0;
+  free_ = kNull;
+  nodes_.swap(out);
+  wide_.resize(nodes_.size());
+  for (uint32_t n = 0; n < nodes_.size(); ++n) {
+    if (!nodes_[n].leaf()) sync(n);
+  }
 }
 
 void DynamicTree::resize_items(std::size_t count) {
@@ -58,6 +99,7 @@ void DynamicTree::free_node(uint32_t n) {
 }
 
 void DynamicTree::insert(uint32_t item, const TreeBox& fat) {
+  ++inserts_since_compact_;
   const uint32_t leaf = allocate();
   nodes_[leaf].box = fat;
   nodes_[leaf].child2 = item;
@@ -93,6 +135,7 @@ bool DynamicTree::update(uint32_t item, const TreeBox& box, Real margin) {
     return true;
   }
   // Keep the node, move it: remove from its place, re-insert with the new box.
+  ++inserts_since_compact_;
   remove_leaf(leaf);
   nodes_[leaf].box = fat;
   nodes_[leaf].parent = kNull;

@@ -55,6 +55,26 @@ TEST(DynamicTree, StaysValidAndQueriesMatchTestingEveryItem) {
         in[i] = true;
       }
     }
+    if (round % 4 == 3) {
+      // Compaction renumbers the nodes only: the walk meets the leaves in the same order.
+      const auto order = [&] {
+        std::vector<uint32_t> seen;
+        for (int k = 0; k < 8; ++k) {
+          const Vec3 o(-30, Real(k * 5 - 20), Real(k % 3 * 6 - 6));
+          const Vec3 d = Vec3(1, Real(0.1 * (k % 2)), Real(-0.05 * k)).normalized();
+          tree.ray(o, d, 80, [&](uint32_t i, Real l) {
+            seen.push_back(i);
+            return l;
+          });
+        }
+        return seen;
+      };
+      const std::vector<uint32_t> before = order();
+      tree.compact();
+      EXPECT_EQ(tree.inserts_since_compact(), 0u);
+      ASSERT_EQ(order(), before) << "round " << round;
+      ASSERT_GT(before.size(), 10u);
+    }
     ASSERT_TRUE(tree.valid()) << "round " << round;
     for (uint32_t i = 0; i < n; ++i) {
       ASSERT_EQ(tree.contains(i), bool(in[i]));
