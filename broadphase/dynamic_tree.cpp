@@ -5,6 +5,11 @@
 
 #include <algorithm>
 
+#if defined(__SSE2__) && !defined(ELAN_DOUBLE)
+#include <emmintrin.h>
+#define ELAN_TREE_SSE2 1
+#endif
+
 namespace elan::detail {
 
 namespace {
@@ -23,9 +28,51 @@ Real half_area(const TreeBox& b) {
 
 void DynamicTree::clear() {
   nodes_.clear();
+  wide_.clear();
   std::fill(leaf_of_.begin(), leaf_of_.end(), kNull);
   root_ = kNull;
   free_ = kNull;
+  inserts_since_compact_ = 0;
+}
+
+void DynamicTree::compact() {
+  inserts_since_compact_ = 0;
+  std::vector<uint32_t>& new_index = scratch_index_;
+  new_index.assign(nodes_.size(), kNull);
+  std::vector<Node>& out = scratch_nodes_;
+  out.clear();
+  if (root_ != kNull) {
+    // Preorder, child1 first: a subtree's nodes are contiguous, each node before its children.
+    uint32_t stack[kMaxStack];
+    int top = 0;
+    stack[top++] = root_;
+    while (top > 0) {
+      const uint32_t n = stack[--top];
+      new_index[n] = uint32_t(out.size());
+      out.push_back(nodes_[n]);
+      if (!nodes_[n].leaf()) {
+        stack[top++] = nodes_[n].child2;
+        stack[top++] = nodes_[n].child1;
+      }
+    }
+  }
+  for (Node& n : out) {
+    if (n.parent != kNull) n.parent = new_index[n.parent];
+    if (!n.leaf()) {
+      n.child1 = new_index[n.child1];
+      n.child2 = new_index[n.child2];
+    }
+  }
+  for (uint32_t& l : leaf_of_) {
+    if (l != kNull) l = new_index[l];
+  }
+  root_ = out.empty() ? kNull : 0;
+  free_ = kNull;
+  nodes_.swap(out);
+  wide_.resize(nodes_.size());
+  for (uint32_t n = 0; n < nodes_.size(); ++n) {
+    if (!nodes_[n].leaf()) sync(n);
+  }
 }
 
 void DynamicTree::resize_items(std::size_t count) {
@@ -36,6 +83,7 @@ uint32_t DynamicTree::allocate() {
   if (free_ == kNull) {
     // perf: the pool only grows; a freed node is reused before the vector grows again.
     nodes_.emplace_back();
+    wide_.emplace_back();
     return uint32_t(nodes_.size() - 1);
   }
   const uint32_t n = free_;
@@ -51,6 +99,7 @@ void DynamicTree::free_node(uint32_t n) {
 }
 
 void DynamicTree::insert(uint32_t item, const TreeBox& fat) {
+  ++inserts_since_compact_;
   const uint32_t leaf = allocate();
   nodes_[leaf].box = fat;
   nodes_[leaf].child2 = item;
@@ -71,7 +120,9 @@ void DynamicTree::rename(uint32_t from, uint32_t to) {
   const uint32_t leaf = leaf_of_[from];
   leaf_of_[to] = leaf;
   leaf_of_[from] = kNull;
-  if (leaf != kNull) nodes_[leaf].child2 = to;
+  if (leaf == kNull) return;
+  nodes_[leaf].child2 = to;
+  if (nodes_[leaf].parent != kNull) sync(nodes_[leaf].parent);
 }
 
 bool DynamicTree::update(uint32_t item, const TreeBox& box, Real margin) {
@@ -84,6 +135,7 @@ bool DynamicTree::update(uint32_t item, const TreeBox& box, Real margin) {
     return true;
   }
   // Keep the node, move it: remove from its place, re-insert with the new box.
+  ++inserts_since_compact_;
   remove_leaf(leaf);
   nodes_[leaf].box = fat;
   nodes_[leaf].parent = kNull;
@@ -171,6 +223,7 @@ void DynamicTree::refit_up(uint32_t n) {
     const Node& c2 = nodes_[node.child2];
     node.height = 1 + std::max(c1.height, c2.height);
     node.box = merged(c1.box, c2.box);
+    sync(n);
     n = node.parent;
   }
 }
@@ -212,9 +265,61 @@ uint32_t DynamicTree::balance(uint32_t ia) {
   (void)iother;
   a.box = merged(nodes_[a.child1].box, nodes_[a.child2].box);
   a.height = 1 + std::max(nodes_[a.child1].height, nodes_[a.child2].height);
+  sync(ia);  // `up` is synced by refit_up, which carries on from it
   up.box = merged(a.box, nodes_[stay].box);
   up.height = 1 + std::max(a.height, nodes_[stay].height);
   return iup;
+}
+
+void DynamicTree::sync(uint32_t n) {
+  const Node& node = nodes_[n];
+  WideNode& w = wide_[n];
+  const uint32_t c[2] = {node.child1, node.child2};
+  for (int k = 0; k < 2; ++k) {
+    const Node& child = nodes_[c[k]];
+    for (int a = 0; a < 3; ++a) {
+      w.box[a][0][k] = child.box.lo[a];
+      w.box[a][1][k] = child.box.hi[a];
+    }
+    w.child[k] = child.leaf() ? (child.child2 | kLeafBit) : c[k];
+  }
+}
+
+// The two children's slab tests of enters_grown at once. Lanes 0, 1: the near faces of child 1
+// and 2, entry t = (near - o_near) * inv; lanes 2, 3: the far faces, with inv negated, so that
+// one running max gives the latest entry in lanes 0, 1 and minus the earliest exit in lanes 2, 3.
+// maxps returns its second operand when either is NaN, so a NaN slab leaves the bound as it was,
+// as the scalar test does.
+int DynamicTree::children_entered(const WideNode& w, const SweepLanes& r, Real max_t, Real t[2]) {
+#if defined(ELAN_TREE_SSE2)
+  __m128 acc = _mm_setr_ps(0, 0, -max_t, -max_t);
+  for (int a = 0; a < 3; ++a) {
+    const int n = r.near_hi[a];
+    __m128 v = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(w.box[a][n])));
+    v = _mm_loadh_pi(v, reinterpret_cast<const __m64*>(w.box[a][1 - n]));
+    const __m128 o = _mm_setr_ps(r.o_near[a], r.o_near[a], r.o_far[a], r.o_far[a]);
+    const __m128 inv = _mm_setr_ps(r.inv[a], r.inv[a], -r.inv[a], -r.inv[a]);
+    acc = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(v, o), inv), acc);
+  }
+  const __m128 exit = _mm_xor_ps(_mm_movehl_ps(acc, acc), _mm_set1_ps(-0.0f));
+  _mm_storel_pi(reinterpret_cast<__m64*>(t), acc);
+  return _mm_movemask_ps(_mm_cmple_ps(acc, exit)) & 3;
+#else
+  int hit = 0;
+  for (int k = 0; k < 2; ++k) {
+    Real t0 = 0, t1 = max_t;
+    for (int a = 0; a < 3; ++a) {
+      const int n = r.near_hi[a];
+      const Real s0 = (w.box[a][n][k] - r.o_near[a]) * r.inv[a];
+      const Real s1 = (w.box[a][1 - n][k] - r.o_far[a]) * r.inv[a];
+      t0 = s0 > t0 ? s0 : t0;
+      t1 = s1 < t1 ? s1 : t1;
+    }
+    t[k] = t0;
+    if (t0 <= t1) hit |= 1 << k;
+  }
+  return hit;
+#endif
 }
 
 bool DynamicTree::valid() const {
@@ -236,6 +341,16 @@ bool DynamicTree::valid() const {
       if (c1.parent != i || c2.parent != i) return false;
       if (n.height != 1 + std::max(c1.height, c2.height)) return false;
       if (!n.box.contains(c1.box) || !n.box.contains(c2.box)) return false;
+      // The walk's copy of the children.
+      const WideNode& w = wide_[i];
+      const uint32_t c[2] = {n.child1, n.child2};
+      for (int k = 0; k < 2; ++k) {
+        const Node& ck = nodes_[c[k]];
+        if (w.child[k] != (ck.leaf() ? (ck.child2 | kLeafBit) : c[k])) return false;
+        for (int a = 0; a < 3; ++a) {
+          if (w.box[a][0][k] != ck.box.lo[a] || w.box[a][1][k] != ck.box.hi[a]) return false;
+        }
+      }
       if (top + 2 > kMaxStack) return false;
       stack[top++] = n.child1;
       stack[top++] = n.child2;

@@ -6,12 +6,14 @@
 // changed leaf is refitted and balanced by one AVL-style rotation (which, as Box2D's, bounds the
 // skew of a node's children without making the tree strictly AVL).
 //
-// Items are dense indices (the world's body indices): leaf_of(item) is its node or kNull.
+// Items are dense indices below 2^31 (the world's body indices): leaf_of(item) is its node or
+// kNull.
 // Queries are const and may run from any number of threads at once; updates are serial.
 // determinism: the tree's shape depends only on the sequence of inserts and removals, which
 // callers make in index order, never on a thread count.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -48,6 +50,14 @@ class DynamicTree {
     bool leaf() const { return child1 == kNull; }
   };
 
+  // A child reference of a WideNode: an internal node's index, or a leaf's item with this bit.
+  static constexpr uint32_t kLeafBit = 0x80000000u;
+  // An internal node's children side by side for the ray walk: box[axis][0 lo, 1 hi][child].
+  struct alignas(64) WideNode {
+    Real box[3][2][2] = {};
+    uint32_t child[2] = {kNull, kNull};
+  };
+
   void clear();
   // Grows or shrinks the item range to [0, count); items past it must have been removed.
   void resize_items(std::size_t count);
@@ -64,12 +74,24 @@ class DynamicTree {
   // Ensures item's leaf contains `box`; otherwise re-inserts it with `box` grown by `margin`.
   // Returns true when the leaf changed.
   bool update(uint32_t item, const TreeBox& box, Real margin);
+  // Renumbers the nodes in depth-first order (child1 first) and drops the free list: the tree's
+  // shape, its child order and every query's order stay as they were; only where the nodes lie
+  // in memory changes. perf: a walk then reads a subtree from neighbouring cache lines and pages
+  // instead of from wherever its nodes were allocated. Allocates only when the tree has grown
+  // past its largest compacted size.
+  void compact();
+  // Inserts and re-inserts since the last compact() (clear() resets it): the caller's measure of
+  // how scattered the nodes have become.
+  std::size_t inserts_since_compact() const { return inserts_since_compact_; }
+  std::size_t node_count() const { return nodes_.size(); }
 
   uint32_t root() const { return root_; }
   const Node& node(uint32_t n) const { return nodes_[n]; }
   int height() const { return root_ == kNull ? 0 : nodes_[root_].height; }
   std::size_t heap_bytes() const {
-    return nodes_.capacity() * sizeof(Node) + leaf_of_.capacity() * sizeof(uint32_t);
+    return (nodes_.capacity() + scratch_nodes_.capacity()) * sizeof(Node) +
+           wide_.capacity() * sizeof(WideNode) +
+           (leaf_of_.capacity() + scratch_index_.capacity()) * sizeof(uint32_t);
   }
 
   // Calls f(item) for every leaf whose box overlaps `box`, depth first, child1 first; f returns
@@ -93,66 +115,85 @@ class DynamicTree {
   }
 
   // Ray o + t d, t in [0, max_t]: calls f(item, max_t) for every leaf whose box the ray enters
-  // before the current max_t, nearer child first; f returns the new max_t (< 0 stops).
+  // at some t <= the current max_t, nearer child first; f returns the new max_t (< 0 stops). A
+  // leaf entered exactly at max_t is still visited (closest-hit ties are the caller's to break).
   template <class F>
   void ray(const Vec3& o, const Vec3& d, Real max_t, F&& f) const {
+    sweep(o, d, Vec3::Zero(), max_t, std::forward<F>(f));
+  }
+
+  // The same for a box of half extents `grow` (>= 0) whose centre moves along o + t d: every
+  // node's box is grown by `grow` (the Minkowski sum of the node's box and the moving box), so a
+  // leaf is visited when the moving box meets it at some t <= the current max_t.
+  //
+  // perf: the walk reads one 64-byte WideNode per internal node (both children's boxes and
+  // indices, a leaf's item inline), tests the two children in one 4-lane slab test, descends the
+  // nearer child without a stack round trip and prunes every entry past the best so far.
+  template <class F>
+  void sweep(const Vec3& o, const Vec3& d, const Vec3& grow, Real max_t, F&& f) const {
     if (root_ == kNull) return;
-    const Vec3 inv = d.cwiseInverse();
+    const SweepLanes lanes(o, d, grow);
+    const Node& root = nodes_[root_];
+    Real t_root;
+    if (!enters_grown(root.box, lanes, max_t, t_root)) return;
+    if (root.leaf()) {
+      f(root.child2, max_t);
+      return;
+    }
     struct Entry {
-      uint32_t node;
+      uint32_t child;
       Real t;
     };
     Entry stack[kMaxStack];
     int top = 0;
-    Real t_root;
-    if (!enters(nodes_[root_].box, o, inv, max_t, t_root)) return;
-    stack[top++] = {root_, t_root};
-    while (top > 0) {
-      const Entry e = stack[--top];
-      if (e.t > max_t) continue;
-      const Node& n = nodes_[e.node];
-      if (n.leaf()) {
-        max_t = f(n.child2, max_t);
-        if (max_t < 0) return;
-        continue;
+    uint32_t node = root_;
+    for (;;) {
+      Real t[2];
+      const int hit = children_entered(wide_[node], lanes, max_t, t);
+      uint32_t next = kNull;
+      if (hit == 3) {
+        const int nearer = t[1] < t[0] ? 1 : 0;
+        stack[top++] = {wide_[node].child[1 - nearer], t[1 - nearer]};
+        next = wide_[node].child[nearer];
+      } else if (hit != 0) {
+        next = wide_[node].child[hit - 1];
       }
-      Real t1, t2;
-      const bool h1 = enters(nodes_[n.child1].box, o, inv, max_t, t1);
-      const bool h2 = enters(nodes_[n.child2].box, o, inv, max_t, t2);
-      // The nearer child is pushed last, so it is visited first.
-      if (h1 && h2) {
-        if (t1 <= t2) {
-          stack[top++] = {n.child2, t2};
-          stack[top++] = {n.child1, t1};
-        } else {
-          stack[top++] = {n.child1, t1};
-          stack[top++] = {n.child2, t2};
+      // Leaves are visited where they are met; the walk resumes from the stack, skipping what
+      // lies past the (possibly shortened) max_t.
+      for (;;) {
+        if (next == kNull) {
+          if (top == 0) return;
+          const Entry e = stack[--top];
+          if (e.t > max_t) continue;
+          next = e.child;
         }
-      } else if (h1) {
-        stack[top++] = {n.child1, t1};
-      } else if (h2) {
-        stack[top++] = {n.child2, t2};
+        if ((next & kLeafBit) == 0) break;
+        max_t = f(next & ~kLeafBit, max_t);
+        if (max_t < 0) return;
+        next = kNull;
       }
+      node = next;
     }
   }
 
-  // Slab test: whether the ray enters `b` at some t in [0, max_t], and where (t_enter). An axis
-  // the ray runs parallel to gives +-inf slabs, and 0 * inf = NaN fails the comparisons only when
-  // the origin lies exactly on a slab face; the box is closed, so that case counts as inside.
+  // Slab test: whether the ray o + t d (inv = 1 / d per axis, +-inf on an axis the ray runs
+  // parallel to) enters the closed box `b` at some t in [0, max_t], and where (t_enter). The
+  // near face of each axis is chosen by the sign of inv; 0 * inf = NaN (the origin on a face of
+  // a slab the ray runs along) leaves that bound unconstrained: the box is closed, so the ray is
+  // in the slab. The reference of the walk's 4-lane test (same operations, same bits).
   static bool enters(const TreeBox& b, const Vec3& o, const Vec3& inv, Real max_t, Real& t_enter) {
     Real t0 = 0, t1 = max_t;
     for (int a = 0; a < 3; ++a) {
-      Real s0 = (b.lo[a] - o[a]) * inv[a], s1 = (b.hi[a] - o[a]) * inv[a];
-      if (s0 != s0) s0 = -std::numeric_limits<Real>::infinity();
-      if (s1 != s1) s1 = std::numeric_limits<Real>::infinity();
-      if (s0 > s1) std::swap(s0, s1);
+      const bool neg = std::signbit(inv[a]);
+      const Real s0 = ((neg ? b.hi[a] : b.lo[a]) - o[a]) * inv[a];
+      const Real s1 = ((neg ? b.lo[a] : b.hi[a]) - o[a]) * inv[a];
+      // A NaN compares false: the bound stays.
       t0 = s0 > t0 ? s0 : t0;
       t1 = s1 < t1 ? s1 : t1;
     }
     t_enter = t0;
     return t0 <= t1;
   }
-
   // Checks the parent links, heights, the boxes' nesting and leaf_of: the tests' oracle.
   bool valid() const;
 
@@ -164,8 +205,50 @@ class DynamicTree {
   uint32_t balance(uint32_t a);
   void refit_up(uint32_t n);
 
+  // Per-ray constants of the 4-lane slab test: for each axis, the origin of the near-face lanes
+  // (o + s g, s the sign of d, g the growth) and of the far-face lanes (o - s g), 1 / d, and
+  // which of lo / hi is the near face.
+  struct SweepLanes {
+    SweepLanes(const Vec3& o, const Vec3& d, const Vec3& grow) {
+      for (int a = 0; a < 3; ++a) {
+        inv[a] = Real(1) / d[a];
+        near_hi[a] = std::signbit(inv[a]) ? 1 : 0;
+        const Real sg = near_hi[a] ? -grow[a] : grow[a];
+        o_near[a] = o[a] + sg;
+        o_far[a] = o[a] - sg;
+      }
+    }
+    Real o_near[3], o_far[3], inv[3];
+    int near_hi[3];
+  };
+
+  // enters() for the box grown by the sweep's growth.
+  static bool enters_grown(const TreeBox& b, const SweepLanes& r, Real max_t, Real& t_enter) {
+    Real t0 = 0, t1 = max_t;
+    for (int a = 0; a < 3; ++a) {
+      const Real n = r.near_hi[a] ? b.hi[a] : b.lo[a], f = r.near_hi[a] ? b.lo[a] : b.hi[a];
+      const Real s0 = (n - r.o_near[a]) * r.inv[a], s1 = (f - r.o_far[a]) * r.inv[a];
+      t0 = s0 > t0 ? s0 : t0;
+      t1 = s1 < t1 ? s1 : t1;
+    }
+    t_enter = t0;
+    return t0 <= t1;
+  }
+
+  // Both children of an internal node against the sweep: bit k of the result is set when child
+  // k is entered within [0, max_t], t[k] its entry.
+  static int children_entered(const WideNode& w, const SweepLanes& r, Real max_t, Real t[2]);
+
+  void sync(uint32_t n);
+
   std::vector<Node> nodes_;
+  // wide_[n]: internal node n's children as the walk reads them (sync keeps it in step).
+  std::vector<WideNode> wide_;
   std::vector<uint32_t> leaf_of_;
+  // compact()'s buffers, kept so that a warm compaction does not allocate.
+  std::vector<Node> scratch_nodes_;
+  std::vector<uint32_t> scratch_index_;
+  std::size_t inserts_since_compact_ = 0;
   uint32_t root_ = kNull;
   uint32_t free_ = kNull;
 };

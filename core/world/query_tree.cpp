@@ -13,6 +13,16 @@ namespace {
 
 constexpr std::size_t kQueryGrain = 256;
 
+// Compacts the tree (DynamicTree::compact) once the inserts since the last compaction reach half
+// its nodes: O(nodes) every nodes / 2 inserts, O(1) amortised per insert, and a tree of more than
+// a few thousand nodes (past the caches' reach, where the layout matters) walked in memory order.
+// determinism: the trigger counts inserts, a function of the world's history alone; the
+// compaction changes no query's answer or order.
+void maybe_compact(QueryTree& q) {
+  const std::size_t nodes = q.tree.node_count();
+  if (nodes >= 4096 && q.tree.inserts_since_compact() * 2 >= nodes) q.tree.compact();
+}
+
 void drop_plane(std::vector<uint32_t>& planes, uint32_t index) {
   const auto it = std::lower_bound(planes.begin(), planes.end(), index);
   if (it != planes.end() && *it == index) planes.erase(it);
@@ -40,10 +50,12 @@ void query_tree_update(WorldState& s, uint32_t index) {
   QueryTree& q = s.query;
   if (q.tree.item_count() < s.bodies.size()) q.tree.resize_items(s.bodies.size());
   const Shape& shape = s.shapes[s.bodies.shape[index]];
+  q.max_radius = std::max(q.max_radius, shape.bounding_radius);
   Vec3 lo, hi;
   shape_bounds(shape, s.bodies.position(index), s.bodies.orientation(index), lo, hi);
   if (shape.type != ShapeType::Plane) drop_plane(q.planes, index);
   place(q, index, shape.type == ShapeType::Plane, lo, hi);
+  maybe_compact(q);
 }
 
 void query_tree_remove(WorldState& s, uint32_t index) {
@@ -108,6 +120,7 @@ void query_tree_after_step(WorldState& s) {
     const Vec3 hi(q.boxes.max_x[i], q.boxes.max_y[i], q.boxes.max_z[i]);
     place(q, uint32_t(i), false, lo, hi);
   }
+  maybe_compact(q);
 }
 
 }  // namespace elan::detail

@@ -28,6 +28,9 @@ struct QueryTree {
   // (non-finite poses) are in neither list: no query finds them.
   std::vector<uint32_t> planes;
   BoundsColumns boxes;  // the end-of-step pass's exact boxes (kept: no allocation when warm)
+  // m: the largest bounding radius of any shape a body has had since the world was made (only
+  // grows): the shape cast's bound on the advancement's tolerance (shape_cast.cpp).
+  Real max_radius = 0;
 };
 
 // THE per-body hook: body `index`'s pose, shape or existence changed between steps (a new body:

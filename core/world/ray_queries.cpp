@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/base/parallel.hpp"
+#include "core/base/tbb_hand_off.hpp"
 #include "core/world/queries.hpp"
 #include "core/world/query_common.hpp"
 #include "core/world/thread_pool_access.hpp"
@@ -122,7 +123,12 @@ void World::cast_rays(std::span<const Ray> rays, std::span<RayHit> hits,
                       "ray " + std::to_string(k) + ": max_distance must be >= 0");
   }
   detail::WorldState& s = *state_;
+  // threading: the arena runs `run` on this thread when it has a free slot, else on a worker
+  // while this thread waits; the hand-off tells TSan of the second case's ordering (the hits
+  // written there are read by the caller after execute returns).
+  detail::TbbHandOff hand_off;
   const auto run = [&] {
+    detail::TbbHandOff::TaskScope task(hand_off);
     detail::for_blocks(rays.size(), detail::kRayGrain,
                        [&](std::size_t b, std::size_t e, std::size_t) {
                          for (std::size_t k = b; k < e; ++k) {
@@ -136,7 +142,9 @@ void World::cast_rays(std::span<const Ray> rays, std::span<RayHit> hits,
   };
   // The world's pool: arena.execute may be called from any thread, and the workers only read.
   tbb::task_arena& arena = s.def.thread_pool ? detail::arena_of(*s.def.thread_pool) : *s.arena;
+  hand_off.spawn(run);
   arena.execute(run);
+  hand_off.joined();
 }
 
 }  // namespace elan

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Shape casts of the public API: the bodies whose leaf meets the swept box of the cast shape are
-// each swept against exactly (narrowphase/shape_cast.hpp); the first, or all sorted.
+// each swept against exactly (narrowphase/shape_cast.hpp); the first (the tree walked along the
+// cast, nearest first, pruned by the best fraction so far), or all sorted.
 #include <algorithm>
 
 #include "core/world/query_common.hpp"
@@ -44,6 +45,38 @@ void for_each_cast_hit(const WorldState& s, const Shape& shape, const Transform&
   });
 }
 
+void first_cast_hit(const WorldState& s, const Shape& shape, const Transform& x,
+                    const Vec3& translation, const QueryFilter& filter, uint32_t& best,
+                    CastContact& best_c) {
+  best = UINT32_MAX;
+  // The earliest; equal fractions go to the lower index, so the order of the walk (the planes,
+  // then the tree nearest first) does not change the answer.
+  const auto consider = [&](uint32_t i) {
+    CastContact c;
+    if (!passes(s, filter, i)) return;
+    if (!shape_cast(shape, x, translation, body_shape(s, i), body_pose(s, i), 0, c)) return;
+    if (best == UINT32_MAX || c.fraction < best_c.fraction ||
+        (c.fraction == best_c.fraction && i < best)) {
+      best = i;
+      best_c = c;
+    }
+  };
+  for (const uint32_t p : s.query.planes) consider(p);
+  // The cast shape's box, its centre moving along the translation (fraction t in [0, 1]) against
+  // the leaves grown by its half extents. The advancement reports a body at a fraction where the
+  // two are still up to 1e-4 of the larger bounding radius apart (toi.cpp): grown by that too, a
+  // body reported at fraction f has its leaf entered at or before f, so pruning the entries past
+  // the best fraction so far drops no body that could beat it.
+  Vec3 lo, hi;
+  shape_bounds(shape, x.position, x.rotation, lo, hi);
+  const Real slack = Real(1e-4) * std::max(shape.bounding_radius, s.query.max_radius);
+  const Vec3 grow = (hi - lo) / 2 + Vec3::Constant(slack);
+  s.query.tree.sweep((lo + hi) / 2, translation, grow, 1, [&](uint32_t i, Real limit) {
+    consider(i);
+    return best == UINT32_MAX ? limit : best_c.fraction;
+  });
+}
+
 }  // namespace elan::detail
 
 namespace elan {
@@ -63,17 +96,9 @@ std::optional<ShapeCastHit> World::cast_shape(ShapeId shape, const Transform& st
   const detail::Shape& a = detail::query_shape(s, shape);
   const Transform x = detail::principal_pose(a, start);
   check_translation(translation);
-  uint32_t best = UINT32_MAX;
+  uint32_t best;
   detail::CastContact best_c;
-  // The earliest; equal fractions go to the lower index (the walk is in the tree's order).
-  detail::for_each_cast_hit(s, a, x, translation, 0, filter,
-                            [&](uint32_t i, const detail::CastContact& c) {
-                              if (best == UINT32_MAX || c.fraction < best_c.fraction ||
-                                  (c.fraction == best_c.fraction && i < best)) {
-                                best = i;
-                                best_c = c;
-                              }
-                            });
+  detail::first_cast_hit(s, a, x, translation, filter, best, best_c);
   if (best == UINT32_MAX) return std::nullopt;
   return ShapeCastHit{detail::body_id_at(s, best), best_c.fraction, best_c.point, best_c.normal};
 }

@@ -23,5 +23,12 @@ void swept_box(const Shape& shape, const Transform& x, const Vec3& translation, 
 void for_each_cast_hit(const WorldState& s, const Shape& shape, const Transform& x,
                        const Vec3& translation, Real target, const QueryFilter& filter,
                        const std::function<void(uint32_t, const CastContact&)>& f);
+// The first body passing the filter that the shape, swept from x along `translation`, touches
+// (shape_cast with target 0): the least fraction, ties to the lower index; best = UINT32_MAX when
+// none. The same answer as the earliest of for_each_cast_hit's, found by walking the query tree
+// along the cast and skipping every node entered after the best fraction so far.
+void first_cast_hit(const WorldState& s, const Shape& shape, const Transform& x,
+                    const Vec3& translation, const QueryFilter& filter, uint32_t& best,
+                    CastContact& best_c);
 
 }  // namespace elan::detail

@@ -55,6 +55,26 @@ TEST(DynamicTree, StaysValidAndQueriesMatchTestingEveryItem) {
         in[i] = true;
       }
     }
+    if (round % 4 == 3) {
+      // Compaction renumbers the nodes only: the walk meets the leaves in the same order.
+      const auto order = [&] {
+        std::vector<uint32_t> seen;
+        for (int k = 0; k < 8; ++k) {
+          const Vec3 o(-30, Real(k * 5 - 20), Real(k % 3 * 6 - 6));
+          const Vec3 d = Vec3(1, Real(0.1 * (k % 2)), Real(-0.05 * k)).normalized();
+          tree.ray(o, d, 80, [&](uint32_t i, Real l) {
+            seen.push_back(i);
+            return l;
+          });
+        }
+        return seen;
+      };
+      const std::vector<uint32_t> before = order();
+      tree.compact();
+      EXPECT_EQ(tree.inserts_since_compact(), 0u);
+      ASSERT_EQ(order(), before) << "round " << round;
+      ASSERT_GT(before.size(), 10u);
+    }
     ASSERT_TRUE(tree.valid()) << "round " << round;
     for (uint32_t i = 0; i < n; ++i) {
       ASSERT_EQ(tree.contains(i), bool(in[i]));
@@ -95,6 +115,55 @@ TEST(DynamicTree, StaysValidAndQueriesMatchTestingEveryItem) {
       }
       std::sort(got.begin(), got.end());
       ASSERT_EQ(got, want);
+    }
+    // Sweeps of a box: every leaf met by the moving box (the leaf grown by its half extents,
+    // entered by its centre's ray), each once; rounding may differ from growing the leaf first
+    // by an ulp of the coordinates, so the reference grows by 1e-4 less (must be found) and
+    // 1e-4 more (may be found).
+    for (int q = 0; q < 20; ++q) {
+      const Vec3 o(uniform(rng, -25, 25), uniform(rng, -25, 25), uniform(rng, -25, 25));
+      Vec3 d(uniform(rng, -10, 10), uniform(rng, -10, 10), uniform(rng, -10, 10));
+      if (q % 5 == 0) d.x() = 0;
+      const Vec3 g(uniform(rng, 0.1f, 2), uniform(rng, 0.1f, 2), uniform(rng, 0.1f, 2));
+      std::vector<uint32_t> got;
+      tree.sweep(o, d, g, 1, [&](uint32_t i, Real limit) {
+        got.push_back(i);
+        return limit;
+      });
+      std::sort(got.begin(), got.end());
+      ASSERT_TRUE(std::adjacent_find(got.begin(), got.end()) == got.end());
+      const Vec3 e = Vec3::Constant(1e-4f);
+      for (uint32_t i = 0; i < n; ++i) {
+        if (!in[i]) continue;
+        const TreeBox& f = tree.fat_box(i);
+        Real t;
+        const bool must =
+            DynamicTree::enters({f.lo - g + e, f.hi + g - e}, o, d.cwiseInverse(), 1, t);
+        const bool may =
+            DynamicTree::enters({f.lo - g - e, f.hi + g + e}, o, d.cwiseInverse(), 1, t);
+        const bool found = std::binary_search(got.begin(), got.end(), i);
+        ASSERT_TRUE(found || !must) << "item " << i;
+        ASSERT_TRUE(may || !found) << "item " << i;
+      }
+    }
+    // Pruning: a walk that lowers its limit to each leaf's entry sees, first, the least entry.
+    for (int q = 0; q < 20; ++q) {
+      const Vec3 o(uniform(rng, -25, 25), uniform(rng, -25, 25), uniform(rng, -25, 25));
+      const Vec3 d =
+          Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)).normalized();
+      const Vec3 inv = d.cwiseInverse();
+      Real best = 60, want = 60;
+      tree.ray(o, d, 60, [&](uint32_t i, Real limit) {
+        Real t;
+        EXPECT_TRUE(DynamicTree::enters(tree.fat_box(i), o, inv, limit, t));
+        best = std::min(best, t);
+        return best;
+      });
+      for (uint32_t i = 0; i < n; ++i) {
+        Real t;
+        if (in[i] && DynamicTree::enters(tree.fat_box(i), o, inv, 60, t)) want = std::min(want, t);
+      }
+      ASSERT_EQ(best, want);
     }
   }
   // Rename: the world's swap-remove.
