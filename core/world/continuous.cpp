@@ -60,7 +60,7 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
                              std::span<const SeparatedPair> separated,
                              std::span<const uint64_t> apart_keys,
                              std::span<const ManifoldHead> touching, const DynamicTree& statics,
-                             SolverState& st) {
+                             SolverState& st, Real dt) {
   const std::size_t count = st.packets.size();
   std::vector<uint8_t>& fast = st.fast;
   fast.assign(count, 0);
@@ -142,6 +142,8 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
   for (std::size_t k = 1; k < count; ++k) {
     if (!fast[k]) continue;
     const uint32_t mover = st.masses[k].body;
+    const Vec3 off_path = st.packets[k].dp - bodies.linear_velocity(mover) * dt;
+    if (off_path.cwiseAbs().maxCoeff() <= kPathSlack) continue;
     const Shape& ms = shapes[bodies.shape[mover]];
     const Transform m0 = start_pose(bodies, mover);
     const Transform m1 = end_pose(bodies, mover, st.packets[k]);

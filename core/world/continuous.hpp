@@ -36,16 +36,20 @@ namespace elan::detail {
 
 // Time of impact stops this far from touching (Box2D's linear slop), m.
 inline constexpr Real kContinuousTarget = Real(0.005);
+// m: under the broadphase's box margin (kBoundsMargin, 1.25 cm), so the path stays in the box.
+inline constexpr Real kPathSlack = Real(0.01);
 
 // Returns the number of bodies moved back.
 // The candidates are the pairs the collide stage found apart this step (`separated` and
 // `apart_keys`, see collide_pairs): a pair with a manifold (`touching`) had its speculative
 // contact in the solve. `statics`: the query tree (query_tree.hpp), whose static leaves are
-// current during a step.
+// current during a step. perf: a fast body whose displacement is within kPathSlack of its start
+// velocity times `dt` took the path its broadphase box was swept along, so every static body
+// along it was a pair already: it is not looked up (a pile's falling bodies).
 std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> shapes,
                              std::span<const SeparatedPair> separated,
                              std::span<const uint64_t> apart_keys,
                              std::span<const ManifoldHead> touching, const DynamicTree& statics,
-                             SolverState& state);
+                             SolverState& state, Real dt = 0);
 
 }  // namespace elan::detail

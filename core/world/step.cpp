@@ -126,7 +126,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   const auto t5 = clock::now();
   const ApartCandidates candidates = w.contacts.continuous_candidates();
   solve_continuous(bodies, w.shapes, candidates.separated, candidates.keys, w.contacts.heads(),
-                   w.query.tree, w.solver);
+                   w.query.tree, w.solver, dt);
   const auto t6 = clock::now();
   const uint32_t status = kernels.finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   if (!w.broken_joints.empty()) remove_broken_joints(w);
