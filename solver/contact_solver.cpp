@@ -173,6 +173,7 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   // B's centre from A's: the bodies are where the collide stage left them, so B's arm to a
   // point is A's arm minus this.
   WideVec3 b_from_a;
+  uint32_t shared_lanes = 0;  // lanes whose cap is shared: a spawn's overlap, never a load
   if (!ctx.push_cap.empty()) {
     // The push-out share (color_contacts.hpp): the cap over the larger deep count of the two.
     Wide& cap = ctx.push_cap[bundle].v;
@@ -181,7 +182,10 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
       const ManifoldHead& m = manifolds[lanes[l]];
       const uint32_t n =
           std::max(ctx.deep_count[packet_of[m.body_a]], ctx.deep_count[packet_of[m.body_b]]);
-      if (n > kPushShare) cap[l] = ctx.max_push_velocity * (Real(kPushShare) / Real(n));
+      if (n > kPushShare) {
+        cap[l] = ctx.max_push_velocity * (Real(kPushShare) / Real(n));
+        shared_lanes |= 1u << l;
+      }
     }
   }
   for (int l = 0; l < kLanes; ++l) {
@@ -290,7 +294,10 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     loaded = loaded & face;
     uint32_t bits = 0;
     for (int l = 0; l < lane_count; ++l) bits |= loaded[l] ? 1u << l : 0u;
-    ctx.loaded_lanes[bundle] = bits;
+    // Not the lanes of bodies spawned into many others (the push-out share): their rows are
+    // pressed in deep, but what they carry is the push-out, not a load, and the cliques they
+    // form (deep_pairs.hpp) would make dense systems of hundreds of rows.
+    ctx.loaded_lanes[bundle] = bits & ~shared_lanes;
   }
 }
 

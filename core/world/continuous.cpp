@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "broadphase/bounds.hpp"
 #include "core/base/compound.hpp"
 #include "core/base/fixed_math.hpp"
 #include "core/base/pair_key.hpp"
@@ -57,7 +58,9 @@ Transform end_pose(const BodyStore& bodies, uint32_t i, const SolverBody& p) {
 
 std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> shapes,
                              std::span<const SeparatedPair> separated,
-                             std::span<const uint64_t> apart_keys, SolverState& st) {
+                             std::span<const uint64_t> apart_keys,
+                             std::span<const ManifoldHead> touching, const DynamicTree& statics,
+                             SolverState& st, Real dt) {
   const std::size_t count = st.packets.size();
   std::vector<uint8_t>& fast = st.fast;
   fast.assign(count, 0);
@@ -123,6 +126,43 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
   for (const std::vector<Impact>& list : st.impacts) {
     for (const Impact& hit : list) earliest[hit.packet] = std::min(earliest[hit.packet], hit.t);
   }
+  // The static bodies along the path each fast body took (continuous.hpp), fast body by fast
+  // body in packet order; a static body that was a pair of it this step (in one of the three
+  // key-sorted lists) was handled above or in the solve.
+  auto was_pair = [&](uint64_t key) {
+    const auto head =
+        std::lower_bound(touching.begin(), touching.end(), key,
+                         [](const ManifoldHead& m, uint64_t k) { return m.key() < k; });
+    if (head != touching.end() && head->key() == key) return true;
+    const auto sep = std::lower_bound(separated.begin(), separated.end(), key,
+                                      [](const SeparatedPair& p, uint64_t k) { return p.key < k; });
+    if (sep != separated.end() && sep->key == key) return true;
+    return std::binary_search(apart_keys.begin(), apart_keys.end(), key);
+  };
+  for (std::size_t k = 1; k < count; ++k) {
+    if (!fast[k]) continue;
+    const uint32_t mover = st.masses[k].body;
+    const Vec3 off_path = st.packets[k].dp - bodies.linear_velocity(mover) * dt;
+    if (off_path.cwiseAbs().maxCoeff() <= kPathSlack) continue;
+    const Shape& ms = shapes[bodies.shape[mover]];
+    const Transform m0 = start_pose(bodies, mover);
+    const Transform m1 = end_pose(bodies, mover, st.packets[k]);
+    Vec3 lo0, hi0, lo1, hi1;
+    shape_bounds(ms, m0.position, m0.rotation, lo0, hi0);
+    shape_bounds(ms, m1.position, m1.rotation, lo1, hi1);
+    const Vec3 grow = Vec3::Constant(kContinuousTarget);
+    const TreeBox path{lo0.cwiseMin(lo1) - grow, hi0.cwiseMax(hi1) + grow};
+    statics.query(path, [&](uint32_t other) {
+      if (other == mover || !bodies.is_static(other)) return true;
+      const Shape& os = shapes[bodies.shape[other]];
+      if (os.type == ShapeType::Plane || was_pair(make_pair_key(mover, other))) return true;
+      const Transform o0 = start_pose(bodies, other);
+      const Real t = time_of_impact(ms, m0, m1, os, o0, o0, kContinuousTarget);
+      if (t > 0 && t < 1) earliest[k] = std::min(earliest[k], t);
+      return true;
+    });
+  }
+
   std::size_t moved = 0;
   for (std::size_t k = 1; k < count; ++k) {
     const Real t = earliest[k];

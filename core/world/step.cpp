@@ -8,6 +8,7 @@
 #include <chrono>
 
 #include "core/world/continuous.hpp"
+#include "core/world/deep_pairs.hpp"
 #include "core/world/events.hpp"
 #include "core/world/joints.hpp"
 #include "core/world/sensors.hpp"
@@ -16,6 +17,7 @@
 #include "solver/color_contacts.hpp"
 #include "solver/joint_solver.hpp"
 #include "solver/packets.hpp"
+#include "solver/push_out_cap.hpp"
 #include "solver/solver_kernels.hpp"
 
 namespace elan::detail {
@@ -64,6 +66,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   drop_jointed_pairs(w);
   // Sensors take no part in contact response: their pairs go to the overlap test after the step.
   divert_sensor_pairs(w);
+  // Bodies spawned into each other: a bounded number of deep pairs each (deep_pairs.hpp).
+  limit_deep_pairs(w);
   const auto t2 = clock::now();
 
   CollideSettings collide_settings;
@@ -110,6 +114,9 @@ uint32_t run_step(WorldState& w, Real dt) {
   prepare_joints(bodies, w.joints, w.slot_index, solve_settings, w.solver);
   const auto t4 = clock::now();
   kernels.solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
+  // The push-out of bodies spawned into each other moves them; it is not kept as velocity
+  // beyond the cap (push_out_cap.hpp).
+  cap_push_out_velocity(bodies, w.shapes, solve_settings, w.solver);
   release_bundles(w.solver);
   if (!w.joints.empty()) {
     store_joint_impulses(w.solver.joint_rows, make_joint_context(solve_settings, w.solver),
@@ -119,7 +126,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   compute_contact_events(w, bodies);
   const auto t5 = clock::now();
   const ApartCandidates candidates = w.contacts.continuous_candidates();
-  solve_continuous(bodies, w.shapes, candidates.separated, candidates.keys, w.solver);
+  solve_continuous(bodies, w.shapes, candidates.separated, candidates.keys, w.contacts.heads(),
+                   w.query.tree, w.solver, dt);
   const auto t6 = clock::now();
   const uint32_t status = kernels.finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   if (!w.broken_joints.empty()) remove_broken_joints(w);

@@ -64,6 +64,11 @@ struct WorldState {
   // which leaves the continuous stage its candidates in the separation list. memory: no pair list
   // is kept between steps.
   ScratchVector<uint64_t> pairs;
+  // The deep-pair budget's flags (per pair, per block of pairs) and its count per body
+  // (limit_deep_pairs, deep_pairs.hpp); kept so that a warm step does not allocate.
+  std::vector<uint8_t> deep_pair;
+  std::vector<uint8_t> deep_block;
+  std::vector<uint32_t> deep_kept;
 
   // Contacts kept from step to step (manifolds, the body pair cache, the separation cache),
   // which the collide stage rewrites, with what it changed (the contact events).

@@ -4,6 +4,7 @@
 // and pairs the collide stage did not find apart (the contact solver had them) are left alone.
 #include <gtest/gtest.h>
 
+#include "broadphase/bounds.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/world/continuous.hpp"
 #include "narrowphase_test_shapes.hpp"
@@ -18,6 +19,10 @@ struct Scene {
   std::vector<Shape> shapes = {test::box(Real(0.02), 1, 1), test::sphere(Real(0.05))};
   // The collide stage's apart keys (a sphere and a box: a closed form), each pair found apart.
   std::vector<uint64_t> apart;
+  // The collide stage's manifolds (none unless a test adds one) and the query tree (empty unless
+  // a test files the wall in it: a static body off the pair list).
+  std::vector<ManifoldHead> touching;
+  DynamicTree tree;
   SolverState state;
 
   explicit Scene(std::initializer_list<Vec3> motions) {
@@ -48,7 +53,7 @@ struct Scene {
 TEST(Continuous, FastBodyStopsAtTheWall) {
   // 2 m in one step: the sphere ends past the wall, its step's line crosses it.
   Scene s({Vec3(2, 0, 0)});
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.state), 1u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.touching, s.tree, s.state), 1u);
   // Surface within the target of the face x = 0.98 (time of impact stops within a quarter of the
   // target of it, on the near side).
   const Real front = s.state.packets[1].dp.x() + Real(0.05);
@@ -61,7 +66,7 @@ TEST(Continuous, SlowBodiesAndMissesAreLeftAlone) {
   // 2 cm is less than half the radius: not fast. 2 m along y is fast but runs 0.93 m from the
   // wall's face.
   Scene s({Vec3(Real(0.02), 0, 0), Vec3(0, 2, 0)});
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.state), 0u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.touching, s.tree, s.state), 0u);
   EXPECT_EQ(s.state.packets[1].dp, Vec3(Real(0.02), 0, 0));
   EXPECT_EQ(s.state.packets[2].dp, Vec3(0, 2, 0));
 }
@@ -70,7 +75,7 @@ TEST(Continuous, BodyAlreadyTouchingIsLeftToItsContact) {
   // Sliding fast along the wall's face, 2 mm from it: the contact solver owns this one.
   Scene s({Vec3(0, 0, 1)});
   s.bodies.set_position(1, Vec3(Real(0.98) - Real(0.05) - Real(0.002), 0, 0));
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.state), 0u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.touching, s.tree, s.state), 0u);
   EXPECT_EQ(s.state.packets[1].dp, Vec3(0, 0, 1));
 }
 
@@ -78,9 +83,9 @@ TEST(Continuous, OnlyPairsFoundApartAreCandidates) {
   // The same crossing, but the collide stage gave the pair a manifold (so no separation entry):
   // its speculative contact was in the solve.
   Scene s({Vec3(2, 0, 0)});
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, {}, s.state), 0u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, {}, s.touching, s.tree, s.state), 0u);
   EXPECT_EQ(s.state.packets[1].dp, Vec3(2, 0, 0));
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.state), 1u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, s.apart, s.touching, s.tree, s.state), 1u);
 }
 
 // A pair kept with its separation (the collide stage's other list of pairs found apart).
@@ -97,7 +102,7 @@ SeparatedPair separated_entry(const Scene& s, uint32_t a, uint32_t b) {
 TEST(Continuous, PairsOfBothListsAreCandidates) {
   Scene s({Vec3(2, 0, 0)});
   const std::vector<SeparatedPair> separated = {separated_entry(s, 0, 1)};
-  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, separated, {}, s.state), 1u);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, separated, {}, s.touching, s.tree, s.state), 1u);
 }
 
 TEST(Continuous, EarliestWallWins) {
@@ -110,9 +115,41 @@ TEST(Continuous, EarliestWallWins) {
   s.state.packet_of.push_back(0);
   // The near wall's pair in the other list: the earliest impact over both lists.
   const std::vector<SeparatedPair> separated = {separated_entry(s, 1, near_wall)};
-  ASSERT_EQ(solve_continuous(s.bodies, s.shapes, separated, s.apart, s.state), 1u);
+  ASSERT_EQ(solve_continuous(s.bodies, s.shapes, separated, s.apart, s.touching, s.tree, s.state),
+            1u);
   EXPECT_NEAR(s.state.packets[1].dp.x() + Real(0.05), Real(0.48) - kContinuousTarget,
               Real(0.25) * kContinuousTarget);
+}
+
+// Files body i's box in the scene's query tree, as the world keeps its static bodies there.
+void file_in_tree(Scene& s, uint32_t i) {
+  Vec3 lo, hi;
+  const Shape& shape = s.shapes[s.bodies.shape[i]];
+  shape_bounds(shape, s.bodies.position(i), s.bodies.orientation(i), lo, hi);
+  if (s.tree.item_count() < s.bodies.size()) s.tree.resize_items(s.bodies.size());
+  s.tree.insert(i, {lo, hi});
+}
+
+TEST(Continuous, StaticBodyOffThePairListIsFoundAlongThePathTaken) {
+  // The wall was no pair of the sphere this step (its box was swept along another velocity), but
+  // the step's motion crosses it: the query tree finds it, and the sphere stops at its face.
+  Scene s({Vec3(2, 0, 0)});
+  file_in_tree(s, 0);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, {}, s.touching, s.tree, s.state), 1u);
+  const Real front = s.state.packets[1].dp.x() + Real(0.05);
+  EXPECT_LE(front, Real(0.98) - Real(0.75) * kContinuousTarget);
+  EXPECT_GE(front, Real(0.98) - Real(1.25) * kContinuousTarget);
+}
+
+TEST(Continuous, StaticBodyWithAManifoldIsLeftToTheSolveThoughInTheTree) {
+  Scene s({Vec3(2, 0, 0)});
+  file_in_tree(s, 0);
+  ManifoldHead head;
+  head.body_a = 0;
+  head.body_b = 1;
+  s.touching.push_back(head);
+  EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, {}, s.touching, s.tree, s.state), 0u);
+  EXPECT_EQ(s.state.packets[1].dp, Vec3(2, 0, 0));
 }
 
 }  // namespace world_continuous_test

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// cap_push_out_velocity(): see push_out_cap.hpp.
+#include "solver/push_out_cap.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/contact_solver.hpp"
+
+namespace elan::detail {
+
+std::size_t cap_push_out_velocity(const BodyStore& bodies, std::span<const Shape> shapes,
+                                  const SolveSettings& settings, SolverState& st) {
+  if (st.most_deep <= kPushShare) return 0;
+  const Real cap = settings.max_push_velocity;
+  const uint32_t end = st.half_start[kHalves];  // the written (awake dynamic) packets
+  std::size_t slowed = 0;
+  for (uint32_t k = 1; k < end; ++k) {
+    if (st.deep_count[k] == 0) continue;
+    SolverBody& p = st.packets[k];
+    const uint32_t i = st.masses[k].body;
+    const Vec3 g = bodies.traits_of(i).gravity_scale * settings.gravity;
+    const Real v0 = std::max(bodies.linear_velocity(i).norm(), cap);
+    const Real v_max = std::sqrt(v0 * v0 + std::max(Real(2) * g.dot(p.dp), Real(0)));
+    const Real v = p.v.norm();
+    bool slow = false;
+    if (v > v_max) {
+      p.v *= v_max / v;
+      slow = true;
+    }
+    const Real radius = shapes[bodies.shape[i]].bounding_radius;
+    const Real w0 = bodies.angular_velocity(i).norm();
+    const Real w_max = radius > 0 ? std::max(w0, cap / radius) : w0;
+    const Real w = p.w.norm();
+    if (w > w_max && w_max > 0) {
+      p.w *= w_max / w;
+      slow = true;
+    }
+    slowed += slow ? 1 : 0;
+  }
+  return slowed;
+}
+
+}  // namespace elan::detail
