@@ -33,8 +33,8 @@ enum DebugDrawFlags : uint32_t {
   /// kSolverCutColor (drawn whether or not kDrawContacts is set, and instead of its colour).
   /// Bodies the last step did not split (asleep, static, kinematic, or any body before the
   /// first step) keep their colour by motion type; over kDrawIslands, a split body takes its
-  /// half's colour. It shows what the last step computed until the bodies are next stepped,
-  /// created or destroyed.
+  /// half's colour. Only read from the last step, never recomputed: between a body's creation
+  /// or destruction and the next step, the halves shown are absent or stale.
   kDrawSolverHalves = 1u << 6,
 };
 
