@@ -110,7 +110,8 @@ const char* const kViewUsage =
     "                       'elan replay')\n"
     "  --body K             recording: select and highlight body K (e.g. the divergence's body)\n"
     "  --draw LIST          overlays, comma-separated: bounds, contacts (points and normals),\n"
-    "                       joints, islands (bodies coloured by island), com (centres of mass)\n"
+    "                       joints, islands (bodies coloured by island), com (centres of mass),\n"
+    "                       halves (bodies coloured by the solver's half, the cut's contacts)\n"
     "\n"
     "Off screen (--screenshot, --frames) one JSON line is printed on stdout: the state hash and\n"
     "step count, as 'elan run' prints them. A display is needed (under no X server, run it under\n"
@@ -393,11 +394,9 @@ void parse_camera(const std::string& option, const std::string& text, double (&o
 
 // "bounds,contacts,..." -> elan::DebugDrawFlags; each name once at most.
 uint32_t parse_overlays(const std::string& option, const std::string& text) {
-  static constexpr std::pair<const char*, uint32_t> kNames[] = {{"bounds", kDrawBounds},
-                                                                {"contacts", kDrawContacts},
-                                                                {"joints", kDrawJoints},
-                                                                {"islands", kDrawIslands},
-                                                                {"com", kDrawCentersOfMass}};
+  static constexpr std::pair<const char*, uint32_t> kNames[] = {
+      {"bounds", kDrawBounds},   {"contacts", kDrawContacts}, {"joints", kDrawJoints},
+      {"islands", kDrawIslands}, {"com", kDrawCentersOfMass}, {"halves", kDrawSolverHalves}};
   uint32_t flags = 0;
   std::size_t start = 0;
   for (;;) {
@@ -410,7 +409,7 @@ uint32_t parse_overlays(const std::string& option, const std::string& text) {
     }
     if (bit == 0) {
       throw UsageError(option + ": unknown overlay '" + name +
-                       "' (bounds, contacts, joints, islands, com)");
+                       "' (bounds, contacts, joints, islands, com, halves)");
     }
     if (flags & bit) throw UsageError(option + ": '" + name + "' given twice");
     flags |= bit;

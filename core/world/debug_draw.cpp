@@ -57,9 +57,33 @@ DebugColor island_color(uint32_t root) {
   }
 }
 
-DebugColor body_color(const detail::WorldState& s, std::size_t i, bool by_island) {
+// The half the last step's solver put body i in (0 or 1), or -1 when it was not split: not an
+// awake dynamic body now, or not one of the last step's packets of the halves (split_halves:
+// packet_of[i] in [half_start[0], half_start[kHalves]), and that packet's body is i; the packets
+// are kept between steps, so nothing is recomputed or stored here).
+int solver_half(const detail::WorldState& s, std::size_t i) {
   const detail::BodyStore& b = s.bodies;
-  if (b.traits_of(i).flags & detail::kTraitSensor) return kSensorColor;
+  const detail::SolverState& st = s.solver;
+  if (!b.is_dynamic(i) || !b.is_awake(i) || st.packet_of.size() != b.size()) return -1;
+  const uint32_t p = st.packet_of[i];
+  if (p < st.half_start[0] || p >= st.half_start[detail::kHalves] || p >= st.masses.size() ||
+      st.masses[p].body != i) {
+    return -1;
+  }
+  return p >= st.half_start[1] ? 1 : 0;
+}
+
+DebugColor body_color(const detail::WorldState& s, std::size_t i, bool by_island, bool by_half) {
+  const detail::BodyStore& b = s.bodies;
+  const bool sensor = (b.traits_of(i).flags & detail::kTraitSensor) != 0;
+  if (by_half) {
+    if (const int h = solver_half(s, i); h >= 0) {
+      DebugColor c = kSolverHalfColors[h];
+      if (sensor) c.a = kSensorColor.a;
+      return c;
+    }
+  }
+  if (sensor) return kSensorColor;
   const auto& root = s.solver.island_scratch.root;
   if (by_island && root.size() == b.size() && root[i] != UINT32_MAX) return island_color(root[i]);
   switch (MotionType(b.motion[i])) {
@@ -92,11 +116,12 @@ void World::debug_draw(DebugDrawer& drawer, uint32_t what) const {
     const Quat q = b.orientation(i);
     const Vec3 p = b.position(i);
     const bool sleeping = b.is_dynamic(i) && !b.is_awake(i);
-    if (what & (kDrawShapes | kDrawIslands)) {
+    if (what & (kDrawShapes | kDrawIslands | kDrawSolverHalves)) {
       // The shape frame: the store keeps the principal frame, x_principal = frame^-1 x_shape.
       const Quat user_q = (q * shape.frame_rotation.conjugate()).normalized();
       const Transform pose{p - user_q * shape.frame_position, user_q};
-      DebugColor color = body_color(s, i, (what & kDrawIslands) != 0);
+      DebugColor color =
+          body_color(s, i, (what & kDrawIslands) != 0, (what & kDrawSolverHalves) != 0);
       if (sleeping) color = dimmed(color);
       const BodyId id = detail::body_id_at(s, uint32_t(i));
       drawer.draw_shape(id, shape_def(ShapeId{b.shape[i]}), pose, color, !sleeping);
@@ -107,17 +132,26 @@ void World::debug_draw(DebugDrawer& drawer, uint32_t what) const {
     }
     if ((what & kDrawCentersOfMass) && b.is_dynamic(i)) drawer.draw_point(p, 6, kCenterColor);
   }
-  if (what & kDrawContacts) {
+  if (what & (kDrawContacts | kDrawSolverHalves)) {
     const auto heads = s.contacts.heads();
     const auto tails = s.contacts.tails();
     std::size_t cursor = 0;
     for (const detail::ManifoldHead& h : heads) {
+      // A contact of the cut joins two dynamic bodies of different halves (color_contacts'
+      // kCutGroup).
+      bool cut = false;
+      if (what & kDrawSolverHalves) {
+        const int half_a = solver_half(s, h.body_a), half_b = solver_half(s, h.body_b);
+        cut = half_a >= 0 && half_b >= 0 && half_a != half_b;
+      }
+      if (!cut && !(what & kDrawContacts)) continue;
       const detail::Manifold m = detail::whole_at(h, tails, cursor);
       const Vec3 centre_a = b.position(m.body_a);
       for (uint32_t k = 0; k < m.point_count; ++k) {
         const Vec3 point = centre_a + m.points[k].anchor_a;
-        drawer.draw_point(point, 5, kContactColor);
-        drawer.draw_line(point, point + kNormalLength * m.normal, kNormalColor);
+        drawer.draw_point(point, 5, cut ? kSolverCutColor : kContactColor);
+        drawer.draw_line(point, point + kNormalLength * m.normal,
+                         cut ? kSolverCutColor : kNormalColor);
       }
     }
   }

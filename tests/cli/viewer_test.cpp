@@ -16,6 +16,7 @@
 
 #include "cli/cli_runner.hpp"
 #include "determinism/recorded_program.hpp"
+#include "elan/debug_draw.hpp"
 #include "stb/stb_image.h"
 
 namespace elan::test {
@@ -359,6 +360,49 @@ TEST_F(ViewerTest, IslandsAreColouredOneColourEach) {
   EXPECT_LT(distance(b_low, b_high), 0.02);
   // The library's island colours of roots 1 and 3 are blue and magenta: far apart.
   EXPECT_GT(distance(a_low, b_low), 0.1);
+}
+
+// --draw halves: four boxes in a row along x, 1 m apart but for a 3.5 m gap on the right. The
+// solver cuts them at the median of their centres along x (the axis of largest spread): the
+// first two by x (-3, -2) in half 0, the other two (-1, 2.5) in half 1, so the cut lies between
+// -2 and -1, not in the gap nor at the origin.
+TEST_F(ViewerTest, SolverHalvesAreColouredOneColourEachSplitAtTheMedian) {
+  std::string bodies =
+      R"({"bodies": [{"motion": "static", "shape": {"type": "box", "half_extents": [10, 1, 10]},)"
+      R"( "position": [0, -1, 0]})";
+  for (const char* x : {"-3", "-2", "-1", "2.5"}) {
+    bodies += R"(, {"shape": {"type": "box", "half_extents": [0.4, 0.4, 0.4]}, "position": [)" +
+              std::string(x) + ", 0.4, 0]}";
+  }
+  const std::string s = scene("row", bodies + "]}");
+  const std::vector<std::string> view = {"--size",          "320x240", "--camera",
+                                         "0,0.4,9,0,0.4,0", "--steps", "5"};
+  std::vector<std::string> with_halves = view;
+  with_halves.insert(with_halves.end(), {"--draw", "halves"});
+  const Image img = shot(s, png("halves"), with_halves);
+  ASSERT_EQ(img.width, 320);
+  const Projection cam{320, 240, 0.4, 9};
+  // The centres of the boxes' front faces (z = 0.4).
+  const auto at = [&](double x) { return chroma(img, cam.px(x, 0.4), cam.py(0.4, 0.4)); };
+  const auto a = at(-3), b = at(-2), c = at(-1), d = at(2.5);
+  // One colour per half, up to 8-bit rounding.
+  EXPECT_LT(distance(a, b), 0.02);
+  EXPECT_LT(distance(c, d), 0.02);
+  EXPECT_GT(distance(b, c), 0.1);
+  // Each the library's colour of its half: nearer its own half's chromaticity than the other's.
+  const auto chroma_of = [](DebugColor k) {
+    const double t = double(k.r) + k.g + k.b;
+    return std::array<double, 3>{k.r / t, k.g / t, k.b / t};
+  };
+  const auto half0 = chroma_of(kSolverHalfColors[0]), half1 = chroma_of(kSolverHalfColors[1]);
+  EXPECT_LT(distance(a, half0), distance(a, half1));
+  EXPECT_LT(distance(d, half1), distance(d, half0));
+  // Without the overlay the boxes keep their own colours: the picture differs on every box.
+  const Image plain = shot(s, png("halves_off"), view);
+  for (const double x : {-3.0, -2.0, -1.0, 2.5}) {
+    const int px = int(cam.px(x, 0.4)), py = int(cam.py(0.4, 0.4));
+    EXPECT_NE(std::memcmp(img.at(px, py), plain.at(px, py), 3), 0) << x;
+  }
 }
 
 // Sensors are drawn translucent green: a body behind a sensor shows through it, where a solid

@@ -26,12 +26,21 @@ struct Recorder : DebugDrawer {
   std::vector<ShapeCall> shapes;
   std::vector<Aabb> boxes;
   std::size_t lines = 0, points = 0;
+  std::vector<Vec3> point_at;
+  std::vector<DebugColor> point_colors, line_colors;
   void draw_shape(BodyId body, const ShapeDef& shape, const Transform& pose, DebugColor color,
                   bool awake) override {
     shapes.push_back({body, shape, pose, color, awake});
   }
-  void draw_line(const Vec3&, const Vec3&, DebugColor) override { ++lines; }
-  void draw_point(const Vec3&, float, DebugColor) override { ++points; }
+  void draw_line(const Vec3&, const Vec3&, DebugColor c) override {
+    ++lines;
+    line_colors.push_back(c);
+  }
+  void draw_point(const Vec3& p, float, DebugColor c) override {
+    ++points;
+    point_at.push_back(p);
+    point_colors.push_back(c);
+  }
   void draw_box(const Aabb& box, DebugColor) override { boxes.push_back(box); }
 };
 
@@ -167,6 +176,108 @@ TEST(DebugDraw, FlagsSelectBoundsContactsJointsAndCentres) {
   // The jointed sphere and hull are one island: one colour.
   EXPECT_EQ(islands.shapes[1].color.r, islands.shapes[3].color.r);
   EXPECT_EQ(islands.shapes[1].color.g, islands.shapes[3].color.g);
+}
+
+bool same(DebugColor a, DebugColor b) {
+  return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a;
+}
+
+// Unit boxes resting on a static ground slab (top face at y = 0), centred at x = xs[k], z = 0.
+World boxes_on_ground(const std::vector<Real>& xs) {
+  World w;
+  add(w, box(w, Vec3(20, 1, 5)), Vec3(0, -1, 0), MotionType::Static);
+  const ShapeId cube = box(w, Vec3::Constant(Real(0.5)));
+  for (const Real x : xs) add(w, cube, Vec3(x, Real(0.5), 0));
+  return w;
+}
+
+TEST(DebugDraw, SolverHalvesColourEachHalfAndTheCutsContacts) {
+  // Two rows of three touching boxes, 8 m apart along x: the centres spread 10 m along x and
+  // (nearly) nothing along y and z, so the cut is at the median along x, in the gap: the first
+  // n / 2 = 3 bodies by x (the left row) are half 0, the right row half 1. No contact joins them.
+  World w = boxes_on_ground({-6, -5, -4, 4, 5, 6});
+  Recorder before;
+  w.debug_draw(before, kDrawSolverHalves);
+  Recorder plain_before;
+  w.debug_draw(plain_before, kDrawShapes);
+  ASSERT_EQ(before.shapes.size(), 7u);
+  // Before any step nothing was split: every body keeps its colour by motion type.
+  for (std::size_t k = 0; k < 7; ++k) {
+    EXPECT_TRUE(same(before.shapes[k].color, plain_before.shapes[k].color)) << k;
+  }
+  EXPECT_EQ(before.points, 0u);
+
+  w.step(kDt);
+  Recorder halves;
+  w.debug_draw(halves, kDrawSolverHalves);
+  ASSERT_EQ(halves.shapes.size(), 7u);
+  const DebugColor left = halves.shapes[1].color, right = halves.shapes[4].color;
+  EXPECT_TRUE(same(left, kSolverHalfColors[0]));
+  EXPECT_TRUE(same(right, kSolverHalfColors[1]));
+  EXPECT_FALSE(same(left, right));
+  for (std::size_t k = 1; k <= 3; ++k) {
+    EXPECT_TRUE(same(halves.shapes[k].color, left)) << k;
+    EXPECT_TRUE(same(halves.shapes[k + 3].color, right)) << k + 3;
+  }
+  // The static ground is not split: its colour by motion type.
+  Recorder plain;
+  w.debug_draw(plain, kDrawShapes);
+  EXPECT_TRUE(same(halves.shapes[0].color, plain.shapes[0].color));
+  // The rows touch the ground only (not split): no contact of the cut.
+  EXPECT_EQ(halves.points, 0u);
+  EXPECT_EQ(halves.lines, 0u);
+
+  // The flag off: colours by motion type, one for every dynamic box, none a half's.
+  for (std::size_t k = 2; k <= 6; ++k) {
+    EXPECT_TRUE(same(plain.shapes[k].color, plain.shapes[1].color)) << k;
+  }
+  EXPECT_FALSE(same(plain.shapes[1].color, plain.shapes[0].color));
+  EXPECT_FALSE(same(plain.shapes[1].color, kSolverHalfColors[0]));
+  EXPECT_FALSE(same(plain.shapes[1].color, kSolverHalfColors[1]));
+}
+
+TEST(DebugDraw, SolverHalvesDrawTheContactsAcrossTheCutInTheirOwnColour) {
+  // One row of four touching boxes: the median along x falls between the second and the third,
+  // whose shared face (x = 0) holds the only contacts joining the two halves.
+  World w = boxes_on_ground({Real(-1.5), Real(-0.5), Real(0.5), Real(1.5)});
+  w.step(kDt);
+  std::size_t all_points = 0, cut_points = 0;
+  const BodyId b1 = w.body_at(2), b2 = w.body_at(3);
+  for (std::size_t k = 0; k < w.contact_count(); ++k) {
+    const ContactView c = w.contact(k);
+    all_points += std::size_t(c.point_count);
+    const bool cut = (c.body_a == b1 && c.body_b == b2) || (c.body_a == b2 && c.body_b == b1);
+    if (cut) cut_points += std::size_t(c.point_count);
+  }
+  ASSERT_GT(cut_points, 0u) << "the middle boxes touch";
+
+  Recorder halves;
+  w.debug_draw(halves, kDrawSolverHalves);
+  EXPECT_TRUE(same(halves.shapes[2].color, kSolverHalfColors[0]));
+  EXPECT_TRUE(same(halves.shapes[3].color, kSolverHalfColors[1]));
+  // Only the cut's contacts, each a point and its normal in the cut's colour, on the face x = 0
+  // (within the solver's softness: a few mm).
+  ASSERT_EQ(halves.points, cut_points);
+  EXPECT_EQ(halves.lines, cut_points);
+  for (std::size_t k = 0; k < halves.points; ++k) {
+    EXPECT_TRUE(same(halves.point_colors[k], kSolverCutColor));
+    EXPECT_TRUE(same(halves.line_colors[k], kSolverCutColor));
+    EXPECT_NEAR(halves.point_at[k].x(), 0, Real(0.01));
+  }
+
+  // With the contacts drawn as well: every contact once, the cut's in the cut's colour.
+  Recorder both;
+  w.debug_draw(both, kDrawSolverHalves | kDrawContacts);
+  ASSERT_EQ(both.points, all_points);
+  std::size_t in_cut_colour = 0;
+  for (const DebugColor c : both.point_colors) in_cut_colour += same(c, kSolverCutColor);
+  EXPECT_EQ(in_cut_colour, cut_points);
+
+  // Without the flag no point takes the cut's colour.
+  Recorder contacts;
+  w.debug_draw(contacts, kDrawContacts);
+  ASSERT_EQ(contacts.points, all_points);
+  for (const DebugColor c : contacts.point_colors) EXPECT_FALSE(same(c, kSolverCutColor));
 }
 
 TEST(BodyGetters, ShapeDefRebuildsTheSameShape) {

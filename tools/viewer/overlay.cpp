@@ -51,7 +51,8 @@ class LineDrawer final : public DebugDrawer {
 }  // namespace
 
 void draw_overlays(const World& world, uint32_t flags, Renderer& renderer) {
-  // Shapes, island colours included, are the scene view's.
+  // Shapes, island and half colours included, are the scene view's; kDrawSolverHalves stays for
+  // the contacts of the cut (its shape calls are ignored here).
   flags &= ~uint32_t(kDrawShapes | kDrawIslands);
   if (flags == 0) return;
   LineDrawer drawer(renderer);

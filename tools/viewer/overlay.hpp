@@ -12,8 +12,8 @@
 
 namespace elan::viewer {
 
-/// Adds the overlays `flags` (elan::DebugDrawFlags; kDrawShapes and kDrawIslands are ignored)
-/// to this frame's overlay lines.
+/// Adds the overlays `flags` (elan::DebugDrawFlags; kDrawShapes and kDrawIslands are ignored,
+/// kDrawSolverHalves adds the contacts of the cut) to this frame's overlay lines.
 void draw_overlays(const World& world, uint32_t flags, Renderer& renderer);
 
 }  // namespace elan::viewer

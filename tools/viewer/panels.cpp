@@ -119,6 +119,7 @@ void controls(AppState& app) {
     ImGui::CheckboxFlags("joints (anchors)", &app.overlays, kDrawJoints);
     ImGui::CheckboxFlags("centres of mass", &app.overlays, kDrawCentersOfMass);
     ImGui::CheckboxFlags("islands (colours)", &app.overlays, kDrawIslands);
+    ImGui::CheckboxFlags("solver halves (colours, cut)", &app.overlays, kDrawSolverHalves);
   }
   if (!app.message.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", app.message.c_str());
   ImGui::End();

@@ -168,10 +168,12 @@ void SceneView::update(const Simulation& sim, Renderer& renderer,
   for (std::size_t i = 0; i < n; ++i) {
     if (world.shape(world.body_at(i)) != body_shape_[i]) assign(sim, renderer, i);
   }
-  const bool islands = (overlays & kDrawIslands) != 0;
-  if (islands) {
+  // Islands and the solver's halves: the library's colours (debug_draw's kDrawIslands,
+  // kDrawSolverHalves; a split body takes its half's colour over its island's).
+  const uint32_t by_library = overlays & (kDrawIslands | kDrawSolverHalves);
+  if (by_library) {
     IslandColors collect(island_colors_);
-    world.debug_draw(collect, kDrawIslands);
+    world.debug_draw(collect, by_library);
   }
   for (std::size_t i = 0; i < n; ++i) {
     const BodyId id = world.body_at(i);
@@ -179,7 +181,10 @@ void SceneView::update(const Simulation& sim, Renderer& renderer,
     const Quat q = world.orientation(id);
     const MotionType motion = world.motion_type(id);
     Eigen::Vector4f c = body_color(i, motion, world.is_awake(id));
-    if (islands && motion == MotionType::Dynamic && i < island_colors_.size()) {
+    if (by_library && motion == MotionType::Dynamic && i < island_colors_.size() &&
+        ((overlays & kDrawIslands) || world.is_awake(id))) {
+      // Halves alone: only the awake dynamic bodies were split (the library gives the others
+      // its own colour by motion type; the viewer keeps its palette).
       c = island_colors_[i];
     }
     const bool sensor = world.is_sensor(id);

@@ -31,7 +31,8 @@ class SceneView {
   /// Fills the renderer with this frame's instances and joint lines (meshes are rebuilt when
   /// the simulation's bodies changed). `selected` and `highlighted` are dense body indices.
   /// With kDrawIslands in `overlays`, dynamic bodies take their island's colour (the library's
-  /// debug draw) instead of their own.
+  /// debug draw) instead of their own; with kDrawSolverHalves, awake dynamic bodies take the
+  /// colour of the half the last step's solver put them in.
   /// Without `detail` every body gets the fine tessellation.
   void update(const Simulation& sim, Renderer& renderer, std::optional<std::size_t> selected,
               std::optional<std::size_t> highlighted, uint32_t overlays = 0,

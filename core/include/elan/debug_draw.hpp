@@ -26,7 +26,22 @@ enum DebugDrawFlags : uint32_t {
   kDrawJoints = 1u << 3,    ///< joint anchors and the lines to the bodies
   kDrawIslands = 1u << 4,   ///< shapes coloured by island instead of by motion type
   kDrawCentersOfMass = 1u << 5,
+  /// The last step's split of the solve in two (the simulated bodies cut at the median of their
+  /// centres along the axis of largest spread; each half solved by one thread, then the
+  /// contacts across the cut): every awake dynamic body's shape in the colour of its half
+  /// (kSolverHalfColors), and the contact points of the cut, with their normals, in
+  /// kSolverCutColor (drawn whether or not kDrawContacts is set, and instead of its colour).
+  /// Bodies the last step did not split (asleep, static, kinematic, or any body before the
+  /// first step) keep their colour by motion type; over kDrawIslands, a split body takes its
+  /// half's colour. Only read from the last step, never recomputed: between a body's creation
+  /// or destruction and the next step, the halves shown are absent or stale.
+  kDrawSolverHalves = 1u << 6,
 };
+
+/// kDrawSolverHalves' colours: half 0 (the lower coordinates along the cut's axis) teal, half 1
+/// purple, the contacts across the cut amber.
+inline constexpr DebugColor kSolverHalfColors[2] = {{0.15f, 0.75f, 0.7f, 1}, {0.7f, 0.3f, 0.9f, 1}};
+inline constexpr DebugColor kSolverCutColor{1, 0.75f, 0, 1};
 
 /// The caller's renderer. Calls come from the thread that calls World::debug_draw, in body index
 /// order, then contacts in pair order, then joints in index order.
