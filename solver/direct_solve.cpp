@@ -93,10 +93,11 @@ bool solve_active(const DirectState& ds, DirectScratch& ws, uint32_t base, uint3
   };
   for (std::size_t i = 0; i < n; ++i) {
     const uint32_t ri = ws.active[i];
-    for (std::size_t j = std::size_t(ws.first[i]); j <= i; ++j) {
+    for (std::size_t j = std::size_t(ws.first[i]); j < i; ++j) {
       const uint32_t rj = ws.active[j];
       at(i, j) = entry(ws, ds.rows[base + ri], ds.rows[base + rj], ri, rj);
     }
+    at(i, i) = ws.diagonal[ri];
     at(i, i) *= 1 + kCompliance;
   }
   // Cholesky in the envelope (Jennings): L_ij = (A_ij - sum_k L_ik L_jk) / L_jj over the common
@@ -374,7 +375,7 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
   reserve_for(ws.jac, 12 * rows_max);
   reserve_for(ws.mjac, 12 * rows_max);
   for (std::vector<double>* v :
-       {&ws.target, &ws.lambda, &ws.rhs, &ws.delta, &ws.fixed, &ws.lever}) {
+       {&ws.target, &ws.lambda, &ws.rhs, &ws.delta, &ws.fixed, &ws.lever, &ws.diagonal}) {
     reserve_for(*v, rows_max);
   }
   reserve_for(ws.in_set, rows_max);
@@ -393,7 +394,7 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
     ws.jac.resize(12 * std::size_t(n));
     ws.mjac.resize(12 * std::size_t(n));
     for (std::vector<double>* v :
-         {&ws.target, &ws.lambda, &ws.rhs, &ws.delta, &ws.fixed, &ws.lever}) {
+         {&ws.target, &ws.lambda, &ws.rhs, &ws.delta, &ws.fixed, &ws.lever, &ws.diagonal}) {
       v->resize(n);
     }
     ws.in_set.resize(n);
@@ -501,6 +502,9 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
         ws.in_set[i] = uint8_t(lambda > 0 || closing > open_below);
       }
     }
+    // perf: A's diagonal, read by every active-set round (the compliance term and the
+    // envelope), once a pass: entry() of the same rows, so the same bits.
+    for (uint32_t i = 0; i < n; ++i) ws.diagonal[i] = entry(ws, rows[i], rows[i], i, i);
     // The biased targets of a manifold of three or more points, fitted by one plane: -beta s_k
     // over the points' offsets in the contact plane, least squares. The rows of coplanar points
     // are dependent (three independent rows for four points), and their separations are only
@@ -583,7 +587,7 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
         if (!ws.in_set[i]) continue;
         // The compliance acts on the whole impulse, lambda + delta.
         ws.rhs[i] = ws.target[i] - row_velocity(ws, rows[i], i, ws.trial.data()) -
-                    kCompliance * entry(ws, rows[i], rows[i], i, i) * ws.lambda[i];
+                    kCompliance * ws.diagonal[i] * ws.lambda[i];
         ws.active.push_back(i);
       }
       if (!solve_active(ds, ws, system.row_begin, 0, slots)) break;

@@ -107,6 +107,7 @@ struct DirectSystem {
 struct DirectScratch {
   std::vector<double> jac, mjac;  // 12 a row: per side sigma (d, r x d), and M^-1 of it
   std::vector<double> target, lambda, rhs, delta, fixed, lever;
+  std::vector<double> diagonal;         // A_ii, per row
   std::vector<double> velocity, trial;  // 6 a slot
   std::vector<uint32_t> active;
   std::vector<uint8_t> in_set;
@@ -119,6 +120,7 @@ struct DirectScratch {
     std::size_t sum = 0;
     auto add = [&](const auto& v) { sum += v.capacity() * sizeof(v[0]); };
     add(jac), add(mjac), add(target), add(lambda), add(rhs), add(delta), add(fixed), add(lever);
+    add(diagonal);
     add(velocity), add(trial), add(active), add(in_set), add(first), add(slot_first);
     add(offset), add(factor), add(dependent);
     return sum;
