@@ -143,6 +143,32 @@ bool DynamicTree::update(uint32_t item, const TreeBox& box, Real margin) {
   return true;
 }
 
+bool DynamicTree::update_moving(uint32_t item, const TreeBox& box, Real margin,
+                                const Vec3& displacement) {
+  const Vec3 stretch =
+      displacement.allFinite() ? Vec3(kPredictSteps * displacement) : Vec3(Vec3::Zero());
+  const Vec3 m = Vec3::Constant(margin);
+  const TreeBox fat{box.lo - m + stretch.cwiseMin(Vec3::Zero()),
+                    box.hi + m + stretch.cwiseMax(Vec3::Zero())};
+  const uint32_t leaf = leaf_of_[item];
+  if (leaf != kNull && nodes_[leaf].box.contains(box)) {
+    // The stretch counts on both sides: the trailing side of a steadily moving leaf falls behind
+    // by a displacement a step, and that leaf is not to be re-inserted for it.
+    const Vec3 slack = Vec3::Constant(kShrinkMargins * margin) + stretch.cwiseAbs();
+    if (TreeBox{fat.lo - slack, fat.hi + slack}.contains(nodes_[leaf].box)) return false;
+  }
+  if (leaf == kNull) {
+    insert(item, fat);
+    return true;
+  }
+  ++inserts_since_compact_;
+  remove_leaf(leaf);
+  nodes_[leaf].box = fat;
+  nodes_[leaf].parent = kNull;
+  insert_leaf(leaf);
+  return true;
+}
+
 // Descends from the root towards the sibling whose merge costs least: at each node, the cost of
 // pairing the leaf with the node itself (a new parent of both: 2 * area(node + leaf)) against the
 // cheapest cost down either child (the area every ancestor grows by, plus the child's own).

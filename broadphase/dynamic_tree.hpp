@@ -84,6 +84,14 @@ class DynamicTree {
   // how scattered the nodes have become.
   std::size_t inserts_since_compact() const { return inserts_since_compact_; }
   std::size_t node_count() const { return nodes_.size(); }
+  // As update(), for an item that moves by about `displacement` a step (Box2D's predicted fat
+  // box): a new leaf is also stretched by kPredictSteps times the displacement along the motion,
+  // so a body falling or sliding steadily is re-inserted every few steps rather than every step.
+  // A leaf that still contains `box` but reaches more than kShrinkMargins margins and the stretch
+  // past the leaf it would now get (a body that moved fast and has stopped) is re-inserted tight.
+  bool update_moving(uint32_t item, const TreeBox& box, Real margin, const Vec3& displacement);
+  static constexpr Real kPredictSteps = 4;
+  static constexpr Real kShrinkMargins = 4;
 
   uint32_t root() const { return root_; }
   const Node& node(uint32_t n) const { return nodes_[n]; }

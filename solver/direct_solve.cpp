@@ -50,65 +50,67 @@ double dot6(const double* a, const double* b) {
 }
 
 // The entry A_ij = sum over the sides of i and j on one packet of J_i,s M^-1 J_j,t^T.
-double entry(const DirectState& ds, const DirectRow& ri, const DirectRow& rj, uint32_t i,
+double entry(const DirectScratch& ws, const DirectRow& ri, const DirectRow& rj, uint32_t i,
              uint32_t j) {
   double sum = 0;
   for (int s = 0; s < 2; ++s) {
     if (ri.slot[s] < 0) continue;
     for (int t = 0; t < 2; ++t) {
       if (rj.slot[t] != ri.slot[s]) continue;
-      sum += dot6(&ds.jac[12 * i + 6 * s], &ds.mjac[12 * j + 6 * t]);
+      sum += dot6(&ws.jac[12 * i + 6 * s], &ws.mjac[12 * j + 6 * t]);
     }
   }
   return sum;
 }
 
-// Solves A_SS x = rhs_S for the active rows (ds.active, in row order) of the system whose rows
+// Solves A_SS x = rhs_S for the active rows (ws.active, in row order) of the system whose rows
 // start at `base`: assembles the envelope, factors it by Cholesky (dependent rows get x = 0),
-// and writes ds.delta for the active rows. Returns false when the envelope is too large.
-bool solve_active(DirectState& ds, uint32_t base, uint32_t slot_begin, uint32_t slot_end) {
-  const std::size_t n = ds.active.size();
-  for (uint32_t s = slot_begin; s < slot_end; ++s) ds.slot_first[s] = -1;
-  ds.first.resize(n);
-  ds.offset.resize(n + 1);
-  ds.offset[0] = 0;
+// and writes ws.delta for the active rows. Returns false when the envelope is too large.
+bool solve_active(const DirectState& ds, DirectScratch& ws, uint32_t base, uint32_t slot_begin,
+                  uint32_t slot_end) {
+  const std::size_t n = ws.active.size();
+  for (uint32_t s = slot_begin; s < slot_end; ++s) ws.slot_first[s] = -1;
+  ws.first.resize(n);
+  ws.offset.resize(n + 1);
+  ws.offset[0] = 0;
   for (std::size_t a = 0; a < n; ++a) {
-    const DirectRow& r = ds.rows[base + ds.active[a]];
+    const DirectRow& r = ds.rows[base + ws.active[a]];
     int32_t f = int32_t(a);
     for (int s = 0; s < 2; ++s) {
       if (r.slot[s] < 0) continue;
-      int32_t& first = ds.slot_first[r.slot[s]];
+      int32_t& first = ws.slot_first[r.slot[s]];
       if (first < 0) first = int32_t(a);
       f = std::min(f, first);
     }
-    ds.first[a] = f;
-    ds.offset[a + 1] = ds.offset[a] + (a - std::size_t(f) + 1);
+    ws.first[a] = f;
+    ws.offset[a + 1] = ws.offset[a] + (a - std::size_t(f) + 1);
   }
-  if (ds.offset[n] > kDirectMaxEnvelope) return false;
-  ds.factor.resize(ds.offset[n]);
-  ds.dependent.assign(n, 0);
+  if (ws.offset[n] > kDirectMaxEnvelope) return false;
+  ws.factor.resize(ws.offset[n]);
+  ws.dependent.assign(n, 0);
   auto at = [&](std::size_t i, std::size_t j) -> double& {
-    return ds.factor[ds.offset[i] + (j - std::size_t(ds.first[i]))];
+    return ws.factor[ws.offset[i] + (j - std::size_t(ws.first[i]))];
   };
   for (std::size_t i = 0; i < n; ++i) {
-    const uint32_t ri = ds.active[i];
-    for (std::size_t j = std::size_t(ds.first[i]); j <= i; ++j) {
-      const uint32_t rj = ds.active[j];
-      at(i, j) = entry(ds, ds.rows[base + ri], ds.rows[base + rj], ri, rj);
+    const uint32_t ri = ws.active[i];
+    for (std::size_t j = std::size_t(ws.first[i]); j < i; ++j) {
+      const uint32_t rj = ws.active[j];
+      at(i, j) = entry(ws, ds.rows[base + ri], ds.rows[base + rj], ri, rj);
     }
+    at(i, i) = ws.diagonal[ri];
     at(i, i) *= 1 + kCompliance;
   }
   // Cholesky in the envelope (Jennings): L_ij = (A_ij - sum_k L_ik L_jk) / L_jj over the common
   // envelope, L_ii = sqrt(A_ii - sum_k L_ik^2). A dependent row's column is zero.
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t fi = std::size_t(ds.first[i]);
+    const std::size_t fi = std::size_t(ws.first[i]);
     for (std::size_t j = fi; j < i; ++j) {
       double v = at(i, j);
-      if (ds.dependent[j]) {
+      if (ws.dependent[j]) {
         at(i, j) = 0;
         continue;
       }
-      const std::size_t k0 = std::max(fi, std::size_t(ds.first[j]));
+      const std::size_t k0 = std::max(fi, std::size_t(ws.first[j]));
       for (std::size_t k = k0; k < j; ++k) v -= at(i, k) * at(j, k);
       at(i, j) = v / at(j, j);
     }
@@ -116,7 +118,7 @@ bool solve_active(DirectState& ds, uint32_t base, uint32_t slot_begin, uint32_t 
     double d = diagonal;
     for (std::size_t k = fi; k < i; ++k) d -= at(i, k) * at(i, k);
     if (!(d > kDependentPivot * diagonal) || !(diagonal > 0)) {
-      ds.dependent[i] = 1;
+      ws.dependent[i] = 1;
       at(i, i) = 1;
       for (std::size_t k = fi; k < i; ++k) at(i, k) = 0;
     } else {
@@ -125,33 +127,33 @@ bool solve_active(DirectState& ds, uint32_t base, uint32_t slot_begin, uint32_t 
   }
   // L y = b, then L^T x = y (column-wise, in the envelope).
   for (std::size_t i = 0; i < n; ++i) {
-    const uint32_t ri = ds.active[i];
-    if (ds.dependent[i]) {
-      ds.delta[ri] = 0;
+    const uint32_t ri = ws.active[i];
+    if (ws.dependent[i]) {
+      ws.delta[ri] = 0;
       continue;
     }
-    double v = ds.rhs[ri];
-    for (std::size_t k = std::size_t(ds.first[i]); k < i; ++k)
-      v -= at(i, k) * ds.delta[ds.active[k]];
-    ds.delta[ri] = v / at(i, i);
+    double v = ws.rhs[ri];
+    for (std::size_t k = std::size_t(ws.first[i]); k < i; ++k)
+      v -= at(i, k) * ws.delta[ws.active[k]];
+    ws.delta[ri] = v / at(i, i);
   }
   for (std::size_t i = n; i-- > 0;) {
-    const uint32_t ri = ds.active[i];
-    if (ds.dependent[i]) continue;
-    const double x = ds.delta[ri] / at(i, i);
-    ds.delta[ri] = x;
-    for (std::size_t k = std::size_t(ds.first[i]); k < i; ++k) {
-      ds.delta[ds.active[k]] -= at(i, k) * x;
+    const uint32_t ri = ws.active[i];
+    if (ws.dependent[i]) continue;
+    const double x = ws.delta[ri] / at(i, i);
+    ws.delta[ri] = x;
+    for (std::size_t k = std::size_t(ws.first[i]); k < i; ++k) {
+      ws.delta[ws.active[k]] -= at(i, k) * x;
     }
   }
   return true;
 }
 
 // Row velocity J v over the slots' velocities `v` (6 a slot).
-double row_velocity(const DirectState& ds, const DirectRow& r, uint32_t i, const double* v) {
+double row_velocity(const DirectScratch& ws, const DirectRow& r, uint32_t i, const double* v) {
   double sum = 0;
   for (int s = 0; s < 2; ++s) {
-    if (r.slot[s] >= 0) sum += dot6(&ds.jac[12 * i + 6 * s], v + 6 * r.slot[s]);
+    if (r.slot[s] >= 0) sum += dot6(&ws.jac[12 * i + 6 * s], v + 6 * r.slot[s]);
   }
   return sum;
 }
@@ -178,6 +180,7 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
   ds.rows.clear();
   ds.packets.clear();
   ds.item_source.clear();
+  for (uint32_t& b : ds.block_begin) b = 0;
   const uint32_t written_end = ctx.written_end;
   // An item's island: that of its written side (a loaded row has one).
   auto root_of = [&](uint32_t a, uint32_t b) -> uint32_t {
@@ -219,7 +222,7 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
   reserve_for(ds.systems, item_bound);
   reserve_for(ds.rows, (3 + kMaxManifoldPoints) * ctx.lane_manifolds.size() + 3 * joints.size());
   reserve_for(ds.packets, ctx.bodies.size());
-  reserve_for(ds.active, std::max<std::size_t>(item_bound, kDirectMaxRows));
+  reserve_for(ds.order, std::max<std::size_t>(item_bound, kDirectMaxRows));
   if (ds.item_source.empty()) return false;
   auto packets_of = [&](uint64_t item, uint32_t& a, uint32_t& b) {
     if (item >> 32) {
@@ -274,17 +277,17 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
   }
   // Pairs (key, index): sort the keys with their indices by sorting indices by key.
   const std::size_t count = ds.item_source.size();
-  ds.active.resize(count);
-  for (std::size_t k = 0; k < count; ++k) ds.active[k] = uint32_t(k);
-  std::sort(ds.active.begin(), ds.active.end(),
+  ds.order.resize(count);
+  for (std::size_t k = 0; k < count; ++k) ds.order[k] = uint32_t(k);
+  std::sort(ds.order.begin(), ds.order.end(),
             [&](uint32_t x, uint32_t y) { return ds.items[2 * x] < ds.items[2 * y]; });
   std::size_t k = 0;
   while (k < count) {
-    const uint64_t root = ds.items[2 * ds.active[k]] >> 32;
+    const uint64_t root = ds.items[2 * ds.order[k]] >> 32;
     std::size_t end = k;
     uint32_t row_count = 0;
-    while (end < count && (ds.items[2 * ds.active[end]] >> 32) == root) {
-      const uint64_t item = ds.item_source[ds.active[end]];
+    while (end < count && (ds.items[2 * ds.order[end]] >> 32) == root) {
+      const uint64_t item = ds.item_source[ds.order[end]];
       row_count +=
           (item >> 32)
               ? 3u
@@ -306,7 +309,7 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
         return s;
       };
       for (std::size_t e = k; e < end; ++e) {
-        const uint64_t item = ds.item_source[ds.active[e]];
+        const uint64_t item = ds.item_source[ds.order[e]];
         uint32_t a, b;
         packets_of(item, a, b);
         DirectRow row;
@@ -346,50 +349,63 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     }
     k = end;
   }
+  // The blocks: runs of systems of about equal rows (a system's cost grows with its rows), cut
+  // where the rows so far first reach b / kDirectBlocks of all.
+  const uint64_t total = ds.rows.size();
+  uint32_t next = 1;
+  for (uint32_t si = 0; si < ds.systems.size() && next < kDirectBlocks; ++si) {
+    while (next < kDirectBlocks &&
+           uint64_t(ds.systems[si].row_end) * kDirectBlocks >= total * next) {
+      ds.block_begin[next++] = si + 1;
+    }
+  }
+  while (next <= kDirectBlocks) ds.block_begin[next++] = uint32_t(ds.systems.size());
   return !ds.systems.empty();
 }
 
 void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool use_bias,
-                  DirectState& ds) {
+                  DirectState& ds, uint32_t block) {
+  DirectScratch& ws = ds.scratch[block];
   const double max_push = double(ctx.max_push_velocity);
   // A normal row joins the first active set when its closing speed is above this (see below).
   const double open_below = ctx.bodies_placed ? -kVelocityTolerance : 0.0;
   // The largest system's buffers, once (a system has at most kDirectMaxRows rows and
   // kDirectMaxBodies packets).
   constexpr std::size_t rows_max = kDirectMaxRows, slots_max = 2 * kDirectMaxBodies;
-  reserve_for(ds.jac, 12 * rows_max);
-  reserve_for(ds.mjac, 12 * rows_max);
+  reserve_for(ws.jac, 12 * rows_max);
+  reserve_for(ws.mjac, 12 * rows_max);
   for (std::vector<double>* v :
-       {&ds.target, &ds.lambda, &ds.rhs, &ds.delta, &ds.fixed, &ds.lever}) {
+       {&ws.target, &ws.lambda, &ws.rhs, &ws.delta, &ws.fixed, &ws.lever, &ws.diagonal}) {
     reserve_for(*v, rows_max);
   }
-  reserve_for(ds.in_set, rows_max);
-  reserve_for(ds.dependent, rows_max);
-  reserve_for(ds.first, rows_max);
-  reserve_for(ds.offset, rows_max + 1);
-  reserve_for(ds.factor, kDirectMaxEnvelope);
-  reserve_for(ds.velocity, 6 * slots_max);
-  reserve_for(ds.trial, 6 * slots_max);
-  reserve_for(ds.slot_first, slots_max);
-  for (const DirectSystem& system : ds.systems) {
+  reserve_for(ws.in_set, rows_max);
+  reserve_for(ws.dependent, rows_max);
+  reserve_for(ws.first, rows_max);
+  reserve_for(ws.offset, rows_max + 1);
+  reserve_for(ws.factor, kDirectMaxEnvelope);
+  reserve_for(ws.velocity, 6 * slots_max);
+  reserve_for(ws.trial, 6 * slots_max);
+  reserve_for(ws.slot_first, slots_max);
+  for (uint32_t si = ds.block_begin[block]; si < ds.block_begin[block + 1]; ++si) {
+    const DirectSystem& system = ds.systems[si];
     const uint32_t n = system.row_end - system.row_begin;
     const uint32_t slots = system.packet_end - system.packet_begin;
     const DirectRow* rows = ds.rows.data() + system.row_begin;
-    ds.jac.resize(12 * std::size_t(n));
-    ds.mjac.resize(12 * std::size_t(n));
+    ws.jac.resize(12 * std::size_t(n));
+    ws.mjac.resize(12 * std::size_t(n));
     for (std::vector<double>* v :
-         {&ds.target, &ds.lambda, &ds.rhs, &ds.delta, &ds.fixed, &ds.lever}) {
+         {&ws.target, &ws.lambda, &ws.rhs, &ws.delta, &ws.fixed, &ws.lever, &ws.diagonal}) {
       v->resize(n);
     }
-    ds.in_set.resize(n);
-    ds.velocity.resize(6 * std::size_t(slots));
-    ds.trial.resize(6 * std::size_t(slots));
-    if (ds.slot_first.size() < slots) ds.slot_first.resize(slots);
+    ws.in_set.resize(n);
+    ws.velocity.resize(6 * std::size_t(slots));
+    ws.trial.resize(6 * std::size_t(slots));
+    if (ws.slot_first.size() < slots) ws.slot_first.resize(slots);
     for (uint32_t s = 0; s < slots; ++s) {
       const SolverBody& b = ctx.bodies[ds.packets[system.packet_begin + s]];
       for (int k = 0; k < 3; ++k) {
-        ds.velocity[6 * s + k] = double(b.v[k]);
-        ds.velocity[6 * s + 3 + k] = double(b.w[k]);
+        ws.velocity[6 * s + k] = double(b.v[k]);
+        ws.velocity[6 * s + 3 + k] = double(b.w[k]);
       }
     }
     // Each row's Jacobian (per side sigma (d, r x d)), its M^-1 J^T, target and impulse.
@@ -397,8 +413,8 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
       const DirectRow& r = rows[i];
       Vec3 lin_a, ang_a, lin_b, ang_b;  // J = [-lin_a, -ang_a, lin_b, ang_b]
       double lambda = 0;
-      ds.target[i] = 0;
-      ds.lever[i] = 0;
+      ws.target[i] = 0;
+      ws.lever[i] = 0;
       if (r.kind == kDirectJoint) {
         const JointRow& j = joints[r.source];
         const Vec3 d = Vec3::Unit(r.point);
@@ -407,7 +423,7 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
         ang_b = j.pose.r_b.cross(d);
         lambda = double(j.point_impulse[r.point]);
         if (use_bias) {
-          ds.target[i] = -double(j.softness.bias_rate) * double(j.pose.separation[r.point]);
+          ws.target[i] = -double(j.softness.bias_rate) * double(j.pose.separation[r.point]);
         }
       } else {
         const ContactBundle& c = ctx.bundles[r.source];
@@ -429,7 +445,7 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
           lin_a = lin_b = n;
           ang_a = center_ra.cross(n) + offset;
           ang_b = ang_a - (center_ra - center_rb).cross(n);
-          ds.lever[i] = r.count > 1 ? double(offset.norm()) : 0.0;
+          ws.lever[i] = r.count > 1 ? double(offset.norm()) : 0.0;
           const WideNormalRow& p = r.point == 0 ? c.first : points[r.point - 1].row;
           const double s = double(p.current_separation[l]);
           lambda = double(p.normal_impulse[l]);
@@ -439,7 +455,7 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
           // One linear law on both sides of contact, -beta s (a gap closes at beta s, not
           // within the substep as the passes let it): the targets of a face's points are then
           // those of one rigid motion, consistent with its three independent rows. Relaxed: 0.
-          if (use_bias) ds.target[i] = std::min(-beta * s, max_push);
+          if (use_bias) ws.target[i] = std::min(-beta * s, max_push);
         } else if (r.kind == kDirectTwist) {
           lin_a = lin_b = Vec3::Zero();
           ang_a = ang_b = n;
@@ -455,8 +471,8 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
           lambda = double(c.tangent_impulse[t][l]);
         }
       }
-      double* jac = &ds.jac[12 * std::size_t(i)];
-      double* mjac = &ds.mjac[12 * std::size_t(i)];
+      double* jac = &ws.jac[12 * std::size_t(i)];
+      double* mjac = &ws.mjac[12 * std::size_t(i)];
       set6(jac, lin_a, ang_a, -1);
       set6(jac + 6, lin_b, ang_b, 1);
       for (int s = 0; s < 2; ++s) {
@@ -473,19 +489,22 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
         out[4] = double(I.xy) * in[3] + double(I.yy) * in[4] + double(I.yz) * in[5];
         out[5] = double(I.xz) * in[3] + double(I.yz) * in[4] + double(I.zz) * in[5];
       }
-      ds.lambda[i] = lambda;
-      ds.delta[i] = 0;
+      ws.lambda[i] = lambda;
+      ws.delta[i] = 0;
       // The first set: every row but the normal rows that neither push nor are being closed,
       // which are held at zero. After bodies were placed, rows closing at no speed join too: a
       // column placed at rest falls as one under gravity, so its upper rows close only once the
       // rows below them push, which the set would otherwise find one round each.
-      ds.in_set[i] = 1;
-      ds.fixed[i] = 0;
+      ws.in_set[i] = 1;
+      ws.fixed[i] = 0;
       if (r.kind == kDirectNormal) {
-        const double closing = ds.target[i] - row_velocity(ds, r, i, ds.velocity.data());
-        ds.in_set[i] = uint8_t(lambda > 0 || closing > open_below);
+        const double closing = ws.target[i] - row_velocity(ws, r, i, ws.velocity.data());
+        ws.in_set[i] = uint8_t(lambda > 0 || closing > open_below);
       }
     }
+    // perf: A's diagonal, read by every active-set round (the compliance term and the
+    // envelope), once a pass: entry() of the same rows, so the same bits.
+    for (uint32_t i = 0; i < n; ++i) ws.diagonal[i] = entry(ws, rows[i], rows[i], i, i);
     // The biased targets of a manifold of three or more points, fitted by one plane: -beta s_k
     // over the points' offsets in the contact plane, least squares. The rows of coplanar points
     // are dependent (three independent rows for four points), and their separations are only
@@ -497,23 +516,23 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
         const DirectRow& r = rows[h];
         if (r.kind != kDirectNormal || r.point != 0 || r.count < 3) continue;
         // Offsets in the plane: A's angular Jacobian is -(c_a x n + o_k); the mean of o_k is 0.
-        const double* nb = &ds.jac[12 * std::size_t(h) + 6];
+        const double* nb = &ws.jac[12 * std::size_t(h) + 6];
         const Vec3d normal(nb[0], nb[1], nb[2]);
         const Vec3d e1 = normal.unitOrthogonal(), e2 = normal.cross(e1);
         Vec3d mean = Vec3d::Zero();
         double alpha = 0;
         for (uint32_t k = h; k < h + r.count; ++k) {
-          const double* a = &ds.jac[12 * std::size_t(k) + 3];
+          const double* a = &ws.jac[12 * std::size_t(k) + 3];
           mean += Vec3d(a[0], a[1], a[2]);
-          alpha += ds.target[k];
+          alpha += ws.target[k];
         }
         mean /= double(r.count);
         alpha /= double(r.count);
         double m00 = 0, m01 = 0, m11 = 0, b0 = 0, b1 = 0;
         for (uint32_t k = h; k < h + r.count; ++k) {
-          const double* a = &ds.jac[12 * std::size_t(k) + 3];
+          const double* a = &ws.jac[12 * std::size_t(k) + 3];
           const Vec3d o = Vec3d(a[0], a[1], a[2]) - mean;
-          const double u0 = o.dot(e1), u1 = o.dot(e2), t = ds.target[k] - alpha;
+          const double u0 = o.dot(e1), u1 = o.dot(e2), t = ws.target[k] - alpha;
           m00 += u0 * u0;
           m01 += u0 * u1;
           m11 += u1 * u1;
@@ -527,57 +546,57 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
         const double det = m00 * m11 - m01 * m01;
         const double g0 = (m11 * b0 - m01 * b1) / det, g1 = (m00 * b1 - m01 * b0) / det;
         for (uint32_t k = h; k < h + r.count; ++k) {
-          const double* a = &ds.jac[12 * std::size_t(k) + 3];
+          const double* a = &ws.jac[12 * std::size_t(k) + 3];
           const Vec3d o = Vec3d(a[0], a[1], a[2]) - mean;
-          ds.target[k] = alpha + g0 * o.dot(e1) + g1 * o.dot(e2);
+          ws.target[k] = alpha + g0 * o.dot(e1) + g1 * o.dot(e2);
         }
       }
       for (uint32_t i = 0; i < n; ++i) {
         if (rows[i].kind != kDirectNormal) continue;
-        ds.in_set[i] =
-            uint8_t(ds.lambda[i] > 0 ||
-                    ds.target[i] - row_velocity(ds, rows[i], i, ds.velocity.data()) > open_below);
+        ws.in_set[i] =
+            uint8_t(ws.lambda[i] > 0 ||
+                    ws.target[i] - row_velocity(ws, rows[i], i, ws.velocity.data()) > open_below);
       }
     }
     // Adds each row's impulse change from its current impulse to `v` (6 a slot): the active
     // rows' lambda + delta, the fixed rows' fixed value.
     auto apply_changes = [&](std::vector<double>& v, bool active, bool fixed) {
       for (uint32_t i = 0; i < n; ++i) {
-        const double change = ds.in_set[i] ? (active ? ds.delta[i] : 0.0)
-                                           : (fixed ? ds.fixed[i] - ds.lambda[i] : 0.0);
+        const double change = ws.in_set[i] ? (active ? ws.delta[i] : 0.0)
+                                           : (fixed ? ws.fixed[i] - ws.lambda[i] : 0.0);
         if (change == 0) continue;
         for (int s = 0; s < 2; ++s) {
           if (rows[i].slot[s] < 0) continue;
           double* out = &v[6 * std::size_t(rows[i].slot[s])];
-          const double* m = &ds.mjac[12 * std::size_t(i) + 6 * s];
+          const double* m = &ws.mjac[12 * std::size_t(i) + 6 * s];
           for (int k = 0; k < 6; ++k) out[k] += m[k] * change;
         }
       }
     };
     auto final_of = [&](uint32_t i) {
-      return ds.in_set[i] ? ds.lambda[i] + ds.delta[i] : ds.fixed[i];
+      return ws.in_set[i] ? ws.lambda[i] + ws.delta[i] : ws.fixed[i];
     };
     bool solved = false, settled = false;
     for (int round = 0; round < kMaxRounds; ++round) {
       // The velocities with the fixed rows' impulses, and the active rows' residuals there.
-      std::copy(ds.velocity.begin(), ds.velocity.end(), ds.trial.begin());
-      apply_changes(ds.trial, false, true);
-      ds.active.clear();
+      std::copy(ws.velocity.begin(), ws.velocity.end(), ws.trial.begin());
+      apply_changes(ws.trial, false, true);
+      ws.active.clear();
       for (uint32_t i = 0; i < n; ++i) {
-        ds.delta[i] = 0;
-        if (!ds.in_set[i]) continue;
+        ws.delta[i] = 0;
+        if (!ws.in_set[i]) continue;
         // The compliance acts on the whole impulse, lambda + delta.
-        ds.rhs[i] = ds.target[i] - row_velocity(ds, rows[i], i, ds.trial.data()) -
-                    kCompliance * entry(ds, rows[i], rows[i], i, i) * ds.lambda[i];
-        ds.active.push_back(i);
+        ws.rhs[i] = ws.target[i] - row_velocity(ws, rows[i], i, ws.trial.data()) -
+                    kCompliance * ws.diagonal[i] * ws.lambda[i];
+        ws.active.push_back(i);
       }
-      if (!solve_active(ds, system.row_begin, 0, slots)) break;
+      if (!solve_active(ds, ws, system.row_begin, 0, slots)) break;
       solved = true;
       bool changed = false;
-      for (const uint32_t i : ds.active) {
-        if (rows[i].kind == kDirectNormal && ds.lambda[i] + ds.delta[i] < 0) {
-          ds.in_set[i] = 0;
-          ds.fixed[i] = 0;
+      for (const uint32_t i : ws.active) {
+        if (rows[i].kind == kDirectNormal && ws.lambda[i] + ws.delta[i] < 0) {
+          ws.in_set[i] = 0;
+          ws.fixed[i] = 0;
           changed = true;
         }
       }
@@ -591,35 +610,35 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
         double total = 0, twist = 0;
         for (uint32_t k = r.head; k < r.head + r.count; ++k) {
           total += final_of(k);
-          twist += ds.lever[k] * final_of(k);
+          twist += ws.lever[k] * final_of(k);
         }
         const double limit = mu * total;
-        if (ds.in_set[i] && ds.in_set[i + 1]) {
+        if (ws.in_set[i] && ws.in_set[i + 1]) {
           const double f0 = final_of(i), f1 = final_of(i + 1);
           const double length = std::sqrt(f0 * f0 + f1 * f1);
           if (length > limit * (1 + 1e-9) + 1e-12) {
             const double scale = length > 0 ? limit / length : 0.0;
-            ds.in_set[i] = ds.in_set[i + 1] = 0;
-            ds.fixed[i] = f0 * scale;
-            ds.fixed[i + 1] = f1 * scale;
+            ws.in_set[i] = ws.in_set[i + 1] = 0;
+            ws.fixed[i] = f0 * scale;
+            ws.fixed[i + 1] = f1 * scale;
             changed = true;
           }
         }
         const double twist_limit = mu * std::max(twist, double(kTorsionPatch) * total);
         const double tw = final_of(i + 2);
-        if (ds.in_set[i + 2] && std::abs(tw) > twist_limit * (1 + 1e-9) + 1e-12) {
-          ds.in_set[i + 2] = 0;
-          ds.fixed[i + 2] = std::clamp(tw, -twist_limit, twist_limit);
+        if (ws.in_set[i + 2] && std::abs(tw) > twist_limit * (1 + 1e-9) + 1e-12) {
+          ws.in_set[i + 2] = 0;
+          ws.fixed[i + 2] = std::clamp(tw, -twist_limit, twist_limit);
           changed = true;
         }
       }
       if (changed) continue;
       // Normal rows held at zero that the solution would drive into each other join the set.
-      apply_changes(ds.trial, true, false);
+      apply_changes(ws.trial, true, false);
       for (uint32_t i = 0; i < n; ++i) {
-        if (ds.in_set[i] || rows[i].kind != kDirectNormal) continue;
-        if (row_velocity(ds, rows[i], i, ds.trial.data()) < ds.target[i] - kVelocityTolerance) {
-          ds.in_set[i] = 1;
+        if (ws.in_set[i] || rows[i].kind != kDirectNormal) continue;
+        if (row_velocity(ws, rows[i], i, ws.trial.data()) < ws.target[i] - kVelocityTolerance) {
+          ws.in_set[i] = 1;
           changed = true;
         }
       }
@@ -635,10 +654,10 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
     // bodies' momentum at their speed plus the push-out cap, many times over (a safeguard against
     // an ill-posed system; a resting or colliding island stays far below it).
     double scale = 0;
-    for (uint32_t i = 0; i < n; ++i) scale += std::abs(ds.lambda[i]);
+    for (uint32_t i = 0; i < n; ++i) scale += std::abs(ws.lambda[i]);
     for (uint32_t s = 0; s < slots; ++s) {
       const Real inv_mass = ctx.masses[ds.packets[system.packet_begin + s]].inv_mass;
-      const double* v = &ds.velocity[6 * std::size_t(s)];
+      const double* v = &ws.velocity[6 * std::size_t(s)];
       const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
       if (inv_mass > 0) scale += (speed + max_push) / double(inv_mass);
     }
@@ -651,12 +670,12 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
       const DirectRow& r = rows[i];
       double updated = final_of(i);
       if (r.kind == kDirectNormal) updated = std::max(updated, 0.0);
-      const double impulse = updated - ds.lambda[i];
+      const double impulse = updated - ws.lambda[i];
       if (impulse == 0) continue;
       for (int s = 0; s < 2; ++s) {
         if (r.slot[s] < 0) continue;
-        double* v = &ds.velocity[6 * std::size_t(r.slot[s])];
-        const double* m = &ds.mjac[12 * std::size_t(i) + 6 * s];
+        double* v = &ws.velocity[6 * std::size_t(r.slot[s])];
+        const double* m = &ws.mjac[12 * std::size_t(i) + 6 * s];
         for (int k = 0; k < 6; ++k) v[k] += m[k] * impulse;
       }
       if (r.kind == kDirectJoint) {
@@ -686,8 +705,8 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
     for (uint32_t s = 0; s < slots; ++s) {
       SolverBody& b = ctx.bodies[ds.packets[system.packet_begin + s]];
       for (int k = 0; k < 3; ++k) {
-        b.v[k] = Real(ds.velocity[6 * s + k]);
-        b.w[k] = Real(ds.velocity[6 * s + 3 + k]);
+        b.v[k] = Real(ws.velocity[6 * s + k]);
+        b.w[k] = Real(ws.velocity[6 * s + 3 + k]);
       }
     }
   }

@@ -102,22 +102,12 @@ struct DirectSystem {
   uint32_t packet_begin = 0, packet_end = 0;
 };
 
-struct DirectState {
-  // Per bundle (prepare_bundle): the lanes whose rows are loaded, a bit a lane.
-  std::vector<uint32_t> loaded_lanes;
-  // Per block of prepare_joints' loop: some row in it is loaded (JointRow kJointLoaded).
-  std::vector<uint8_t> loaded_joint_blocks;
-  std::vector<DirectSystem> systems;  // this step's
-  std::vector<DirectRow> rows;
-  std::vector<uint32_t> packets;  // system by system: the written packets
-  // Build scratch.
-  std::vector<uint64_t> items;  // (root << 32 | order) then the item's index in item_source
-  std::vector<uint64_t> item_source;
-  std::vector<uint32_t> parent;  // per packet (union-find)
-  std::vector<int32_t> slot_of;  // per packet
-  // Solve scratch, per row of the largest system and per slot.
+// One block's solve scratch, per row of the largest system and per slot: each block of the
+// direct stage solves its own systems with its own (solve_direct).
+struct DirectScratch {
   std::vector<double> jac, mjac;  // 12 a row: per side sigma (d, r x d), and M^-1 of it
   std::vector<double> target, lambda, rhs, delta, fixed, lever;
+  std::vector<double> diagonal;         // A_ii, per row
   std::vector<double> velocity, trial;  // 6 a slot
   std::vector<uint32_t> active;
   std::vector<uint8_t> in_set;
@@ -126,15 +116,47 @@ struct DirectState {
   std::vector<double> factor;
   std::vector<uint8_t> dependent;
 
+  std::size_t heap_bytes() const {
+    std::size_t sum = 0;
+    auto add = [&](const auto& v) { sum += v.capacity() * sizeof(v[0]); };
+    add(jac), add(mjac), add(target), add(lambda), add(rhs), add(delta), add(fixed), add(lever);
+    add(diagonal);
+    add(velocity), add(trial), add(active), add(in_set), add(first), add(slot_first);
+    add(offset), add(factor), add(dependent);
+    return sum;
+  }
+};
+
+// The direct stage's blocks: the systems are dealt into this many contiguous runs of about
+// equal rows, one a block of the stage, so two threads solve them at once. A fixed count, not
+// the thread count, and systems share no written body, so the bits are the same for any count.
+inline constexpr uint32_t kDirectBlocks = 2;
+
+struct DirectState {
+  // Per bundle (prepare_bundle): the lanes whose rows are loaded, a bit a lane.
+  std::vector<uint32_t> loaded_lanes;
+  // Per block of prepare_joints' loop: some row in it is loaded (JointRow kJointLoaded).
+  std::vector<uint8_t> loaded_joint_blocks;
+  std::vector<DirectSystem> systems;  // this step's
+  // Block b of the direct stage solves systems [block_begin[b], block_begin[b + 1]).
+  uint32_t block_begin[kDirectBlocks + 1] = {};
+  std::vector<DirectRow> rows;
+  std::vector<uint32_t> packets;  // system by system: the written packets
+  // Build scratch.
+  std::vector<uint64_t> items;  // (root << 32 | order) then the item's index in item_source
+  std::vector<uint64_t> item_source;
+  std::vector<uint32_t> parent;  // per packet (union-find)
+  std::vector<int32_t> slot_of;  // per packet
+  std::vector<uint32_t> order;   // the items sorted by key
+  DirectScratch scratch[kDirectBlocks];
+
   // The bytes its buffers hold (the memory report).
   std::size_t heap_bytes() const {
     std::size_t sum = 0;
     auto add = [&](const auto& v) { sum += v.capacity() * sizeof(v[0]); };
     add(loaded_lanes), add(loaded_joint_blocks), add(systems), add(rows), add(packets);
-    add(items), add(item_source), add(parent), add(slot_of), add(jac), add(mjac), add(target);
-    add(lambda), add(rhs), add(delta), add(fixed), add(lever), add(velocity), add(trial);
-    add(active), add(in_set), add(first), add(slot_first), add(offset), add(factor);
-    add(dependent);
+    add(items), add(item_source), add(parent), add(slot_of), add(order);
+    for (const DirectScratch& w : scratch) sum += w.heap_bytes();
     return sum;
   }
 };
@@ -149,10 +171,12 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
                           std::span<const uint32_t> island_root,
                           std::span<const uint32_t> island_size, DirectState& ds);
 
-// Solves every system once: `use_bias` the biased pass (targets -beta C), else the relax pass
-// (targets 0; a speculative row may close its gap). Reads and writes the packets' velocities,
-// the rows' accumulated impulses (bundles, joint rows) and the restitution's largest impulses.
+// Solves every system of block `block` (< kDirectBlocks) once: `use_bias` the biased pass
+// (targets -beta C), else the relax pass (targets 0; a speculative row may close its gap). The
+// blocks may run at once: their systems share no written body. Reads and writes the packets'
+// velocities, the rows' accumulated impulses (bundles, joint rows) and the restitution's largest
+// impulses.
 void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool use_bias,
-                  DirectState& ds);
+                  DirectState& ds, uint32_t block);
 
 }  // namespace elan::detail

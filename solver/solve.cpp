@@ -99,8 +99,9 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
   auto add_kinematic = [&](StageKind kind) {
     if (kinematic) stages.push_back({1, kind, 0});
   };
-  // The loaded rows' systems, solved directly by one block after the passes of both halves and
-  // the cut (direct_solve.hpp): a system may span the cut. No system, no stage.
+  // The loaded rows' systems, solved directly after the passes of both halves and the cut
+  // (direct_solve.hpp): a system may span the cut, so the stage's blocks are runs of systems,
+  // not the halves. No system, no stage.
   const bool direct =
       build_direct_systems(ctx, contacts, st.joint_rows, kJointPrepareGrain, st.island_scratch.root,
                            st.island_scratch.size, st.direct);
@@ -108,11 +109,11 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
     add_kinematic(kKinematicVelocities);
     add_pass(kWarmStart);  // halves: integrate velocities first
     for (int it = 0; it < settings.iterations; ++it) add_pass(kSolve);
-    if (direct) stages.push_back({1, kDirectBias, 0});
+    if (direct) stages.push_back({kDirectBlocks, kDirectBias, 0});
     // The bodies move; the relax pass first refreshes each bundle's arms and separations.
     add_kinematic(kKinematicPositions);
     add_pass(kRelax);  // halves: integrate positions first
-    if (direct) stages.push_back({1, kDirectRelax, 0});
+    if (direct) stages.push_back({kDirectBlocks, kDirectRelax, 0});
   }
   // Restitution, then each bundle's impulses are final and stored.
   add_pass(kRestitution);
@@ -125,7 +126,7 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
       return;
     }
     if (stage.kind == kDirectBias || stage.kind == kDirectRelax) {
-      solve_direct(ctx, st.joint_rows, stage.kind == kDirectBias, st.direct);
+      solve_direct(ctx, st.joint_rows, stage.kind == kDirectBias, st.direct, block);
       return;
     }
     if (stage.kind == kKinematicPositions) {

@@ -30,7 +30,8 @@ void drop_plane(std::vector<uint32_t>& planes, uint32_t index) {
 
 // Files body i by its exact box: a plane to the plane list, a finite box to the tree, a
 // non-finite one (a quarantined body) nowhere.
-void place(QueryTree& q, uint32_t i, bool plane, const Vec3& lo, const Vec3& hi) {
+void place(QueryTree& q, uint32_t i, bool plane, const Vec3& lo, const Vec3& hi,
+           const Vec3& displacement = Vec3::Zero()) {
   if (plane) {
     q.tree.remove(i);
     const auto it = std::lower_bound(q.planes.begin(), q.planes.end(), i);
@@ -41,7 +42,7 @@ void place(QueryTree& q, uint32_t i, bool plane, const Vec3& lo, const Vec3& hi)
     q.tree.remove(i);
     return;
   }
-  q.tree.update(i, {lo, hi}, kQueryFatMargin);
+  q.tree.update_moving(i, {lo, hi}, kQueryFatMargin, displacement);
 }
 
 }  // namespace
@@ -85,7 +86,7 @@ void query_tree_refit_all(WorldState& s) {
   for (uint32_t i = 0; i < n; ++i) query_tree_update(s, i);
 }
 
-void query_tree_after_step(WorldState& s) {
+void query_tree_after_step(WorldState& s, Real dt) {
   QueryTree& q = s.query;
   const BodyStore& b = s.bodies;
   const std::size_t n = b.size();
@@ -118,7 +119,7 @@ void query_tree_after_step(WorldState& s) {
     if (!moved(i)) continue;
     const Vec3 lo(q.boxes.min_x[i], q.boxes.min_y[i], q.boxes.min_z[i]);
     const Vec3 hi(q.boxes.max_x[i], q.boxes.max_y[i], q.boxes.max_z[i]);
-    place(q, uint32_t(i), false, lo, hi);
+    place(q, uint32_t(i), false, lo, hi, b.linear_velocity(i) * dt);
   }
   maybe_compact(q);
 }

@@ -43,7 +43,10 @@ void query_tree_remove(WorldState& s, uint32_t index);
 // refitted, entries past the body count dropped.
 void query_tree_refit_all(WorldState& s);
 // The step's last stage: refits the leaves of every body the step may have moved (awake dynamic,
-// kinematic, quarantined), serially in index order after a parallel pass over their boxes.
-void query_tree_after_step(WorldState& s);
+// kinematic, quarantined), serially in index order after a parallel pass over their boxes. A
+// leaf is stretched along the body's motion over the next step of `dt` (its velocity times dt;
+// DynamicTree::update_moving): perf: a falling or sliding body is then re-inserted every few
+// steps, not every step, and that serial pass was a large part of a rain of bodies' step.
+void query_tree_after_step(WorldState& s, Real dt);
 
 }  // namespace elan::detail

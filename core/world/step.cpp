@@ -132,7 +132,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   const uint32_t status = kernels.finalize_bodies(bodies, w.shapes, solve_settings, w.solver);
   if (!w.broken_joints.empty()) remove_broken_joints(w);
   update_sensors(w);
-  query_tree_after_step(w);
+  query_tree_after_step(w, dt);
   const auto t7 = clock::now();
 
   stats.manifolds = w.contacts.size();

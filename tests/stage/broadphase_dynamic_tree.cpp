@@ -173,5 +173,38 @@ TEST(DynamicTree, StaysValidAndQueriesMatchTestingEveryItem) {
   EXPECT_TRUE(tree.valid());
 }
 
+// A falling item's leaf is stretched 4 displacements down: the item falls 0.1 a step, so the
+// leaf (margin 0.05) holds it for four steps and is re-inserted on the fifth (its top, left
+// behind, is within the slack of four margins and the stretch); once the item has stopped, the
+// stretched leaf reaches 0.4 below it, past the tight leaf plus four margins, and is re-inserted
+// tight on the next update.
+TEST(DynamicTree, MovingLeafIsStretchedAlongTheMotionAndShrunkWhenItStops) {
+  DynamicTree tree;
+  tree.resize_items(2);
+  tree.update(1, {Vec3(5, 0, 0), Vec3(6, 1, 1)}, Real(0.05));
+  const Real margin = Real(0.05), step = Real(0.1);
+  const Vec3 fall(0, -step, 0);
+  TreeBox box{Vec3(0, 10, 0), Vec3(1, 11, 1)};
+  ASSERT_TRUE(tree.update_moving(0, box, margin, fall));
+  EXPECT_FLOAT_EQ(tree.fat_box(0).lo.y(), 10 - margin - 4 * step);
+  EXPECT_FLOAT_EQ(tree.fat_box(0).hi.y(), 11 + margin);
+  EXPECT_FLOAT_EQ(tree.fat_box(0).lo.x(), -margin);
+  int reinserted = 0;
+  for (int k = 1; k <= 5; ++k) {
+    box.lo.y() -= step;
+    box.hi.y() -= step;
+    if (tree.update_moving(0, box, margin, fall)) {
+      ++reinserted;
+      EXPECT_EQ(k, 5);
+    }
+  }
+  EXPECT_EQ(reinserted, 1);
+  // Stopped: the leaf reaches 0.4 below the box, more than 0.05 + 4 * 0.05 = 0.25.
+  EXPECT_TRUE(tree.update_moving(0, box, margin, Vec3::Zero()));
+  EXPECT_FLOAT_EQ(tree.fat_box(0).lo.y(), box.lo.y() - margin);
+  EXPECT_FALSE(tree.update_moving(0, box, margin, Vec3::Zero()));
+  EXPECT_TRUE(tree.valid());
+}
+
 }  // namespace broadphase_dynamic_tree_test
 }  // namespace elan::detail
