@@ -262,7 +262,8 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   c.twist_mass = inverse_or_zero(k_twist);
   if (!ctx.loaded_lanes.empty()) {
     // A row is loaded when its soft spring would give more than kDirectGive under the impulse it
-    // carried last step, lambda gamma / m_eff > kDirectGive (direct_solve.hpp),
+    // carried last step, lambda gamma / m_eff > kDirectGive (direct_solve.hpp), or is pressed in
+    // deeper than a landing overshoots (kDirectDepth),
     const Wide give = mb.inv_mass == zero ? splat(ctx.static_give) : splat(ctx.contact_give);
     const Wide limit = splat(kDirectGive);
     auto loaded = give < zero;  // all false
@@ -273,8 +274,6 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     auto resting = point_count > zero;
     for (int k = 0; k < points; ++k) {
       const WideNormalRow& p = row_of(c, rows, k);
-      // or already pressed in that deep (a tower placed at rest sinks while Gauss-Seidel
-      // carries the load up from the bottom, before its rows carry it).
       loaded = loaded | (give * p.normal_impulse > limit * p.normal_mass) |
                ((p.separation < splat(-kDirectDepth)) & (p.normal_mass > zero));
       warm = warm + p.normal_impulse;
