@@ -139,9 +139,12 @@ struct DirectScratch {
 };
 
 // The direct stage's blocks: the systems are dealt into this many contiguous runs of about
-// equal rows, one a block of the stage, so two threads solve them at once. A fixed count, not
-// the thread count, and systems share no written body, so the bits are the same for any count.
-inline constexpr uint32_t kDirectBlocks = 2;
+// equal rows, one a block of the stage. One: systems share no written body, but two systems'
+// rows can be lanes of one contact bundle, and a store into one lane of a SIMD vector may be a
+// read-modify-write of the whole vector (clang at -O1 makes it one), so two blocks at once raced
+// on the bundle (the sanitized build's 2-thread hashes changed from run to run). A count above
+// one needs systems dealt so that no bundle spans two blocks.
+inline constexpr uint32_t kDirectBlocks = 1;
 
 struct DirectState {
   // Per bundle (prepare_bundle): the lanes whose rows are loaded, a bit a lane.
