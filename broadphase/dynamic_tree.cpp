@@ -134,13 +134,17 @@ bool DynamicTree::update(uint32_t item, const TreeBox& box, Real margin) {
     insert(item, fat);
     return true;
   }
-  // Keep the node, move it: remove from its place, re-insert with the new box.
+  reinsert(leaf, fat);
+  return true;
+}
+
+// Keeps the node and moves it: removed from its place, re-inserted with the new box.
+void DynamicTree::reinsert(uint32_t leaf, const TreeBox& fat) {
   ++inserts_since_compact_;
   remove_leaf(leaf);
   nodes_[leaf].box = fat;
   nodes_[leaf].parent = kNull;
   insert_leaf(leaf);
-  return true;
 }
 
 bool DynamicTree::update_moving(uint32_t item, const TreeBox& box, Real margin,
@@ -161,11 +165,7 @@ bool DynamicTree::update_moving(uint32_t item, const TreeBox& box, Real margin,
     insert(item, fat);
     return true;
   }
-  ++inserts_since_compact_;
-  remove_leaf(leaf);
-  nodes_[leaf].box = fat;
-  nodes_[leaf].parent = kNull;
-  insert_leaf(leaf);
+  reinsert(leaf, fat);
   return true;
 }
 

@@ -208,6 +208,7 @@ class DynamicTree {
  private:
   uint32_t allocate();
   void free_node(uint32_t n);
+  void reinsert(uint32_t leaf, const TreeBox& fat);
   void insert_leaf(uint32_t leaf);
   void remove_leaf(uint32_t leaf);
   uint32_t balance(uint32_t a);

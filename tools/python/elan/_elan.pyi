@@ -78,8 +78,7 @@ class World:
     iterations: int
     threads: int
     broadphase: str
-    @property
-    def allow_sleep(self) -> bool: ...
+    allow_sleep: bool
     @property
     def kinetic_energy(self) -> float: ...
     @property

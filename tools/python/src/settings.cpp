@@ -33,9 +33,11 @@ void bind_settings(pybind11::class_<PyWorld>& c) {
         w.get().set_broadphase(broadphase_from_name(name));
       },
       "'sap', 'all-pairs' or 'tree'. Results do not depend on it.");
-  c.def_property_readonly(
-      "allow_sleep", [](const PyWorld& w) { return w.get().settings().allow_sleep; },
-      "Whether resting bodies fall asleep (set at creation).");
+  c.def_property(
+      "allow_sleep", [](const PyWorld& w) { return w.get().sleep_enabled(); },
+      [](PyWorld& w, bool on) { w.get().set_sleep_enabled(on); },
+      "Whether resting bodies fall asleep. Off wakes every body; back on, a body sleeps after the "
+      "full time at rest (World::set_sleep_enabled).");
   c.def(
       "set_hit_event_threshold",
       [](PyWorld& w, double speed) { w.get().set_hit_event_threshold(Real(speed)); }, arg("speed"),

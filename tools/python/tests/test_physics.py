@@ -78,3 +78,21 @@ def test_bodies_come_to_rest_on_the_ground():
     w.step(300)
     assert w.position(box)[1] == pytest.approx(0.5, abs=0.02)  # resting on the ground's top
     assert w.kinetic_energy < 1e-3
+
+
+def test_allow_sleep_can_be_switched_between_steps():
+    # A box at rest sleeps after the sleep time (0.5 s) with sleeping on; switched off, every body
+    # wakes and stays awake; back on, it sleeps again after the full time at rest.
+    w = elan.World(threads=1)
+    w.create_body(w.create_shape("box", half_extents=(10, 1, 10)), motion="static",
+                  position=(0, -1, 0))
+    box = w.create_body(w.create_shape("box", half_extents=(0.5, 0.5, 0.5)), position=(0, 0.5, 0))
+    w.step(120)
+    assert w.allow_sleep and not w.is_awake(box)
+    w.allow_sleep = False
+    assert not w.allow_sleep and w.is_awake(box)
+    w.step(120)
+    assert w.is_awake(box)
+    w.allow_sleep = True
+    w.step(120)
+    assert not w.is_awake(box)
