@@ -192,6 +192,22 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
     const Real margin = Real(1e-4) * (q.shape->radius + q.speculative + v[0].cwiseAbs().sum());
     return !(std::abs(centre_height) - q.shape->radius > q.speculative + margin);
   }
+  // A lies within its bounding radius R of its centre, so every point of A that a contact reports
+  // (one over the triangle, or within the speculative distance of it) projects onto the plane
+  // within R of the centre's projection, and the triangle must come that near: a triangle that
+  // lies beyond one of its edges' lines by more than R plus the speculative distance, measured in
+  // its plane, gives nothing. perf: the box of a body grown by its motion over the step holds
+  // many such triangles beside it, each of which would cost a support, a supporting feature and
+  // a clip to reject. The test on edge k, e = v[k+1] - v[k], whose outward normal in the plane is
+  // e x g: -(e x g).v[k] > reach |e| (squared, with its sign, so that no root is taken).
+  const Real lateral =
+      q.shape->bounding_radius + q.speculative +
+      Real(1e-4) * (q.shape->bounding_radius + q.speculative + v[0].cwiseAbs().sum());
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = v[(k + 1) % 3] - v[k];
+    const Real beyond = -e.cross(geometric).dot(v[k]);
+    if (beyond > 0 && beyond * beyond > lateral * lateral * e.squaredNorm()) return false;
+  }
   // A lies on its centre's side of the plane down to its lowest point: when that is above the
   // plane by more than the speculative distance, the triangle is farther still. perf: one
   // support rejects most of the triangles under a body's box.
