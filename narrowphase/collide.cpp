@@ -119,13 +119,13 @@ PairFn pick(const Shape& a, const Shape& b) {
 // One dispatch for both entry points; a box or hull pair reuses `cache` when there is one.
 bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
               Real speculative_distance, Manifold& out, PolyhedronCache* cache,
-              Separation* separation) {
+              Separation* separation, const SurfaceMotion* motion) {
   out.point_count = 0;
   report_separation(separation, Separation::Kind::Unknown, 0);
   // A mesh, heightfield or compound: piece by piece, merged into one manifold (its separation
   // stays Unknown: no one measure of the pieces lasts).
   if (is_composite(a) || is_composite(b)) {
-    return collide_composite(a, xa, b, xb, speculative_distance, out);
+    return collide_composite(a, xa, b, xb, speculative_distance, out, motion);
   }
   if (PairFn f = pick(a, b)) {
     if (f == collide_sat && cache != nullptr) {
@@ -171,13 +171,13 @@ bool exact_test_is_closed_form(const Shape& a, const Shape& b) {
 
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
              Real speculative_distance, Manifold& out) {
-  return dispatch(a, xa, b, xb, speculative_distance, out, nullptr, nullptr);
+  return dispatch(a, xa, b, xb, speculative_distance, out, nullptr, nullptr, nullptr);
 }
 
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
              Real speculative_distance, Manifold& out, PolyhedronCache& cache,
-             Separation& separation) {
-  return dispatch(a, xa, b, xb, speculative_distance, out, &cache, &separation);
+             Separation& separation, const SurfaceMotion* motion) {
+  return dispatch(a, xa, b, xb, speculative_distance, out, &cache, &separation, motion);
 }
 
 }  // namespace elan::detail

@@ -13,6 +13,7 @@
 #include "core/base/packed_rotation.hpp"
 #include "core/base/shape.hpp"
 #include "core/base/step_scratch.hpp"
+#include "narrowphase/composite.hpp"
 #include "narrowphase/contact_store.hpp"
 #include "narrowphase/polyhedron.hpp"
 #include "narrowphase/separation.hpp"
@@ -43,9 +44,10 @@ struct PolyhedronCache {
   Polyhedron polyhedron;
 };
 // As collide(), also telling what a rejection measured (`separation`, Unknown after a contact).
+// `motion`: for a pair with a surface, the displacement over the step (collide_composite).
 bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
              Real speculative_distance, Manifold& out, PolyhedronCache& cache,
-             Separation& separation);
+             Separation& separation, const SurfaceMotion* motion = nullptr);
 
 // Whether the SAT of the box or hull pair (a, b) would reject it on the axis of A's edge `edge_a`
 // and B's edge `edge_b` (a Separation::Kind::EdgePair it reported before): the two edges still

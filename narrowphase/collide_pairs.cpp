@@ -227,6 +227,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       }
       // Try the separation cache: still apart if the motion since cannot have closed the gap.
       const ContactStore::Apart apart = block.look_up_apart(key);
+      const Vec3 displacement =
+          (bodies.linear_velocity(a) - bodies.linear_velocity(b)) * settings.dt;
       const Real approach =
           (bodies.linear_velocity(a) - bodies.linear_velocity(b)).norm() * settings.dt;
       const Real speculative = settings.speculative_distance + approach;
@@ -237,7 +239,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
         continue;
       }
       // Run the exact test.
-      collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation);
+      const SurfaceMotion motion{displacement, settings.speculative_distance};
+      collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation, &motion);
       // File the result: apart (every pair found apart is filed, the continuous stage's
       // candidates) ...
       if (m.point_count == 0) {

@@ -90,6 +90,11 @@ struct Walk {
   const Transform& xa;  // A's body pose: the candidates' points are from its centre
   Real speculative;
   Candidates& out;
+  // Against a surface: the speculative distance without the motion, and A's displacement
+  // relative to B (world); `base` equals `speculative` and the displacement is zero when no
+  // motion was given.
+  Real base;
+  Vec3 displacement;
 };
 
 // A convex piece p (A's side, or a plane) against a piece q of B's side: convex, plane or surface.
@@ -101,10 +106,14 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
     // The piece in the surface's frame; the triangles under its box.
     const Quat to_q = xq.rotation.conjugate();
     const Transform local{to_q * (xp.position - xq.position), to_q * xp.rotation};
+    const Vec3 motion = to_q * w.displacement;
     Vec3 lo, hi;
-    box_in(p, local, Transform{}, w.speculative, lo, hi);
+    box_in(p, local, Transform{}, w.base, lo, hi);
+    lo += motion.cwiseMin(Vec3::Zero());
+    hi += motion.cwiseMax(Vec3::Zero());
     // perf: what depends on the piece alone is derived once for all its triangles.
-    TriangleQuery query = make_triangle_query(p, local, w.speculative);
+    TriangleQuery query = make_triangle_query(p, local, w.base);
+    query.motion = motion;
     TriangleReach reach;
     TriangleContact tc;
     const auto contact = [&](const MeshTriangle& t) {
@@ -285,20 +294,26 @@ bool has_round_part(const Shape& s) {
 }
 
 bool collide_composite(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                       Real speculative_distance, Manifold& out) {
+                       Real speculative_distance, Manifold& out, const SurfaceMotion* motion) {
   out.point_count = 0;
   if (is_surface(a) && is_surface(b)) return false;
   if (is_surface(a)) {
     // The surface as B: run the pair the other way, then flip the normal and measure the points
     // from A's centre, as collide()'s dispatch does.
-    if (!collide_composite(b, xb, a, xa, speculative_distance, out)) return false;
+    SurfaceMotion flipped;
+    if (motion != nullptr) flipped = {-motion->displacement, motion->base_speculative};
+    if (!collide_composite(b, xb, a, xa, speculative_distance, out,
+                           motion != nullptr ? &flipped : nullptr)) {
+      return false;
+    }
     out.normal = -out.normal;
     const Vec3 b_from_a = xb.position - xa.position;
     for (int k = 0; k < int(out.point_count); ++k) out.points[k].anchor_a += b_from_a;
     return true;
   }
   Candidates cands;
-  Walk w{xa, speculative_distance, cands};
+  Walk w{xa, speculative_distance, cands, speculative_distance, Vec3::Zero()};
+  if (motion != nullptr) w.base = motion->base_speculative, w.displacement = motion->displacement;
   if (a.type == ShapeType::Compound) {
     Vec3 lo, hi;
     box_in(b, xb, xa, speculative_distance, lo, hi);

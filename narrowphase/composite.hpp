@@ -19,6 +19,19 @@ inline bool is_composite(const Shape& s) {
   return is_surface(s) || s.type == ShapeType::Compound;
 }
 
+// A's displacement relative to B over the coming step (world, m) and the speculative distance
+// without it. Given to collide_composite, a surface's triangle keeps contacts within
+// `base_speculative` plus the displacement's approach along the triangle's normal (the part of
+// the motion that can close the gap to its plane), and the box a piece walks is grown by
+// `base_speculative` and stretched along the displacement, rather than both grown all round by
+// the whole motion (the speculative distance given): a body falling onto a surface meets the
+// triangles below it, not those beside it. Box2D and Jolt keep a fixed speculative distance for
+// every contact; this keeps the motion's allowance where the motion goes.
+struct SurfaceMotion {
+  Vec3 displacement = Vec3::Zero();
+  Real base_speculative = 0;
+};
+
 // Same contract as collide() (collide.hpp), for a pair where either shape is composite. A
 // compound is walked part by part (parts whose box meets the other side's box grown by the
 // speculative distance); a convex piece against a surface walks the triangles under its box, in
@@ -28,8 +41,11 @@ inline bool is_composite(const Shape& s) {
 // candidates whose normal is within kSameNormalCos of it (their separation re-measured along it),
 // reduced with reduce_to_four. Feature ids hash the part indices, the triangle's index and the
 // piece's own id. Fixed stack buffers; the walk's order is fixed.
+// `motion`, if given: see SurfaceMotion (its base at most `speculative_distance`, and the base plus
+// the displacement's length at least it); without it every triangle keeps `speculative_distance`.
 bool collide_composite(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                       Real speculative_distance, Manifold& out);
+                       Real speculative_distance, Manifold& out,
+                       const SurfaceMotion* motion = nullptr);
 
 // Whether a compound has a round part (sphere, capsule, cylinder): its manifold is not carried by
 // the body pair cache (collide_pairs' rolls()).

@@ -185,12 +185,14 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   if (!t.two_sided && centre_height < 0) return false;
   r.geometric = geometric;
   r.face = centre_height >= 0 ? geometric : Vec3(-geometric);
+  // Only the motion toward the plane can close the gap to it within the step.
+  r.speculative = q.speculative + std::max(Real(0), -r.face.dot(q.motion));
   if (q.shape->type == ShapeType::Sphere) {
     // The sphere's closed form rejects on its centre's distance to the triangle, which its
     // height above the plane bounds from below; the margin covers that distance's rounding
     // (coordinates of a few metres round to about 1e-6 m), so nothing it keeps is lost.
-    const Real margin = Real(1e-4) * (q.shape->radius + q.speculative + v[0].cwiseAbs().sum());
-    return !(std::abs(centre_height) - q.shape->radius > q.speculative + margin);
+    const Real margin = Real(1e-4) * (q.shape->radius + r.speculative + v[0].cwiseAbs().sum());
+    return !(std::abs(centre_height) - q.shape->radius > r.speculative + margin);
   }
   // A lies within its bounding radius R of its centre, so every point of A that a contact reports
   // (one over the triangle, or within the speculative distance of it) projects onto the plane
@@ -201,8 +203,8 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   // a clip to reject. The test on edge k, e = v[k+1] - v[k], whose outward normal in the plane is
   // e x g: -(e x g).v[k] > reach |e| (squared, with its sign, so that no root is taken).
   const Real lateral =
-      q.shape->bounding_radius + q.speculative +
-      Real(1e-4) * (q.shape->bounding_radius + q.speculative + v[0].cwiseAbs().sum());
+      q.shape->bounding_radius + r.speculative +
+      Real(1e-4) * (q.shape->bounding_radius + r.speculative + v[0].cwiseAbs().sum());
   for (int k = 0; k < 3; ++k) {
     const Vec3 e = v[(k + 1) % 3] - v[k];
     const Real beyond = -e.cross(geometric).dot(v[k]);
@@ -213,7 +215,7 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   // support rejects most of the triangles under a body's box.
   r.lowest = support_world(q.full, -r.face);
   r.plane_gap = r.face.dot(r.lowest - v[0]);
-  return !(r.plane_gap > q.speculative);
+  return !(r.plane_gap > r.speculative);
 }
 
 bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
@@ -229,7 +231,7 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
                               TriangleContact& out) {
   out.count = 0;
   const Shape& a = *q.shape;
-  const Real speculative_distance = q.speculative;
+  const Real speculative_distance = r.speculative;
   const Vec3(&v)[3] = r.v;
   const Vec3& geometric = r.geometric;
   const Vec3& face = r.face;

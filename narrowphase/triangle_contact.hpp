@@ -48,7 +48,10 @@ struct TriangleQuery {
   PlacedShape full;              // A placed at the origin, radius included
   PlacedShape core;              // the same without the radius (the same as `full` for radius 0)
   Real radius = 0;               // core_radius(A)
-  Real speculative = 0;
+  Real speculative = 0;          // m, without the motion
+  // m, surface frame: A's displacement relative to the surface over the step; a triangle's
+  // speculative distance is `speculative` plus its approach along the triangle's normal.
+  Vec3 motion = Vec3::Zero();
   // Set: the triangles are this heightfield's, given without their active edges (corners()),
   // which are derived only where a contact needs them. Null: each triangle's own are read.
   const HeightField* field = nullptr;
@@ -57,11 +60,12 @@ TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real spec
 
 // The triangle in A's working frame and its plane: collide_triangle's first and cheapest tests.
 struct TriangleReach {
-  Vec3 v[3];         // corners, from A's centre
-  Vec3 geometric;    // unit normal of the corners' winding
-  Vec3 face;         // unit normal toward A's centre's side
-  Vec3 lowest;       // A's support along -face (not for a sphere)
-  Real plane_gap{};  // lowest's height above the plane (not for a sphere)
+  Vec3 v[3];           // corners, from A's centre
+  Vec3 geometric;      // unit normal of the corners' winding
+  Vec3 face;           // unit normal toward A's centre's side
+  Vec3 lowest;         // A's support along -face (not for a sphere)
+  Real plane_gap{};    // lowest's height above the plane (not for a sphere)
+  Real speculative{};  // m: q.speculative plus q.motion's approach along -face
 };
 
 // Whether triangle `t` (corners and two_sided read; not its active edges) may give a contact:

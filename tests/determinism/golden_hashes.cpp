@@ -47,8 +47,8 @@ const std::map<std::string, uint64_t>& golden() {
       {"pyramid20", 0x81f2803d6709df6eull},      {"rain", 0xda5effc82c0163fbull},
       {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xe20e4645b4fbcae5ull},
       {"towers", 0xefd2e01bd19bcdcbull},         {"tumbler", 0xa78e2c34fcb7f65dull},
-      {"compounds", 0xdfdaf27ff4aba5e2ull},      {"convex_vs_mesh", 0xf2612eeb0d405ccbull},
-      {"geometry_demo", 0xa91c795b2e3dd790ull},  {"heightfield_rain", 0xa875c196dd743d24ull},
+      {"compounds", 0xdfdaf27ff4aba5e2ull},      {"convex_vs_mesh", 0x410c4869e9d4ea9aull},
+      {"geometry_demo", 0x9cf33de4041a2dcfull},  {"heightfield_rain", 0xae8734e501a447a3ull},
   };
   return table;
 }
