@@ -115,6 +115,38 @@ TEST(Composite, BoxAcrossInternalEdgesGetsTheFaceNormalAndHeight) {
   }
 }
 
+TEST(Composite, SurfaceMotionKeepsTheAllowanceAlongTheApproachOnly) {
+  const Shape floor = floor_mesh(3);
+  const Shape b = box(Real(0.35), Real(0.3), Real(0.4));
+  // The box's bottom 0.1 m above the floor; the step moves it 0.2 m, the base distance 2 cm.
+  const Transform xa = at(Real(0.2), Real(0.4), Real(-0.1));
+  const Real step = Real(0.2), speculative = kSpec + step;
+  // Falling: every triangle under the box is approached by 0.2 m, so the bottom face's four
+  // corners are speculative points 0.1 m apart along the face normal.
+  const SurfaceMotion falling{Vec3(0, -step, 0), kSpec};
+  Manifold m;
+  ASSERT_TRUE(collide_composite(b, xa, floor, at(0, 0, 0), speculative, m, &falling));
+  EXPECT_EQ(m.point_count, 4u);
+  EXPECT_NEAR(m.normal.y(), -1, kTol);
+  for (int k = 0; k < int(m.point_count); ++k) {
+    EXPECT_NEAR(m.points[k].separation, Real(0.1), kTol);
+  }
+  // Sliding or rising as fast: nothing closes the 0.1 m gap, which is past the base distance;
+  // the same distance given without the motion keeps the points.
+  for (const Vec3& d : {Vec3(step, 0, 0), Vec3(0, 0, -step), Vec3(0, step, 0)}) {
+    const SurfaceMotion moving{d, kSpec};
+    EXPECT_FALSE(collide_composite(b, xa, floor, at(0, 0, 0), speculative, m, &moving));
+  }
+  EXPECT_TRUE(collide_composite(b, xa, floor, at(0, 0, 0), speculative, m));
+  // The surface as A: its motion relative to the box is the box's, reversed.
+  const SurfaceMotion rising{Vec3(0, step, 0), kSpec};
+  ASSERT_TRUE(collide_composite(floor, at(0, 0, 0), b, xa, speculative, m, &rising));
+  EXPECT_EQ(m.point_count, 4u);
+  EXPECT_NEAR(m.normal.y(), 1, kTol);
+  const SurfaceMotion sinking{Vec3(0, -step, 0), kSpec};
+  EXPECT_FALSE(collide_composite(floor, at(0, 0, 0), b, xa, speculative, m, &sinking));
+}
+
 TEST(Composite, FourPointsAreTheSupportNotTheWidestHovering) {
   // A plateau 0.4 m square at y = 0 in a ring sloping down 5 cm a metre (2.9 degrees, one
   // manifold) to a 2 m square. A 1 m box 0.5 mm into the plateau touches it at the plateau's
