@@ -262,11 +262,15 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   c.twist_mass = inverse_or_zero(k_twist);
   if (!ctx.loaded_lanes.empty()) {
     // A row is loaded when its soft spring would give more than kDirectGive under the impulse it
-    // carried last step, lambda gamma / m_eff > kDirectGive (direct_solve.hpp), or is pressed in
-    // deeper than a landing overshoots (kDirectDepth),
-    const Wide give = mb.inv_mass == zero ? splat(ctx.static_give) : splat(ctx.contact_give);
+    // carried last step, lambda gamma / m_eff > kDirectGive (direct_solve.hpp), or is pressed
+    // into a static or kinematic body deeper than a landing overshoots (kDirectDepth): two
+    // dynamic bodies pressed that deep have met in an impact or been spawned overlapping, and
+    // what their rows carry is the push-out, not a load (a load shows in the give),
+    const auto fixed_b = mb.inv_mass == zero;
+    const Wide give = fixed_b ? splat(ctx.static_give) : splat(ctx.contact_give);
     const Wide limit = splat(kDirectGive);
     auto loaded = give < zero;  // all false
+    auto deep = loaded;
     // Face contacts only (three points or more): the resting support of a stack or a load. The
     // contacts of round shapes roll and spin, and their rows are left to the passes.
     const auto face = point_count > splat(Real(2));
@@ -274,8 +278,8 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     auto resting = point_count > zero;
     for (int k = 0; k < points; ++k) {
       const WideNormalRow& p = row_of(c, rows, k);
-      loaded = loaded | (give * p.normal_impulse > limit * p.normal_mass) |
-               ((p.separation < splat(-kDirectDepth)) & (p.normal_mass > zero));
+      loaded = loaded | (give * p.normal_impulse > limit * p.normal_mass);
+      deep = deep | ((p.separation < splat(-kDirectDepth)) & (p.normal_mass > zero) & fixed_b);
       warm = warm + p.normal_impulse;
       resting = resting & (bounce.relative_velocity[k] > splat(-kDirectRestSpeed));
     }
@@ -290,13 +294,17 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
       if ((bodies.flags[m.body_a] | bodies.flags[m.body_b]) & kPlaced) placed[l] = ~placed[l];
     }
     loaded = loaded | ((warm == zero) & resting & placed);
-    loaded = loaded & face;
+    loaded = (loaded | deep) & face;
+    deep = deep & face;
     uint32_t bits = 0;
-    for (int l = 0; l < lane_count; ++l) bits |= loaded[l] ? 1u << l : 0u;
+    for (int l = 0; l < lane_count; ++l) {
+      bits |= loaded[l] ? 1u << l : 0u;
+      bits |= deep[l] ? 1u << (kLanes + l) : 0u;
+    }
     // Not the lanes of bodies spawned into many others (the push-out share): their rows are
     // pressed in deep, but what they carry is the push-out, not a load, and the cliques they
     // form (deep_pairs.hpp) would make dense systems of hundreds of rows.
-    ctx.loaded_lanes[bundle] = bits & ~shared_lanes;
+    ctx.loaded_lanes[bundle] = bits & ~(shared_lanes | shared_lanes << kLanes);
   }
 }
 

@@ -73,7 +73,8 @@ struct ContactSolverContext {
   std::span<WideValue> push_cap;
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
   // Per bundle, written by prepare_bundle: the lanes whose rows carry a load their soft spring
-  // would give under by more than kDirectGive (direct_solve.hpp), a bit a lane. Empty: not
+  // would give under by more than kDirectGive (direct_solve.hpp), a bit a lane, and above them
+  // those pressed into a static body deeper than kDirectDepth (DirectState). Empty: not
   // wanted. The give per impulse of each softness (give_per_impulse), s/kg.
   std::span<uint32_t> loaded_lanes;
   Real contact_give = 0, static_give = 0;

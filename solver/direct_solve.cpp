@@ -197,7 +197,7 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
   reserve_for(ds.item_source, item_bound);
   const std::size_t bundles = std::min(ds.loaded_lanes.size(), ctx.bundles.size());
   for (std::size_t j = 0; j < bundles; ++j) {
-    const uint32_t mask = ds.loaded_lanes[j];
+    const uint32_t mask = ds.loaded_lanes[j] & kLaneBits;
     if (mask == 0) continue;
     const ContactBundle& c = ctx.bundles[j];
     for (int l = 0; l < kLanes; ++l) {
@@ -286,8 +286,12 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     const uint64_t root = ds.items[2 * ds.order[k]] >> 32;
     std::size_t end = k;
     uint32_t row_count = 0;
+    // One manifold, not pressed deep into a static surface (kDirectDepth).
+    bool lone = false;
     while (end < count && (ds.items[2 * ds.order[end]] >> 32) == root) {
       const uint64_t item = ds.item_source[ds.order[end]];
+      lone = end == k && !(item >> 32) &&
+             !((ds.loaded_lanes[item >> 8] >> (kLanes + (item & 0xff))) & 1u);
       row_count +=
           (item >> 32)
               ? 3u
@@ -295,7 +299,15 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
                              .point_count);
       ++end;
     }
-    if (row_count <= kDirectMaxRows) {
+    // A lone manifold is left to the passes. With no other loaded row on its bodies, no load
+    // reaches it through a chain of bodies or a light body, which is what Gauss-Seidel cannot
+    // carry within its passes; its give is one contact's, F / (m_eff omega^2), F at most the
+    // weight of its bodies and of the unloaded rows around them (a table on a table or on the
+    // ground). Such a row is past kDirectGive mostly for a step or two after an impact, and an
+    // active set that chases a bouncing body seldom settles. A mass ratio has a second loaded
+    // row (the light body's support), a tower many. A face pressed deep into a static surface
+    // (a body sinking into a thin mesh) is solved alone all the same.
+    if (row_count <= kDirectMaxRows && !lone) {
       DirectSystem system;
       system.row_begin = uint32_t(ds.rows.size());
       system.packet_begin = uint32_t(ds.packets.size());

@@ -2,8 +2,9 @@
 // The direct solve of loaded rows: the normal rows of contacts and the point rows of joints that
 // carry a load their soft spring would give under (s = lambda gamma / m_eff, see kDirectGive),
 // face contacts only (three points or more), in islands of at most kDirectMaxBodies bodies,
-// gathered into linear systems, one per connected set of bodies, and solved exactly once per
-// biased pass and once per relax pass of every substep, after the Gauss-Seidel passes.
+// gathered into linear systems, one per connected set of bodies (but a lone manifold, see
+// build_direct_systems), and solved exactly once per biased pass and once per relax pass of every
+// substep, after the Gauss-Seidel passes.
 //
 // Why: a soft row is a spring on the row's effective mass m_eff, so it settles at a penetration
 // F / (m_eff omega^2) under a load F. A tower's lower contacts carry many bodies' weight, a light
@@ -70,9 +71,11 @@ inline constexpr Real kDirectJointGive = Real(0.001);  // m
 // while Gauss-Seidel carries its weight up, is taken by the placed rule on its first step, and
 // by its warm impulses (lambda gamma / m_eff > kDirectGive) from then on.
 inline constexpr Real kDirectRestSpeed = Real(0.5);  // m/s
-// Rows pressed in deeper than this are solved directly too (prepare_bundle): a body sinking into
-// a surface under a load its rows do not carry yet. Three times the overshoot v / omega of a
-// landing at kDirectRestSpeed.
+// Rows pressed into a static or kinematic body deeper than this are solved directly too
+// (prepare_bundle), even a lone manifold: a body sinking into a surface under a load its rows do
+// not carry yet. Three times the overshoot v / omega of a landing at kDirectRestSpeed. Two
+// dynamic bodies that deep have met in an impact (a table's leg through another's top) or were
+// spawned overlapping: the push-out, not a load.
 inline constexpr Real kDirectDepth = Real(0.005);  // m
 // Systems with more rows are left to Gauss-Seidel: the envelope of a large pile is dense, and
 // its factor would cost more than the passes it replaces.
@@ -146,8 +149,14 @@ struct DirectScratch {
 // one needs systems dealt so that no bundle spans two blocks.
 inline constexpr uint32_t kDirectBlocks = 1;
 
+// The loaded lanes' bits of DirectState::loaded_lanes; the deep lanes' are above them.
+static_assert(2 * kLanes <= 32, "loaded_lanes: two bits a lane");
+inline constexpr uint32_t kLaneBits = (uint32_t(1) << kLanes) - 1;
+
 struct DirectState {
-  // Per bundle (prepare_bundle): the lanes whose rows are loaded, a bit a lane.
+  // Per bundle (prepare_bundle): the lanes whose rows are loaded, a bit a lane (bits
+  // [0, kLanes)), and of those the faces pressed into a static or kinematic body deeper than
+  // kDirectDepth (bits [kLanes, 2 kLanes)).
   std::vector<uint32_t> loaded_lanes;
   // Per block of prepare_joints' loop: some row in it is loaded (JointRow kJointLoaded).
   std::vector<uint8_t> loaded_joint_blocks;
@@ -177,7 +186,8 @@ struct DirectState {
 
 // Serial, before the substeps: the loaded rows of islands (islands.hpp: `island_root` per body,
 // `island_size` per root) of at most kDirectMaxBodies bodies, one system per set of them linked
-// through their bodies. Reads
+// through their bodies, but for a set of one manifold that is not deep (left to the passes:
+// one contact's give is bounded by its bodies' weight; direct_solve.cpp). Reads
 // ds.loaded_lanes, ds.loaded_joint_blocks (block size `joint_grain`), the bundles' lanes and point
 // counts, the joint rows' packets and flags. Returns whether any system is to be solved.
 bool build_direct_systems(const ContactSolverContext& ctx, std::span<const ManifoldHead> contacts,
