@@ -13,12 +13,13 @@ namespace elan::detail {
 namespace {
 
 constexpr std::size_t kDeepGrain = 2048;
+constexpr std::size_t kBallGrain = 4096;
 
 // The inner ball's radius of a dynamic convex primitive (deep_pairs.hpp), m; 0 for any other body
-// (static, kinematic, or a shape whose centre need not lie inside it: compounds), which is
-// never deep.
+// (static, kinematic, a sensor, or a shape whose centre need not lie inside it: compounds),
+// which is never deep.
 Real deep_radius(const WorldState& w, uint32_t i) {
-  if (!w.bodies.is_dynamic(i)) return 0;
+  if (!w.bodies.is_dynamic(i) || (w.bodies.traits_of(i).flags & kTraitSensor) != 0) return 0;
   const Shape& s = w.shapes[w.bodies.shape[i]];
   switch (s.type) {
     case ShapeType::Sphere:
@@ -35,7 +36,46 @@ Real deep_radius(const WorldState& w, uint32_t i) {
 
 }  // namespace
 
+DeepSieve* prepare_deep_sieve(WorldState& w) {
+  const std::size_t n = w.bodies.size();
+  w.deep_balls.resize(n);
+  // determinism: indexed writes (rule 1).
+  for_blocks(n, kBallGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Vec3 p = w.bodies.position(i);
+      w.deep_balls[i] = {p.x(), p.y(), p.z(), deep_radius(w, uint32_t(i))};
+    }
+  });
+  // A user's pair filter runs after the broadphase and must see every pair.
+  w.deep_sieved = !w.api.pair_filter;
+  w.deep_taken = 0;
+  if (!w.deep_sieved) return nullptr;
+  w.deep_sieve.begin(w.deep_balls);
+  return &w.deep_sieve;
+}
+
+void add_deep_candidates(WorldState& w) {
+  if (!w.deep_sieved) return;
+  std::vector<uint64_t>& deep = w.deep_candidates;
+  deep.clear();
+  w.deep_taken = w.deep_sieve.collect(deep);
+  if (deep.empty()) return;
+  std::sort(deep.begin(), deep.end());
+  // Both sorted and disjoint (a pair is deep or not): one merge from the back, in place.
+  std::size_t i = w.pairs.size(), j = deep.size(), k = i + j;
+  w.pairs.resize(k);
+  while (j > 0) {
+    if (i > 0 && w.pairs[i - 1] > deep[j - 1]) {
+      w.pairs[--k] = w.pairs[--i];
+    } else {
+      w.pairs[--k] = deep[--j];
+    }
+  }
+}
+
 std::size_t limit_deep_pairs(WorldState& w) {
+  // perf: an ordinary scene's pairs went through the sieve, which found none deep.
+  if (w.deep_sieved && w.deep_taken == 0) return 0;
   const std::size_t n = w.pairs.size();
   const std::size_t blocks = block_count(n, kDeepGrain);
   std::vector<uint8_t>& deep = w.deep_pair;
@@ -48,14 +88,8 @@ std::size_t limit_deep_pairs(WorldState& w) {
     for (std::size_t k = begin; k < end; ++k) {
       const uint64_t key = w.pairs[k];
       const uint32_t a = pair_first(key), b = pair_second(key);
-      uint8_t is_deep = 0;
-      const Real ra = deep_radius(w, a);
-      if (ra > 0) {
-        const Real rb = deep_radius(w, b);
-        const Real reach = kDeepFraction * (ra + rb);
-        is_deep =
-            rb > 0 && (w.bodies.position(a) - w.bodies.position(b)).squaredNorm() < reach * reach;
-      }
+      Real d2;
+      const uint8_t is_deep = balls_deep(w.deep_balls[a], w.deep_balls[b], d2) ? 1 : 0;
       deep[k] = is_deep;
       any |= is_deep;
     }
