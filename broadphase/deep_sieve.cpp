@@ -3,7 +3,6 @@
 #include "broadphase/deep_sieve.hpp"
 
 #include <algorithm>
-#include <bit>
 
 #include "core/base/heap_bytes.hpp"
 #include "core/base/pair_key.hpp"
@@ -30,8 +29,8 @@ inline bool deep_test(const DeepBall& a, const DeepBall& b, Real& d2) {
   return a.r > 0 && b.r > 0 && d2 < reach * reach;
 }
 
-// The finaliser of splitmix64 (Steele, Lea and Flood 2014): neighbouring keys get unrelated ties.
-inline uint32_t tie_of(uint64_t key) {
+// The finaliser of splitmix64 (Steele, Lea and Flood 2014): neighbouring keys get unrelated ranks.
+inline uint32_t mix(uint64_t key) {
   key ^= key >> 30;
   key *= 0xBF58476D1CE4E5B9ull;
   key ^= key >> 27;
@@ -40,8 +39,9 @@ inline uint32_t tie_of(uint64_t key) {
   return uint32_t(key);
 }
 
-inline uint64_t rank_of(Real d2, uint64_t key) {
-  return (uint64_t{std::bit_cast<uint32_t>(float(d2))} << 32) | tie_of(key);
+inline uint64_t rank_of(const DeepBall& a, const DeepBall& b, uint64_t key) {
+  if (a.run == b.run) return pair_second(key) - pair_first(key);
+  return (uint64_t{1} << 32) | mix(key);
 }
 
 }  // namespace
@@ -50,12 +50,8 @@ bool balls_deep(const DeepBall& a, const DeepBall& b, Real& d2) {
   return deep_test(a, b, d2);
 }
 
-uint32_t deep_pair_tie(uint64_t key) {
-  return tie_of(key);
-}
-
-uint64_t deep_pair_rank(Real d2, uint64_t key) {
-  return rank_of(d2, key);
+uint64_t deep_pair_rank(const DeepBall& a, const DeepBall& b, uint64_t key) {
+  return rank_of(a, b, key);
 }
 
 void DeepSieve::begin(std::span<const DeepBall> balls) {
@@ -112,7 +108,7 @@ std::size_t DeepSieve::sieve(uint64_t* keys, std::size_t count) {
       continue;
     }
     ++s.taken;
-    const uint64_t rank = rank_of(d2, key);
+    const uint64_t rank = rank_of(balls[a], balls[b], key);
     if (rank > bar[a] && rank > bar[b]) continue;
     offer(s, a, {rank, b});
     offer(s, b, {rank, a});

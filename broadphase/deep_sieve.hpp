@@ -9,14 +9,23 @@
 // pairs per body.
 //
 // Deep (as deep_pairs.hpp): both bodies have an inner ball (radius r > 0) and their centres are
-// closer than kDeepFraction (r_a + r_b). Best: the nearest (the squared distance, rounded to
-// float in either build), ties (bodies at one point) by a hash of the pair, then by the partner's
-// index. This order is a function of the pair alone, so a body's best kCandidates are a function
-// of the set of its deep partners, whatever order the pairs come in and however they are split
-// between threads: each thread keeps sets of its own, merged at the end, and the candidates are
-// the same for every finder and any thread count. The hash spreads a crowd at one point: by index,
-// every body would pick the same few lowest ones, whose budgets then fill at once and leave the
-// others no pair at all.
+// closer than kDeepFraction (r_a + r_b). Best (deep_pair_rank): first the partners of the body's
+// own run of kRun consecutive bodies that can be deep (DeepBall::run), nearest in index first; then
+// the others in the order of a hash of the pair. The order is one of the pair alone, so a body's
+// best kCandidates are a function of the set of its deep partners, whatever order the pairs come in
+// and however they are split between threads: each thread keeps sets of its own, merged at the end,
+// and the candidates are the same for every finder and any thread count.
+//
+// Why runs: bodies spawned at one point are made one after the other, and a run of kRun of them
+// keeps all its kRun (kRun - 1) / 2 pairs, kDeepPairBudget = kRun - 1 a body, so the crowd parts
+// in groups, none pushing on another's members until they are no longer deep, as the budget's
+// greedy pass in key order alone made it. Nearest-first (by distance), or a hash alone, joins the
+// whole crowd in one graph of pushes whose chains add up past the push-out cap within half a
+// second (100 boxes at one point: 14 to 19 m/s at steps 24 to 34 against the cap's 3;
+// tests/physics/spawn_overlap.cpp). Why the hash for the rest: the finders meet pairs in index
+// order, and by index distance nearly every offer would improve a set (each partner nearer than the
+// last); in hash order a set's worst improves rarely, and most offers are turned away by one
+// compare.
 #pragma once
 
 #include <cstddef>
@@ -31,8 +40,10 @@ namespace elan::detail {
 inline constexpr Real kDeepFraction = Real(0.9);
 
 // A body's inner ball (deep_pairs.hpp): centre and radius, m; r = 0 for a body that is never deep.
+// run: the body's run (deep_sieve.hpp), its ordinal among the bodies with r > 0 over kRun.
 struct DeepBall {
   Real x = 0, y = 0, z = 0, r = 0;
+  uint32_t run = 0;
 };
 
 // True when the two balls are deep (both radii positive, centres closer than kDeepFraction of
@@ -40,15 +51,18 @@ struct DeepBall {
 // budget. Symmetric in a and b: the differences change sign, their squares do not.
 bool balls_deep(const DeepBall& a, const DeepBall& b, Real& d2);
 
-// A deep pair's rank, lower is better: the float bits of the squared distance (d2 >= +0, so
-// they order as the values do) above deep_pair_tie(key). Equal ranks fall back to the partner.
-uint64_t deep_pair_rank(Real d2, uint64_t key);
+// A deep pair's rank in its bodies' sets, lower is better: |a - b| for a pair within one run, else
+// 2^32 + a hash of the key (make_pair_key). Equal ranks (the partners a - d and a + d) fall back
+// to the partner's index.
+uint64_t deep_pair_rank(const DeepBall& a, const DeepBall& b, uint64_t key);
 
 class DeepSieve {
  public:
-  // Deep partners a body's candidate set keeps: twice the budget, so that after the budget's cut
-  // (deep_pairs.hpp) a body still finds partners whose budgets are not yet full.
-  static constexpr uint32_t kCandidates = 16;
+  // Deep partners a body's candidate set keeps: the budget (deep_pairs.hpp). The pairs other
+  // bodies keep of it come on top, so the budget's cut still has more to choose from.
+  static constexpr uint32_t kCandidates = 8;
+  // Bodies of a run (deep_sieve.hpp): the budget and the body.
+  static constexpr uint32_t kRun = kCandidates + 1;
 
   // Starts an update: one ball per body, read until collect(). Sizes the per-thread sets (call it
   // in the arena the finder runs in).

@@ -43,9 +43,15 @@ DeepSieve* prepare_deep_sieve(WorldState& w) {
   for_blocks(n, kBallGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
       const Vec3 p = w.bodies.position(i);
-      w.deep_balls[i] = {p.x(), p.y(), p.z(), deep_radius(w, uint32_t(i))};
+      w.deep_balls[i] = {p.x(), p.y(), p.z(), deep_radius(w, uint32_t(i)), 0};
     }
   });
+  // The runs (deep_sieve.hpp): serial, a count and a division a body.
+  uint32_t ordinal = 0;
+  for (DeepBall& b : w.deep_balls) {
+    b.run = ordinal / DeepSieve::kRun;
+    ordinal += b.r > 0 ? 1 : 0;
+  }
   // A user's pair filter runs after the broadphase and must see every pair.
   w.deep_sieved = !w.api.pair_filter;
   w.deep_taken = 0;

@@ -10,8 +10,9 @@
 // Two cuts, each a function of the scene's state alone, so the pairs are the same for any thread
 // count and every broadphase:
 // - in the broadphase, the deep sieve (broadphase/deep_sieve.hpp) keeps of each body's deep
-//   pairs only its DeepSieve::kCandidates nearest (ties by a hash of the pair), so a crowd's
-//   pairs are never all stored nor sorted (10,000 boxes at one point: 50 million pairs);
+//   pairs only its DeepSieve::kCandidates best (those in its own run of 9 consecutive indices,
+//   then by a hash of the pair), so a crowd's pairs are never all stored nor sorted (10,000 boxes
+//   at one point: 50 million pairs);
 // - after the pair filters, the budget: in sorted pair order, each deep pair one of whose bodies
 //   already keeps kDeepPairBudget deep pairs is dropped.
 // A world with a user pair filter skips the sieve (the filter must see every pair; the budget
@@ -43,6 +44,8 @@ struct WorldState;
 // grid (6), so that a body packed in harder than any ordinary load presses it keeps its
 // neighbours.
 inline constexpr uint32_t kDeepPairBudget = 8;
+// The sieve's runs give each body its budget of partners within its run (deep_sieve.hpp).
+static_assert(DeepSieve::kRun == kDeepPairBudget + 1);
 
 // Stage (before the broadphase): the bodies' inner balls (w.deep_balls), and the sieve the
 // broadphase is to use, or null when the world has a pair filter.

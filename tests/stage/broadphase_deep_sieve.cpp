@@ -65,7 +65,12 @@ Crowd make_crowd(std::size_t n, uint32_t seed) {
     } else if (i % 11 == 0) {
       c.kind[i] = uint8_t(BroadKind::Sleeping);
     }
-    c.balls[i] = {p.x(), p.y(), p.z(), r};
+    c.balls[i] = {p.x(), p.y(), p.z(), r, 0};
+  }
+  uint32_t ordinal = 0;
+  for (DeepBall& b : c.balls) {
+    b.run = ordinal / DeepSieve::kRun;
+    ordinal += b.r > 0 ? 1 : 0;
   }
   return c;
 }
@@ -85,8 +90,9 @@ void expected(const Crowd& c, std::vector<uint64_t>& stored, std::vector<uint64_
       stored.push_back(key);
       continue;
     }
-    partners[a].emplace_back(deep_pair_rank(d2, key), b);
-    partners[b].emplace_back(deep_pair_rank(d2, key), a);
+    const uint64_t rank = deep_pair_rank(c.balls[a], c.balls[b], key);
+    partners[a].emplace_back(rank, b);
+    partners[b].emplace_back(rank, a);
   }
   candidates.clear();
   for (uint32_t i = 0; i < n; ++i) {
@@ -142,14 +148,14 @@ TEST(DeepSieve, EveryFinderKeepsTheSameCandidatesAndStoresTheRest) {
 // A body with no more deep partners than its set holds keeps them all: the sieve changes nothing
 // of a scene with few deep pairs.
 TEST(DeepSieve, FewDeepPartnersAreAllKept) {
-  Crowd crowd = make_crowd(18, 3);
+  Crowd crowd = make_crowd(12, 3);
   std::vector<uint64_t> stored, candidates, all;
   expected(crowd, stored, candidates);
   find_pairs_brute_force(crowd.input(nullptr), all);
   std::vector<uint64_t> joined = stored;
   joined.insert(joined.end(), candidates.begin(), candidates.end());
   std::sort(joined.begin(), joined.end());
-  ASSERT_TRUE(joined == all);  // 18 bodies: at most 12 within reach, fewer than kCandidates
+  ASSERT_TRUE(joined == all);  // 12 bodies: at most 7 within reach, fewer than kCandidates
 
   DeepSieve sieve;
   SweepAndPrune sap;
