@@ -11,17 +11,18 @@
 // Deep (as deep_pairs.hpp): both bodies have an inner ball (radius r > 0) and their centres are
 // closer than kDeepFraction (r_a + r_b). Best (deep_pair_rank): first the partners of the body's
 // own run of kRun consecutive bodies that can be deep (DeepBall::run), nearest in index first; then
-// the others in the order of a hash of the pair. The order is one of the pair alone, so a body's
-// best kCandidates are a function of the set of its deep partners, whatever order the pairs come in
-// and however they are split between threads: each thread keeps sets of its own, merged at the end,
-// and the candidates are the same for every finder and any thread count.
+// the others in the order of a hash of the pair. The order is a function of the pair and its
+// bodies' runs (the scene's state), so a body's best kCandidates are a function of the set of its
+// deep partners, whatever order the pairs come in and however they are split between threads: each
+// thread keeps sets of its own, merged at the end, and the candidates are the same for every finder
+// and any thread count.
 //
 // Why runs: bodies spawned at one point are made one after the other, and a run of kRun of them
 // keeps all its kRun (kRun - 1) / 2 pairs, kDeepPairBudget = kRun - 1 a body, so the crowd parts
 // in groups, none pushing on another's members until they are no longer deep, as the budget's
 // greedy pass in key order alone made it. Nearest-first (by distance), or a hash alone, joins the
 // whole crowd in one graph of pushes whose chains add up past the push-out cap within half a
-// second (100 boxes at one point: 14 to 19 m/s at steps 24 to 34 against the cap's 3;
+// second (100 boxes at one point: 14 to 19 m/s at steps 24 to 41 against the cap's 3;
 // tests/physics/spawn_overlap.cpp). Why the hash for the rest: the finders meet pairs in index
 // order, and by index distance nearly every offer would improve a set (each partner nearer than the
 // last); in hash order a set's worst improves rarely, and most offers are turned away by one
