@@ -129,7 +129,7 @@ void DeepSieve::reset(Sets& s) {
 
 // determinism: the best kCandidates of a union are the best of the union of each part's best, so
 // the merged sets do not depend on which thread took which pair nor on the order they are merged.
-std::size_t DeepSieve::collect(std::vector<uint64_t>& out) {
+std::size_t DeepSieve::collect(std::vector<uint64_t>& out, std::span<uint8_t> crowded) {
   std::size_t taken = 0;
   size_for(merged_, balls_.size());
   for (Sets& s : threads_) {
@@ -145,6 +145,7 @@ std::size_t DeepSieve::collect(std::vector<uint64_t>& out) {
   for (std::size_t slot = 0; slot < merged_.owner.size(); ++slot) {
     const uint32_t body = merged_.owner[slot];
     const Candidate* e = merged_.entries.data() + slot * kCandidates;
+    if (!crowded.empty() && merged_.count[slot] == kCandidates) crowded[body] = 1;
     for (uint32_t q = 0; q < merged_.count[slot]; ++q) {
       const uint32_t partner = e[q].partner;
       if (body > partner) {

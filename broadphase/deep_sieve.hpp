@@ -74,7 +74,9 @@ class DeepSieve {
   // After the finder: the merged candidates' pair keys, appended to `out` unsorted, unique. Returns
   // how many deep pairs were taken (0: the update found none). Empties the sets for the next
   // update.
-  std::size_t collect(std::vector<uint64_t>& out);
+  // crowded (one byte a body, or empty) gets 1 for each body whose set is full: it has at least
+  // kCandidates deep partners.
+  std::size_t collect(std::vector<uint64_t>& out, std::span<uint8_t> crowded = {});
   std::size_t heap_bytes() const;
 
   struct Candidate {

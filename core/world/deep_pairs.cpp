@@ -64,7 +64,8 @@ void add_deep_candidates(WorldState& w) {
   if (!w.deep_sieved) return;
   std::vector<uint64_t>& deep = w.deep_candidates;
   deep.clear();
-  w.deep_taken = w.deep_sieve.collect(deep);
+  w.deep_crowded.assign(w.bodies.size(), 0);
+  w.deep_taken = w.deep_sieve.collect(deep, w.deep_crowded);
   if (deep.empty()) return;
   std::sort(deep.begin(), deep.end());
   // Both sorted and disjoint (a pair is deep or not): one merge from the back, in place.
@@ -88,6 +89,7 @@ std::size_t limit_deep_pairs(WorldState& w) {
   std::vector<uint8_t>& block_deep = w.deep_block;
   deep.resize(n);
   block_deep.assign(blocks, 0);
+  const bool crowded = w.deep_sieved && w.deep_crowded.size() == w.bodies.size();
   // determinism: a flag per pair and one per block, each written by its block (rule 1).
   for_blocks(n, kDeepGrain, [&](std::size_t begin, std::size_t end, std::size_t block) {
     uint8_t any = 0;
@@ -95,25 +97,37 @@ std::size_t limit_deep_pairs(WorldState& w) {
       const uint64_t key = w.pairs[k];
       const uint32_t a = pair_first(key), b = pair_second(key);
       Real d2;
-      const uint8_t is_deep = balls_deep(w.deep_balls[a], w.deep_balls[b], d2) ? 1 : 0;
+      const DeepBall &ba = w.deep_balls[a], &bb = w.deep_balls[b];
+      uint8_t is_deep = balls_deep(ba, bb, d2) ? 1 : 0;
+      // A crowd's near pair: not deep, but a body of it is in a crowd (w.deep_crowded).
+      if (!is_deep && crowded && ba.r > 0 && bb.r > 0 &&
+          (w.deep_crowded[a] | w.deep_crowded[b]) != 0) {
+        is_deep = 2;
+      }
       deep[k] = is_deep;
       any |= is_deep;
     }
     block_deep[block] = any;
   });
-  if (std::find(block_deep.begin(), block_deep.end(), uint8_t{1}) == block_deep.end()) return 0;
+  if (std::find_if(block_deep.begin(), block_deep.end(), [](uint8_t f) { return f != 0; }) ==
+      block_deep.end()) {
+    return 0;
+  }
   // The budget, in pair order: the pair list is sorted, so which deep pairs a body keeps does
   // not depend on how the pairs were found.
+  // Deep pairs and a crowd's near pairs have a budget each (kept_deep[2 i], kept_deep[2 i + 1]).
   std::vector<uint32_t>& kept_deep = w.deep_kept;
-  kept_deep.assign(w.bodies.size(), 0);
+  kept_deep.assign(2 * w.bodies.size(), 0);
   std::size_t kept = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const uint64_t key = w.pairs[k];
     if (deep[k]) {
       const uint32_t a = pair_first(key), b = pair_second(key);
-      if (kept_deep[a] >= kDeepPairBudget || kept_deep[b] >= kDeepPairBudget) continue;
-      ++kept_deep[a];
-      ++kept_deep[b];
+      uint32_t& ka = kept_deep[2 * std::size_t(a) + deep[k] - 1];
+      uint32_t& kb = kept_deep[2 * std::size_t(b) + deep[k] - 1];
+      if (ka >= kDeepPairBudget || kb >= kDeepPairBudget) continue;
+      ++ka;
+      ++kb;
     }
     w.pairs[kept++] = key;
   }
