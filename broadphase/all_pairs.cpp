@@ -57,6 +57,7 @@ void scan_tile(const BroadphaseInput& in, std::size_t i0, std::size_t i1, std::s
     const std::size_t jb = std::max(j0, i + 1);  // diagonal tiles: only j > i
     if (jb >= j1) continue;
     const std::size_t m = j1 - jb;
+    const std::size_t row = out.size();
     const Real ax = min_x[i], ay = min_y[i], az = min_z[i];
     const Real bx = max_x[i], by = max_y[i], bz = max_z[i];
     // perf: branch-free test over the whole j-run, so the loop vectorises; hits are rare.
@@ -75,6 +76,10 @@ void scan_tile(const BroadphaseInput& in, std::size_t i0, std::size_t i1, std::s
         const uint32_t j = uint32_t(jb + q);
         if (hit[q] && accept_pair(in, uint32_t(i), j)) out.push_back(make_pair_key(uint32_t(i), j));
       }
+    }
+    // The sieve takes the row's deep pairs as they come: a crowd's are never all stored.
+    if (in.deep != nullptr) {
+      out.resize(row + in.deep->sieve(out.data() + row, out.size() - row));
     }
   }
 }

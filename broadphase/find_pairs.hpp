@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The find-pairs stage: which bodies' boxes overlap. Every method returns the same canonical list:
-// keys make_pair_key(a, b) (a < b), sorted ascending, unique.
+// keys make_pair_key(a, b) (a < b), sorted ascending, unique; with a deep sieve in the input, the
+// same list less its deep pairs, and the same candidate sets in the sieve.
 //
 // Reads: bounds, per-body kind, filter bits, plane flags. Writes: the pair list.
 // Parallel over tiles / sweep chunks; per-block outputs joined in block order, then sorted.
@@ -13,6 +14,7 @@
 
 #include "broadphase/bounds.hpp"
 #include "broadphase/broad_kind.hpp"
+#include "broadphase/deep_sieve.hpp"
 #include "broadphase/dynamic_tree.hpp"
 #include "core/base/body_traits.hpp"
 #include "core/base/grow.hpp"
@@ -40,6 +42,9 @@ struct BroadphaseInput {
   // The instruction set of the sweep's kernel (broadphase/sweep_kernel.hpp); every path gives the
   // same pairs. Best: core/base/simd_path.hpp's process_simd_path().
   SimdPath simd = SimdPath::Best;
+  // When set, every pair found goes through it (deep_sieve.hpp): the deep ones are kept out of
+  // the list, in its candidate sets, which the caller collects. Null: the full list.
+  DeepSieve* deep = nullptr;
 };
 
 inline bool filter_pass(const BroadphaseInput& in, uint32_t a, uint32_t b) {

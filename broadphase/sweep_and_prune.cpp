@@ -411,7 +411,7 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, Step
                            entry_mask_.data(), entry_kind_.data(),  strip_begin_};
   const SweepKernel sweep = sweep_kernel(in.simd);
   for_blocks(entries, kSweepGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
-    sweep(strips, begin, end, block_pairs_[blk]);
+    sweep(strips, begin, end, in.deep, block_pairs_[blk]);
   });
 
   // Planes against every other body; a plane-plane pair once, from the lower index.

@@ -13,6 +13,7 @@
 #include <immintrin.h>
 #endif
 
+#include "broadphase/deep_sieve.hpp"
 #include "broadphase/find_pairs.hpp"
 #include "core/base/pair_key.hpp"
 
@@ -153,7 +154,7 @@ inline uint32_t emit_pairs(uint32_t hits, uint32_t i0, const uint32_t* body, uin
 // pair overlapping on the strip axis shares every strip holding m = max(lo_a, lo_b), and is kept
 // only in strip_of(m), so it is reported once; strip_of is monotonic, so
 // strip_of(m) = max(strip_of(lo_a), strip_of(lo_b)) = max(first).
-void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end,
+void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end, DeepSieve* deep,
                   ScratchVector<uint64_t>& out) {
   ChunkTest<Real> t{s.min, s.lo1, s.hi1, s.lo2, s.hi2, s.first, s.category, s.mask, s.kind};
   const uint32_t* body = s.body;
@@ -186,6 +187,8 @@ void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end,
         const uint32_t hits = chunk_hits(t, j, more);
         used += emit_pairs(hits, body[k], body + j, buffer + used);
         if (used > kBuffer) {
+          // The sieve takes the deep pairs as they come: a crowd's are never stored.
+          if (deep != nullptr) used = deep->sieve(buffer, used);
           out.insert(out.end(), buffer, buffer + used);
           used = 0;
         }
@@ -194,6 +197,7 @@ void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end,
     }
     k = std::max<std::size_t>(k, strip_begin[strip + 1]);
   }
+  if (deep != nullptr) used = deep->sieve(buffer, used);
   out.insert(out.end(), buffer, buffer + used);
 }
 

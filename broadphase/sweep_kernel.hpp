@@ -14,6 +14,8 @@
 
 namespace elan::detail {
 
+class DeepSieve;
+
 // The entries dealt into strips, as columns (SweepAndPrune's entry_*): strip s holds entries
 // [strip_begin[s], strip_begin[s + 1] - kStripPad) in sweep order, then kStripPad sentinels.
 struct SweepStrips {
@@ -27,12 +29,12 @@ struct SweepStrips {
 
 // Appends to `out` the pair keys of each entry in [begin, end) with the later entries of its
 // strip that overlap it on all three axes, belong to this strip (the pair's first strip is this
-// one), and pass should_pair and the filter.
+// one), and pass should_pair and the filter; with a sieve, only those it does not take.
 using SweepKernel = void (*)(const SweepStrips& strips, std::size_t begin, std::size_t end,
-                             ScratchVector<uint64_t>& out);
+                             DeepSieve* deep, ScratchVector<uint64_t>& out);
 
 ELAN_ISA_BEGIN
-void sweep_strips(const SweepStrips& strips, std::size_t begin, std::size_t end,
+void sweep_strips(const SweepStrips& strips, std::size_t begin, std::size_t end, DeepSieve* deep,
                   ScratchVector<uint64_t>& out);
 ELAN_ISA_END
 

@@ -7,10 +7,12 @@ namespace elan::detail {
 
 #if defined(ELAN_DISPATCH)
 namespace isa_avx2 {
-void sweep_strips(const SweepStrips&, std::size_t, std::size_t, ScratchVector<uint64_t>&);
+void sweep_strips(const SweepStrips&, std::size_t, std::size_t, DeepSieve*,
+                  ScratchVector<uint64_t>&);
 }
 namespace isa_avx512 {
-void sweep_strips(const SweepStrips&, std::size_t, std::size_t, ScratchVector<uint64_t>&);
+void sweep_strips(const SweepStrips&, std::size_t, std::size_t, DeepSieve*,
+                  ScratchVector<uint64_t>&);
 }
 #endif
 

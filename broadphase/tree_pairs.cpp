@@ -16,6 +16,7 @@ namespace {
 
 // determinism: a fixed grain (rule 2); each block's pairs are its own buffer (rule 1).
 constexpr std::size_t kTreeGrain = 128;
+constexpr std::size_t kSieveRun = 512;
 
 TreeBox box_of(const BoundsColumns& b, std::size_t i) {
   return {Vec3(b.min_x[i], b.min_y[i], b.min_z[i]), Vec3(b.max_x[i], b.max_y[i], b.max_z[i])};
@@ -59,9 +60,16 @@ void TreePairs::find_pairs(const BroadphaseInput& in, Pairs& out_pairs) {
   for_blocks(n, kTreeGrain, [&](std::size_t begin, std::size_t end, std::size_t block) {
     ScratchVector<uint64_t>& out = block_pairs_[block];
     out.clear();
+    std::size_t sieved = 0;  // out[0, sieved) went through the sieve
+    const auto sieve = [&] {
+      out.resize(sieved + in.deep->sieve(out.data() + sieved, out.size() - sieved));
+      sieved = out.size();
+    };
     const auto emit = [&](uint32_t i, uint32_t j) {
       if (boxes_overlap(b, i, j) && accept_pair(in, i, j)) {
         out.push_back(i < j ? make_pair_key(i, j) : make_pair_key(j, i));
+        // The sieve takes the deep pairs every kSieveRun found: a crowd's are never all stored.
+        if (in.deep != nullptr && out.size() - sieved >= kSieveRun) sieve();
       }
     };
     for (std::size_t ii = begin; ii < end; ++ii) {
@@ -84,6 +92,7 @@ void TreePairs::find_pairs(const BroadphaseInput& in, Pairs& out_pairs) {
       });
       for (const uint32_t p : outside_) emit(i, p);
     }
+    if (in.deep != nullptr) sieve();
   });
   const uint64_t max_key = n < 2 ? 0 : make_pair_key(uint32_t(n - 2), uint32_t(n - 1));
   sort_key_blocks(block_pairs_, max_key, out_pairs, pair_sort_);

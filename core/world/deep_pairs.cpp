@@ -13,12 +13,13 @@ namespace elan::detail {
 namespace {
 
 constexpr std::size_t kDeepGrain = 2048;
+constexpr std::size_t kBallGrain = 4096;
 
 // The inner ball's radius of a dynamic convex primitive (deep_pairs.hpp), m; 0 for any other body
-// (static, kinematic, or a shape whose centre need not lie inside it: compounds), which is
-// never deep.
+// (static, kinematic, a sensor, or a shape whose centre need not lie inside it: compounds),
+// which is never deep.
 Real deep_radius(const WorldState& w, uint32_t i) {
-  if (!w.bodies.is_dynamic(i)) return 0;
+  if (!w.bodies.is_dynamic(i) || (w.bodies.traits_of(i).flags & kTraitSensor) != 0) return 0;
   const Shape& s = w.shapes[w.bodies.shape[i]];
   switch (s.type) {
     case ShapeType::Sphere:
@@ -35,45 +36,98 @@ Real deep_radius(const WorldState& w, uint32_t i) {
 
 }  // namespace
 
+DeepSieve* prepare_deep_sieve(WorldState& w) {
+  const std::size_t n = w.bodies.size();
+  w.deep_balls.resize(n);
+  // determinism: indexed writes (rule 1).
+  for_blocks(n, kBallGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Vec3 p = w.bodies.position(i);
+      w.deep_balls[i] = {p.x(), p.y(), p.z(), deep_radius(w, uint32_t(i)), 0};
+    }
+  });
+  // The runs (deep_sieve.hpp): serial, a count and a division a body.
+  uint32_t ordinal = 0;
+  for (DeepBall& b : w.deep_balls) {
+    b.run = ordinal / DeepSieve::kRun;
+    ordinal += b.r > 0 ? 1 : 0;
+  }
+  // A user's pair filter runs after the broadphase and must see every pair.
+  w.deep_sieved = !w.api.pair_filter;
+  w.deep_taken = 0;
+  if (!w.deep_sieved) return nullptr;
+  w.deep_sieve.begin(w.deep_balls);
+  return &w.deep_sieve;
+}
+
+void add_deep_candidates(WorldState& w) {
+  if (!w.deep_sieved) return;
+  std::vector<uint64_t>& deep = w.deep_candidates;
+  deep.clear();
+  w.deep_crowded.assign(w.bodies.size(), 0);
+  w.deep_taken = w.deep_sieve.collect(deep, w.deep_crowded);
+  if (deep.empty()) return;
+  std::sort(deep.begin(), deep.end());
+  // Both sorted and disjoint (a pair is deep or not): one merge from the back, in place.
+  std::size_t i = w.pairs.size(), j = deep.size(), k = i + j;
+  w.pairs.resize(k);
+  while (j > 0) {
+    if (i > 0 && w.pairs[i - 1] > deep[j - 1]) {
+      w.pairs[--k] = w.pairs[--i];
+    } else {
+      w.pairs[--k] = deep[--j];
+    }
+  }
+}
+
 std::size_t limit_deep_pairs(WorldState& w) {
+  // perf: an ordinary scene's pairs went through the sieve, which found none deep.
+  if (w.deep_sieved && w.deep_taken == 0) return 0;
   const std::size_t n = w.pairs.size();
   const std::size_t blocks = block_count(n, kDeepGrain);
   std::vector<uint8_t>& deep = w.deep_pair;
   std::vector<uint8_t>& block_deep = w.deep_block;
   deep.resize(n);
   block_deep.assign(blocks, 0);
+  const bool crowded = w.deep_sieved && w.deep_crowded.size() == w.bodies.size();
   // determinism: a flag per pair and one per block, each written by its block (rule 1).
   for_blocks(n, kDeepGrain, [&](std::size_t begin, std::size_t end, std::size_t block) {
     uint8_t any = 0;
     for (std::size_t k = begin; k < end; ++k) {
       const uint64_t key = w.pairs[k];
       const uint32_t a = pair_first(key), b = pair_second(key);
-      uint8_t is_deep = 0;
-      const Real ra = deep_radius(w, a);
-      if (ra > 0) {
-        const Real rb = deep_radius(w, b);
-        const Real reach = kDeepFraction * (ra + rb);
-        is_deep =
-            rb > 0 && (w.bodies.position(a) - w.bodies.position(b)).squaredNorm() < reach * reach;
+      Real d2;
+      const DeepBall &ba = w.deep_balls[a], &bb = w.deep_balls[b];
+      uint8_t is_deep = balls_deep(ba, bb, d2) ? 1 : 0;
+      // A crowd's near pair: not deep, but a body of it is in a crowd (w.deep_crowded).
+      if (!is_deep && crowded && ba.r > 0 && bb.r > 0 &&
+          (w.deep_crowded[a] | w.deep_crowded[b]) != 0) {
+        is_deep = 2;
       }
       deep[k] = is_deep;
       any |= is_deep;
     }
     block_deep[block] = any;
   });
-  if (std::find(block_deep.begin(), block_deep.end(), uint8_t{1}) == block_deep.end()) return 0;
+  if (std::find_if(block_deep.begin(), block_deep.end(), [](uint8_t f) { return f != 0; }) ==
+      block_deep.end()) {
+    return 0;
+  }
   // The budget, in pair order: the pair list is sorted, so which deep pairs a body keeps does
   // not depend on how the pairs were found.
+  // Deep pairs and a crowd's near pairs have a budget each (kept_deep[2 i], kept_deep[2 i + 1]).
   std::vector<uint32_t>& kept_deep = w.deep_kept;
-  kept_deep.assign(w.bodies.size(), 0);
+  kept_deep.assign(2 * w.bodies.size(), 0);
   std::size_t kept = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const uint64_t key = w.pairs[k];
     if (deep[k]) {
       const uint32_t a = pair_first(key), b = pair_second(key);
-      if (kept_deep[a] >= kDeepPairBudget || kept_deep[b] >= kDeepPairBudget) continue;
-      ++kept_deep[a];
-      ++kept_deep[b];
+      uint32_t& ka = kept_deep[2 * std::size_t(a) + deep[k] - 1];
+      uint32_t& kb = kept_deep[2 * std::size_t(b) + deep[k] - 1];
+      if (ka >= kDeepPairBudget || kb >= kDeepPairBudget) continue;
+      ++ka;
+      ++kb;
     }
     w.pairs[kept++] = key;
   }

@@ -68,7 +68,9 @@ MemoryUse memory_use(const WorldState& w) {
   }
 
   m.broadphase = bounds_bytes(w.bounds) + heap_bytes(w.broad_kind) + heap_bytes(w.is_plane) +
-                 heap_bytes(w.idle) + w.all_pairs.heap_bytes() + w.sap.heap_bytes();
+                 heap_bytes(w.idle) + w.all_pairs.heap_bytes() + w.sap.heap_bytes() +
+                 heap_bytes(w.deep_balls) + w.deep_sieve.heap_bytes() +
+                 heap_bytes(w.deep_candidates);
 
   m.contacts = w.contacts.heap_bytes();
 

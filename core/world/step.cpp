@@ -50,6 +50,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   BroadphaseInput input{&w.bounds, w.broad_kind, bodies.traits, bodies.trait_table.entries(),
                         w.is_plane};
   input.simd = w.kernels->path;
+  // Bodies spawned into each other: the deep pairs go to the sieve (deep_pairs.hpp).
+  input.deep = prepare_deep_sieve(w);
   take_from_back(w.pairs, w.scratch);
   if (w.def.broadphase == BroadphaseType::AllPairs) {
     w.all_pairs.find_pairs(input, w.pairs);
@@ -62,11 +64,12 @@ uint32_t run_step(WorldState& w, Real dt) {
   // The sweep's buffers are all back; the pair list, at the back, is held through the collide
   // stage, whose buffers start at the front again.
   w.scratch.rewind_front();
+  add_deep_candidates(w);
   filter_pairs(w);
   drop_jointed_pairs(w);
   // Sensors take no part in contact response: their pairs go to the overlap test after the step.
   divert_sensor_pairs(w);
-  // Bodies spawned into each other: a bounded number of deep pairs each (deep_pairs.hpp).
+  // Bodies spawned into each other keep a bounded number of deep pairs each (deep_pairs.hpp).
   limit_deep_pairs(w);
   const auto t2 = clock::now();
 

@@ -69,6 +69,14 @@ struct WorldState {
   std::vector<uint8_t> deep_pair;
   std::vector<uint8_t> deep_block;
   std::vector<uint32_t> deep_kept;
+  // The bodies' inner balls, the broadphase's sieve of deep pairs and the candidates it keeps
+  // (prepare_deep_sieve, add_deep_candidates).
+  std::vector<DeepBall> deep_balls;
+  DeepSieve deep_sieve;
+  std::vector<uint64_t> deep_candidates;
+  std::vector<uint8_t> deep_crowded;  // per body: at least kDeepPairBudget deep partners
+  bool deep_sieved = false;           // this step's pairs went through the sieve
+  std::size_t deep_taken = 0;         // deep pairs the sieve took this step
 
   // Contacts kept from step to step (manifolds, the body pair cache, the separation cache),
   // which the collide stage rewrites, with what it changed (the contact events).
