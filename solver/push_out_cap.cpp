@@ -11,14 +11,13 @@ namespace elan::detail {
 
 std::size_t cap_push_out_velocity(const BodyStore& bodies, std::span<const Shape> shapes,
                                   const SolveSettings& settings, SolverState& st) {
-  if (st.most_deep <= kPushShare) return 0;
   const Real cap = settings.max_push_velocity;
   const uint32_t end = st.half_start[kHalves];  // the written (awake dynamic) packets
   std::size_t slowed = 0;
   for (uint32_t k = 1; k < end; ++k) {
-    if (st.deep_count[k] == 0) continue;
-    SolverBody& p = st.packets[k];
     const uint32_t i = st.masses[k].body;
+    if (!(bodies.flags[i] & kSeparating)) continue;
+    SolverBody& p = st.packets[k];
     const Vec3 g = bodies.traits_of(i).gravity_scale * settings.gravity;
     const Real v0 = std::max(bodies.linear_velocity(i).norm(), cap);
     const Real v_max = std::sqrt(v0 * v0 + std::max(Real(2) * g.dot(p.dp), Real(0)));
@@ -39,6 +38,21 @@ std::size_t cap_push_out_velocity(const BodyStore& bodies, std::span<const Shape
     slowed += slow ? 1 : 0;
   }
   return slowed;
+}
+
+void cap_push_out_substep(const BodyStore& bodies, const SolveSettings& settings, SolverState& st,
+                          uint32_t begin, uint32_t end) {
+  const bool clique = st.most_deep > kPushShare;
+  const Real cap = settings.max_push_velocity;
+  for (uint32_t k = begin; k < end; ++k) {
+    const uint32_t i = st.masses[k].body;
+    if (!(bodies.flags[i] & kSeparating) && !(clique && st.deep_count[k] > 0)) continue;
+    SolverBody& p = st.packets[k];
+    const Real fall = std::abs(bodies.traits_of(i).gravity_scale) * settings.gravity.norm();
+    const Real v_max = std::max(bodies.linear_velocity(i).norm(), cap) + fall * settings.dt;
+    const Real v = p.v.norm();
+    if (v > v_max) p.v *= v_max / v;
+  }
 }
 
 }  // namespace elan::detail

@@ -7,12 +7,12 @@
 // of the step keeps the push; the velocity the step ends with does not keep more than the cap
 // (a pseudo-velocity in effect, as split impulses give, for these bodies only).
 //
-// When: in a step where some body has more than kPushShare deep manifolds (SolverState::
-// most_deep, where the cap binds: color_contacts.hpp), the mark of bodies spawned into each
-// other, which also shares their cap. Which bodies: every one with a deep manifold that step.
-// A body of an ordinary scene has no deep manifold, or one where it landed hard: such a step
-// never has a body with more than kPushShare of them, so no ordinary scene's bits change (a
-// landing body that the solve sent off faster than it came is left as it is).
+// Which bodies: those marked as separating (kSeparating, separating_mark.hpp), from the step
+// where they are found in a clique of deep overlaps until they are out of every overlap deeper
+// than kSeparatingDepth, so that a chain of shallow overlaps, each link pushing below the cap,
+// does not throw its ends out either. No body of an ordinary scene is ever marked, so no
+// ordinary scene's bits change (a landing body that the solve sent off faster than it came is
+// left as it is).
 //
 // The bound: a deep body ends the step with speed at most sqrt(max(|v0|, cap)^2 + 2 g . dp),
 // v0 its velocity at the step's start, g its gravity and dp its displacement in the step (the
@@ -30,12 +30,24 @@
 
 namespace elan::detail {
 
-// Stage (after the solve, before the continuous stage: the body store still holds the step's
-// start). Reads: st.deep_count and st.most_deep (color_contacts), the packets' v, w and dp, the
-// bodies' start velocities, gravity scales and shapes. Writes: v and w of the deep packets.
-// Serial over the packets in order (indexed writes); nothing unless st.most_deep > kPushShare.
-// Returns the number of packets slowed.
+// Stage (after the solve and mark_separating, before the continuous stage: the body store still
+// holds the step's start). Reads: the bodies' flags, start velocities, gravity scales and
+// shapes, the packets' v, w and dp. Writes: v and w of the marked packets. Serial over the
+// packets in order (indexed writes); run only while some body is marked. Returns the number of
+// packets slowed.
 std::size_t cap_push_out_velocity(const BodyStore& bodies, std::span<const Shape> shapes,
                                   const SolveSettings& settings, SolverState& st);
+
+// Within the step, before each substep moves the bodies (the relax pass's position update): the
+// same bound on the linear speed of the packets [begin, end) that carry the mark or get it in
+// this step (a deep manifold in a clique, separating_mark.hpp), |v| <= max(|v0|, cap) + |g| dt.
+// Why: the end-of-step cap alone left the substeps free to move a marked body at the chain's
+// summed push (17 m/s), and a body it ran into, not yet marked, kept that speed as its own
+// (3 m/s to 16.5 m/s in one step). Capped here, a marked body moves no faster than the cap, and
+// hands no more on. |g| dt, not the energy bound: the step's fall is not known per substep; the
+// end-of-step cap takes the rest. Run by the halves' blocks on their own packets, so only while
+// settings.bodies_separating or st.most_deep > kPushShare (never in an ordinary scene).
+void cap_push_out_substep(const BodyStore& bodies, const SolveSettings& settings, SolverState& st,
+                          uint32_t begin, uint32_t end);
 
 }  // namespace elan::detail

@@ -18,6 +18,7 @@
 #include "solver/joint_solver.hpp"
 #include "solver/packets.hpp"
 #include "solver/push_out_cap.hpp"
+#include "solver/separating_mark.hpp"
 #include "solver/solver_kernels.hpp"
 
 namespace elan::detail {
@@ -87,6 +88,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve_settings.allow_sleep = w.def.allow_sleep;
   solve_settings.participants = w.threads;
   solve_settings.bodies_placed = w.bodies_placed;
+  solve_settings.bodies_separating = w.bodies_separating;
   // The solver's phase of the scratch. Each stage takes and gives back its own buffers, but for
   // the bundles and their rows: build_bundles takes them, release_bundles gives them back.
   w.scratch.begin_phase();
@@ -115,8 +117,9 @@ uint32_t run_step(WorldState& w, Real dt) {
   const auto t4 = clock::now();
   kernels.solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
   // The push-out of bodies spawned into each other moves them; it is not kept as velocity
-  // beyond the cap (push_out_cap.hpp).
-  cap_push_out_velocity(bodies, w.shapes, solve_settings, w.solver);
+  // beyond the cap (push_out_cap.hpp) by the bodies marked as separating (separating_mark.hpp).
+  w.bodies_separating = mark_separating(bodies, w.contacts.heads(), w.bodies_separating, w.solver);
+  if (w.bodies_separating) cap_push_out_velocity(bodies, w.shapes, solve_settings, w.solver);
   release_bundles(w.solver);
   if (!w.joints.empty()) {
     store_joint_impulses(w.solver.joint_rows, make_joint_context(solve_settings, w.solver),
