@@ -42,11 +42,11 @@ std::size_t cap_push_out_velocity(const BodyStore& bodies, std::span<const Shape
 
 void cap_push_out_substep(const BodyStore& bodies, const SolveSettings& settings, SolverState& st,
                           uint32_t begin, uint32_t end) {
-  const bool clique = st.most_deep > kPushShare;
+  const bool deep_marks = settings.bodies_separating || st.most_deep > kPushShare;
   const Real cap = settings.max_push_velocity;
   for (uint32_t k = begin; k < end; ++k) {
     const uint32_t i = st.masses[k].body;
-    if (!(bodies.flags[i] & kSeparating) && !(clique && st.deep_count[k] > 0)) continue;
+    if (!(bodies.flags[i] & kSeparating) && !(deep_marks && st.deep_count[k] > 0)) continue;
     SolverBody& p = st.packets[k];
     const Real fall = std::abs(bodies.traits_of(i).gravity_scale) * settings.gravity.norm();
     const Real v_max = std::max(bodies.linear_velocity(i).norm(), cap) + fall * settings.dt;

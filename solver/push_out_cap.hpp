@@ -40,7 +40,7 @@ std::size_t cap_push_out_velocity(const BodyStore& bodies, std::span<const Shape
 
 // Within the step, before each substep moves the bodies (the relax pass's position update): the
 // same bound on the linear speed of the packets [begin, end) that carry the mark or get it in
-// this step (a deep manifold in a clique, separating_mark.hpp), |v| <= max(|v0|, cap) + |g| dt.
+// this step (a deep manifold, separating_mark.hpp), |v| <= max(|v0|, cap) + |g| dt.
 // Why: the end-of-step cap alone left the substeps free to move a marked body at the chain's
 // summed push (17 m/s), and a body it ran into, not yet marked, kept that speed as its own
 // (3 m/s to 16.5 m/s in one step). Capped here, a marked body moves no faster than the cap, and

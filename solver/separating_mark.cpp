@@ -14,7 +14,7 @@ bool mark_separating(BodyStore& bodies, std::span<const ManifoldHead> contacts, 
   // The new marks, per packet, from the marks at the step's start (read from the flags, written
   // only below), so the order of the manifolds does not matter.
   st.separating.assign(end, 0);
-  if (clique) {
+  if (clique || marked) {
     for (uint32_t k = 1; k < end; ++k) st.separating[k] = st.deep_count[k] > 0 ? 1 : 0;
   }
   if (marked) {

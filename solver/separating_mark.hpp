@@ -13,8 +13,9 @@
 // they are out of every overlap.
 //
 // The rule, per awake dynamic body, each step:
-//  - marked when the step has a clique (st.most_deep > kPushShare) and the body has a deep
-//    manifold in it (deep_count > 0): the start of a spawn overlap;
+//  - marked when the body has a deep manifold (deep_count > 0) in a step that has a clique
+//    (st.most_deep > kPushShare: the start of a spawn overlap) or a marked body (the pairs the
+//    deep-pair budget dropped come back, still deep, once the cloud has thinned);
 //  - kept, or passed on, while one of its manifolds lies deeper than kSeparatingDepth and one of
 //    the manifold's two bodies carried the mark at the step's start: the mark spreads through
 //    the overlapping cloud (bodies whose deep pairs the budget dropped, deep_pairs.hpp, are
