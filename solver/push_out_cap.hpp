@@ -25,28 +25,44 @@
 #include <span>
 
 #include "core/base/body_store.hpp"
+#include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
 #include "solver/solve.hpp"
 
 namespace elan::detail {
 
+// Stage (after the colouring, before the solve): which packets are capped in this step, in
+// st.capped (cleared when none): those that carry the mark (kSeparating) or have a deep manifold
+// (deep_count > 0) while `marked` or st.most_deep > kPushShare (st.capped 1: capped in the
+// substeps and at the step's end), and those with a touching manifold (a point, any depth) with
+// a body that carries the mark (st.capped 2: at the step's end only). Why the neighbours: a
+// marked body pushed from behind by its own overlaps hands the push on through a shallow contact
+// within the substep, before any cap slows it, and a box beside the pushed cloud, not marked,
+// was sped from 3 to 7 m/s along the slab that way (1,000 boxes at one point). Not in the
+// substeps: slowing a neighbour there while its marked partner's contact impulse stays made 100
+// boxes throw one out at 17 m/s. Serial over the packets and
+// the manifolds in order (indexed writes); nothing unless `marked` or a clique (an ordinary scene
+// has neither).
+void find_capped(const BodyStore& bodies, std::span<const ManifoldHead> contacts, bool marked,
+                 SolverState& st);
+
 // Stage (after the solve and mark_separating, before the continuous stage: the body store still
-// holds the step's start). Reads: the bodies' flags, start velocities, gravity scales and
-// shapes, the packets' v, w and dp. Writes: v and w of the marked packets. Serial over the
-// packets in order (indexed writes); run only while some body is marked. Returns the number of
+// holds the step's start). Reads: st.capped, the bodies' start velocities, gravity scales and
+// shapes, the packets' v, w and dp. Writes: v and w of the capped packets. Serial over the
+// packets in order (indexed writes); nothing when st.capped is empty. Returns the number of
 // packets slowed.
 std::size_t cap_push_out_velocity(const BodyStore& bodies, std::span<const Shape> shapes,
                                   const SolveSettings& settings, SolverState& st);
 
 // Within the step, before each substep moves the bodies (the relax pass's position update): the
-// same bound on the linear speed of the packets [begin, end) that carry the mark or get it in
-// this step (a deep manifold, separating_mark.hpp), |v| <= max(|v0|, cap) + |g| dt.
+// same bound on the linear speed of the packets in [begin, end) with st.capped 1,
+// |v| <= max(|v0|, cap) + |g| dt.
 // Why: the end-of-step cap alone left the substeps free to move a marked body at the chain's
 // summed push (17 m/s), and a body it ran into, not yet marked, kept that speed as its own
 // (3 m/s to 16.5 m/s in one step). Capped here, a marked body moves no faster than the cap, and
 // hands no more on. |g| dt, not the energy bound: the step's fall is not known per substep; the
-// end-of-step cap takes the rest. Run by the halves' blocks on their own packets, so only while
-// settings.bodies_separating or st.most_deep > kPushShare (never in an ordinary scene).
+// end-of-step cap takes the rest. Run by the halves' blocks on their own packets, only when
+// st.capped is not empty (never in an ordinary scene).
 void cap_push_out_substep(const BodyStore& bodies, const SolveSettings& settings, SolverState& st,
                           uint32_t begin, uint32_t end);
 

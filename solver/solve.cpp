@@ -156,7 +156,7 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
         break;
       case kRelax:
         if (half) {
-          if (settings.bodies_separating || st.most_deep > kPushShare) {
+          if (!st.capped.empty()) {
             cap_push_out_substep(bodies, settings, st, st.half_start[group],
                                  st.half_start[group + 1]);
           }

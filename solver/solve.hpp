@@ -120,6 +120,9 @@ struct SolverState {
   uint32_t most_deep = 0;
   std::vector<WideValue> push_cap;
   std::vector<uint8_t> separating;  // per packet: the step's new mark (separating_mark.hpp)
+  // Per packet: its speed is capped in this step (find_capped, push_out_cap.hpp); empty when
+  // no packet's is.
+  std::vector<uint8_t> capped;
 };
 
 ELAN_ISA_BEGIN

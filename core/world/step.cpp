@@ -104,6 +104,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   const ColorStats colors =
       color_contacts(bodies, w.contacts.heads(), w.contacts.tails(), w.solver, w.scratch,
                      solve_settings.participants, deep_contact_separation(solve_settings));
+  // Which bodies' speeds the push-out cap bounds in this step (push_out_cap.hpp).
+  find_capped(bodies, w.contacts.heads(), w.bodies_separating, w.solver);
   const auto t_color = clock::now();
   // Restitution inputs are kept only in a world that has something to bounce: on a pile of
   // inelastic bodies they would be read by a pass that finds nothing to do.
@@ -119,7 +121,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   // The push-out of bodies spawned into each other moves them; it is not kept as velocity
   // beyond the cap (push_out_cap.hpp) by the bodies marked as separating (separating_mark.hpp).
   w.bodies_separating = mark_separating(bodies, w.contacts.heads(), w.bodies_separating, w.solver);
-  if (w.bodies_separating) cap_push_out_velocity(bodies, w.shapes, solve_settings, w.solver);
+  cap_push_out_velocity(bodies, w.shapes, solve_settings, w.solver);
   release_bundles(w.solver);
   if (!w.joints.empty()) {
     store_joint_impulses(w.solver.joint_rows, make_joint_context(solve_settings, w.solver),
