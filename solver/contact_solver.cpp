@@ -174,6 +174,13 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   // point is A's arm minus this.
   WideVec3 b_from_a;
   uint32_t shared_lanes = 0;  // lanes whose cap is shared: a spawn's overlap, never a load
+  for (int l = 0; ctx.bodies_separating && l < lane_count; ++l) {
+    // Or a lane of a body still being pushed out of one (separating_mark.hpp): the chains of
+    // overlapping bodies a spawn leaves are pressed in past kDirectDepth without a load, and
+    // made direct systems of hundreds of rows.
+    const ManifoldHead& m = manifolds[lanes[l]];
+    if ((bodies.flags[m.body_a] | bodies.flags[m.body_b]) & kSeparating) shared_lanes |= 1u << l;
+  }
   if (!ctx.push_cap.empty()) {
     // The push-out share (color_contacts.hpp): the cap over the larger deep count of the two.
     Wide& cap = ctx.push_cap[bundle].v;

@@ -82,6 +82,8 @@ struct ContactSolverContext {
   // active set starts with the rows closing at no speed (direct_solve.cpp). Else neither is
   // looked for, at no cost.
   bool bodies_placed = false;
+  // Some body carries kSeparating (separating_mark.hpp): its rows are not solved directly.
+  bool bodies_separating = false;
 
   // Bundle j's points: as many as the most points of its lanes, the first in the bundle
   // (ContactBundle::first), the others rows_of(j)[0, point_count(j) - 1).

@@ -12,6 +12,7 @@
 #include "elan/profile.hpp"
 #include "solver/integrate.hpp"
 #include "solver/joint_solver.hpp"
+#include "solver/push_out_cap.hpp"
 
 namespace elan::detail {
 ELAN_ISA_BEGIN
@@ -56,6 +57,7 @@ ContactSolverContext make_solver_context(const SolveSettings& settings, SolverSt
   ctx.contact_give = give_per_impulse(ctx.contact_softness);
   ctx.static_give = give_per_impulse(ctx.static_softness);
   ctx.bodies_placed = settings.bodies_placed;
+  ctx.bodies_separating = settings.bodies_separating;
   ctx.max_push_velocity = settings.max_push_velocity;
   ctx.restitution_threshold = settings.restitution_threshold;
   ctx.deep_count = state.deep_count;
@@ -154,6 +156,10 @@ void solve(const BodyStore& bodies, std::span<ManifoldHead> contacts, std::span<
         break;
       case kRelax:
         if (half) {
+          if (!st.capped.empty()) {
+            cap_push_out_substep(bodies, settings, st, st.half_start[group],
+                                 st.half_start[group + 1]);
+          }
           integrate_positions(st.packets, st.masses, bodies, h, st.half_start[group],
                               st.half_start[group + 1]);
         }

@@ -51,6 +51,7 @@ struct SolveSettings {
   Real time_to_sleep = Real(0.5);     // s
   int participants = 1;        // threads that may take part in the solve (at most kHalves are used)
   bool bodies_placed = false;  // some body carries kPlaced (body_store.hpp)
+  bool bodies_separating = false;  // some body carries kSeparating (body_store.hpp)
 };
 
 // The solver's groups of contact constraints: those within half 0, within half 1 (both bodies
@@ -118,6 +119,10 @@ struct SolverState {
   std::vector<uint32_t> deep_count;
   uint32_t most_deep = 0;
   std::vector<WideValue> push_cap;
+  std::vector<uint8_t> separating;  // per packet: the step's new mark (separating_mark.hpp)
+  // Per packet: its speed is capped in this step (find_capped, push_out_cap.hpp); empty when
+  // no packet's is.
+  std::vector<uint8_t> capped;
 };
 
 ELAN_ISA_BEGIN

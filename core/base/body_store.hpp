@@ -20,6 +20,10 @@ enum BodyFlags : uint8_t {
   // have nothing to warm start, so the direct solve takes its supports on that first step
   // (prepare_bundle). The step clears it on every body (WorldState::bodies_placed).
   kPlaced = 1u << 2,
+  // Dynamic, being pushed out of a spawn overlap (solver/separating_mark.hpp): its velocity is
+  // capped after the solve (push_out_cap.hpp) and its rows are not solved directly. Kept from
+  // step to step until the overlap ends (WorldState::bodies_separating).
+  kSeparating = 1u << 3,
 };
 
 // A force and torque applied to one body for the next step. Few bodies have one at a time (a game

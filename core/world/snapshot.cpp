@@ -870,6 +870,8 @@ void forget_api_caches(WorldState& s) {
   s.api.hit_events.clear();
   s.bodies_placed = false;
   for (uint8_t f : s.bodies.flags) s.bodies_placed |= (f & detail::kPlaced) != 0;
+  s.bodies_separating = false;
+  for (uint8_t f : s.bodies.flags) s.bodies_separating |= (f & detail::kSeparating) != 0;
   detail::query_tree_refit_all(s);
 }
 

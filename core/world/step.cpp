@@ -18,6 +18,7 @@
 #include "solver/joint_solver.hpp"
 #include "solver/packets.hpp"
 #include "solver/push_out_cap.hpp"
+#include "solver/separating_mark.hpp"
 #include "solver/solver_kernels.hpp"
 
 namespace elan::detail {
@@ -90,6 +91,7 @@ uint32_t run_step(WorldState& w, Real dt) {
   solve_settings.allow_sleep = w.def.allow_sleep;
   solve_settings.participants = w.threads;
   solve_settings.bodies_placed = w.bodies_placed;
+  solve_settings.bodies_separating = w.bodies_separating;
   // The solver's phase of the scratch. Each stage takes and gives back its own buffers, but for
   // the bundles and their rows: build_bundles takes them, release_bundles gives them back.
   w.scratch.begin_phase();
@@ -105,6 +107,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   const ColorStats colors =
       color_contacts(bodies, w.contacts.heads(), w.contacts.tails(), w.solver, w.scratch,
                      solve_settings.participants, deep_contact_separation(solve_settings));
+  // Which bodies' speeds the push-out cap bounds in this step (push_out_cap.hpp).
+  find_capped(bodies, w.contacts.heads(), w.bodies_separating, w.solver);
   const auto t_color = clock::now();
   // Restitution inputs are kept only in a world that has something to bounce: on a pile of
   // inelastic bodies they would be read by a pass that finds nothing to do.
@@ -118,7 +122,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   const auto t4 = clock::now();
   kernels.solve(bodies, w.contacts.heads(), w.contacts.tails(), solve_settings, w.solver);
   // The push-out of bodies spawned into each other moves them; it is not kept as velocity
-  // beyond the cap (push_out_cap.hpp).
+  // beyond the cap (push_out_cap.hpp) by the bodies marked as separating (separating_mark.hpp).
+  w.bodies_separating = mark_separating(bodies, w.contacts.heads(), w.bodies_separating, w.solver);
   cap_push_out_velocity(bodies, w.shapes, solve_settings, w.solver);
   release_bundles(w.solver);
   if (!w.joints.empty()) {

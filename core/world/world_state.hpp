@@ -93,6 +93,9 @@ struct WorldState {
   // Some body carries kPlaced (placed by the API since the last step): the next step's solver
   // looks for their supports (prepare_bundle) and then clears every kPlaced.
   bool bodies_placed = false;
+  // Some body carries kSeparating (solver/separating_mark.hpp): the step updates the marks and
+  // caps the marked bodies' velocities; false in every scene without a spawn overlap.
+  bool bodies_separating = false;
 
   SolverState solver;
   // The solver kernels of def.simd's path, chosen when the world is made (never null).
