@@ -14,23 +14,11 @@ namespace {
 
 constexpr std::size_t kDeepGrain = 2048;
 
-// The inner ball's radius of a dynamic convex primitive (deep_pairs.hpp), m; 0 for any other body
-// (static, kinematic, or a shape whose centre need not lie inside it: compounds), which is
-// never deep.
+// The inner ball's radius of a dynamic body (deep_overlap.hpp), m; 0 for a static or kinematic
+// one, which is never deep.
 Real deep_radius(const WorldState& w, uint32_t i) {
   if (!w.bodies.is_dynamic(i)) return 0;
-  const Shape& s = w.shapes[w.bodies.shape[i]];
-  switch (s.type) {
-    case ShapeType::Sphere:
-    case ShapeType::Box:
-    case ShapeType::Capsule:
-    case ShapeType::Cylinder:
-      return Real(0.5) * (s.local_max - s.local_min).minCoeff();
-    case ShapeType::ConvexHull:
-      return Real(0.25) * (s.local_max - s.local_min).minCoeff();
-    default:
-      return 0;
-  }
+  return inner_ball_radius(w.shapes[w.bodies.shape[i]]);
 }
 
 }  // namespace
@@ -52,9 +40,7 @@ std::size_t limit_deep_pairs(WorldState& w) {
       const Real ra = deep_radius(w, a);
       if (ra > 0) {
         const Real rb = deep_radius(w, b);
-        const Real reach = kDeepFraction * (ra + rb);
-        is_deep =
-            rb > 0 && (w.bodies.position(a) - w.bodies.position(b)).squaredNorm() < reach * reach;
+        is_deep = rb > 0 && inner_balls_deep(w.bodies.position(a), ra, w.bodies.position(b), rb);
       }
       deep[k] = is_deep;
       any |= is_deep;

@@ -8,27 +8,23 @@
 // drops the rest). Which it keeps is fixed by the sorted pair list alone, so the choice is the
 // same for any thread count and either broadphase.
 //
-// A pair is deep when both bodies are dynamic convex primitives (sphere, box, capsule,
-// cylinder, hull) whose inner balls overlap by more than (1 - kDeepFraction) of the sum of their
-// radii: centres closer than kDeepFraction (r_a + r_b). A body's inner ball is centred at its
-// position, of radius the thinnest half-extent of its shape's local box (half that for a hull,
-// whose box need not bound a ball inside it), so it lies inside the shape, and the inner balls
-// of two convex bodies that only touch are disjoint (d >= r_a + r_b less the contact slop): no
-// pair of an ordinary scene is deep, and its pair list is never changed. Two unit boxes are
-// deep with their centres within 0.9 m, 10 cm into each other face on.
+// Which pairs are deep: core/base/deep_overlap.hpp (kDeepFraction, inner_ball_radius), the test
+// the collide stage shares: in a step where this budget dropped pairs, it gives the kept deep
+// pairs a contact of constant cost (narrowphase/deep_contact.hpp). No body of an ordinary scene
+// has more deep pairs than the budget, so its pair list and its contacts are never changed.
 #pragma once
 
 #include <cstdint>
 
 #include <cstddef>
 
+#include "core/base/deep_overlap.hpp"
 #include "elan/math.hpp"
 
 namespace elan::detail {
 
 struct WorldState;
 
-inline constexpr Real kDeepFraction = Real(0.9);
 // Deep pairs a dynamic body keeps in one step: more than the face neighbours of a box in a
 // grid (6), so that a body packed in harder than any ordinary load presses it keeps its
 // neighbours.
