@@ -34,11 +34,10 @@
 #include <span>
 #include <vector>
 
+#include "core/base/deep_overlap.hpp"
 #include "elan/math.hpp"
 
 namespace elan::detail {
-
-inline constexpr Real kDeepFraction = Real(0.9);
 
 // A body's inner ball (deep_pairs.hpp): centre and radius, m; r = 0 for a body that is never deep.
 // run: the body's run (deep_sieve.hpp), its ordinal among the bodies with r > 0 over kRun.

@@ -59,6 +59,13 @@ bool edge_pair_separates(const Shape& a, const Transform& xa, const Shape& b, co
 struct CollideSettings {
   Real speculative_distance = Real(0.02);  // m: contacts kept this far apart, plus motion below
   Real dt = Real(1.0 / 60.0);              // s: for the motion allowance
+  // Whether deep pairs (core/base/deep_overlap.hpp) take deep_contact() instead of the exact
+  // test: set in a step where the deep-pair budget dropped pairs (core/world/deep_pairs.hpp), so
+  // some bodies were spawned into a crowd of others. Only then: a pair of an ordinary scene can
+  // be deep (a capsule landing hard across another, centres at 0.81 of the reach; a sphere
+  // crushed into a box by the tumbler's paddle, 0.56), and keeps its exact test and its bits,
+  // while no body of an ordinary scene has more deep pairs than the budget.
+  bool deep_contacts = false;
 };
 
 // The stage: this step's manifolds for `pairs` (sorted keys) filed in `contacts`, which holds

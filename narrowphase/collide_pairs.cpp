@@ -8,10 +8,12 @@
 #include <limits>
 #include <span>
 
+#include "core/base/deep_overlap.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
 #include "narrowphase/collide.hpp"
 #include "narrowphase/composite.hpp"
+#include "narrowphase/deep_contact.hpp"
 
 namespace elan::detail {
 
@@ -181,6 +183,15 @@ Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& 
                              SeparatedPair::position_step(a, b), out);
 }
 
+// The deep test of the deep-pair budget (deep_overlap.hpp), on the poses the budget saw.
+bool is_deep_pair(const BodyStore& bodies, uint32_t a, const Shape& shape_a, const Transform& xa,
+                  uint32_t b, const Shape& shape_b, const Transform& xb) {
+  if (!bodies.is_dynamic(a) || !bodies.is_dynamic(b)) return false;
+  const Real ra = inner_ball_radius(shape_a);
+  const Real rb = inner_ball_radius(shape_b);
+  return ra > 0 && rb > 0 && inner_balls_deep(xa.position, ra, xb.position, rb);
+}
+
 }  // namespace
 
 void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
@@ -238,9 +249,14 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
                       polyhedron_cache)) {
         continue;
       }
-      // Run the exact test.
-      const SurfaceMotion motion{displacement, settings.speculative_distance};
-      collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation, &motion);
+      // Run the exact test, or, in a step whose deep-pair budget bit (bodies spawned into each
+      // other), for a deep pair the contact of constant cost (deep_contact.hpp).
+      if (settings.deep_contacts && is_deep_pair(bodies, a, shape_a, xa, b, shape_b, xb)) {
+        deep_contact(shape_a, xa, a, shape_b, xb, b, m);
+      } else {
+        const SurfaceMotion motion{displacement, settings.speculative_distance};
+        collide(shape_a, xa, shape_b, xb, speculative, m, polyhedron_cache, separation, &motion);
+      }
       // File the result: apart (every pair found apart is filed, the continuous stage's
       // candidates) ...
       if (m.point_count == 0) {

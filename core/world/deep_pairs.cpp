@@ -15,23 +15,11 @@ namespace {
 constexpr std::size_t kDeepGrain = 2048;
 constexpr std::size_t kBallGrain = 4096;
 
-// The inner ball's radius of a dynamic convex primitive (deep_pairs.hpp), m; 0 for any other body
-// (static, kinematic, a sensor, or a shape whose centre need not lie inside it: compounds),
-// which is never deep.
+// The inner ball's radius of a dynamic body (deep_overlap.hpp), m; 0 for a static or kinematic
+// one or a sensor, which is never deep (sensors report overlaps).
 Real deep_radius(const WorldState& w, uint32_t i) {
   if (!w.bodies.is_dynamic(i) || (w.bodies.traits_of(i).flags & kTraitSensor) != 0) return 0;
-  const Shape& s = w.shapes[w.bodies.shape[i]];
-  switch (s.type) {
-    case ShapeType::Sphere:
-    case ShapeType::Box:
-    case ShapeType::Capsule:
-    case ShapeType::Cylinder:
-      return Real(0.5) * (s.local_max - s.local_min).minCoeff();
-    case ShapeType::ConvexHull:
-      return Real(0.25) * (s.local_max - s.local_min).minCoeff();
-    default:
-      return 0;
-  }
+  return inner_ball_radius(w.shapes[w.bodies.shape[i]]);
 }
 
 }  // namespace
@@ -55,6 +43,7 @@ DeepSieve* prepare_deep_sieve(WorldState& w) {
   // A user's pair filter runs after the broadphase and must see every pair.
   w.deep_sieved = !w.api.pair_filter;
   w.deep_taken = 0;
+  w.deep_crowd = false;
   if (!w.deep_sieved) return nullptr;
   w.deep_sieve.begin(w.deep_balls);
   return &w.deep_sieve;
@@ -66,6 +55,8 @@ void add_deep_candidates(WorldState& w) {
   deep.clear();
   w.deep_crowded.assign(w.bodies.size(), 0);
   w.deep_taken = w.deep_sieve.collect(deep, w.deep_crowded);
+  w.deep_crowd = w.deep_taken > 0 && std::find(w.deep_crowded.begin(), w.deep_crowded.end(),
+                                               uint8_t{1}) != w.deep_crowded.end();
   if (deep.empty()) return;
   std::sort(deep.begin(), deep.end());
   // Both sorted and disjoint (a pair is deep or not): one merge from the back, in place.

@@ -20,20 +20,18 @@
 //   already keeps kDeepPairBudget such pairs. A crowd that spreads has, besides its deep pairs,
 //   hundreds of overlaps a body just outside the deep test (10,000 boxes at one point after ten
 //   steps: 2.7 million pairs, 10.8 million contact points, 8 GB), which the bodies pass through
-//   as they do their dropped deep ones. No body of an ordinary scene has a deep pair, so none is
-//   in a crowd.
+//   as they do their dropped deep ones. A body of an ordinary scene has a deep pair only where
+//   it is pressed hard (deep_overlap.hpp), never a crowd's.
 // A world with a user pair filter skips the sieve (the filter must see every pair; the budget
 // still applies), as does a sensor's pair (its inner ball is 0: sensors report overlaps).
 //
-// A pair is deep when both bodies are dynamic convex primitives (sphere, box, capsule,
-// cylinder, hull) whose inner balls overlap by more than (1 - kDeepFraction) of the sum of their
-// radii: centres closer than kDeepFraction (r_a + r_b). A body's inner ball is centred at its
-// position, of radius the thinnest half-extent of its shape's local box (half that for a hull,
-// whose box need not bound a ball inside it), so it lies inside the shape, and the inner balls
-// of two convex bodies that only touch are disjoint (d >= r_a + r_b less the contact slop): no
-// pair of an ordinary scene is deep, and its pair list is never changed. Two unit boxes are
-// deep with their centres within 0.9 m, 10 cm into each other face on. A body with at most
-// kCandidates deep partners keeps them all through the sieve, so only the budget cuts there.
+// Which pairs are deep: core/base/deep_overlap.hpp (kDeepFraction, inner_ball_radius), the test
+// the collide stage shares: in a step where a crowd was found
+// (a body with at least kDeepPairBudget deep partners) or this budget dropped pairs, it gives the
+// kept deep pairs a contact of constant cost (narrowphase/deep_contact.hpp). A body with at most
+// kCandidates deep partners keeps them all through the sieve, so only the budget cuts there; no
+// body of an ordinary scene has more deep pairs than the budget, so its pair list and its contacts
+// are never changed.
 #pragma once
 
 #include <cstdint>
@@ -41,6 +39,7 @@
 #include <cstddef>
 
 #include "broadphase/deep_sieve.hpp"
+#include "core/base/deep_overlap.hpp"
 #include "elan/math.hpp"
 
 namespace elan::detail {

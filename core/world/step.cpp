@@ -70,13 +70,14 @@ uint32_t run_step(WorldState& w, Real dt) {
   drop_jointed_pairs(w);
   // Sensors take no part in contact response: their pairs go to the overlap test after the step.
   divert_sensor_pairs(w);
-  // Bodies spawned into each other keep a bounded number of deep pairs each (deep_pairs.hpp).
-  limit_deep_pairs(w);
+  // Bodies spawned into each other: a bounded number of deep pairs each (deep_pairs.hpp).
+  const std::size_t dropped_deep_pairs = limit_deep_pairs(w);
   const auto t2 = clock::now();
 
   CollideSettings collide_settings;
   collide_settings.speculative_distance = kSpeculativeDistance;
   collide_settings.dt = dt;
+  collide_settings.deep_contacts = dropped_deep_pairs > 0 || w.deep_crowd;
   // The same phase of the scratch as the sweep's: the pair list is held through both.
   collide_pairs(w.pairs, bodies, w.shapes, collide_settings, w.idle, w.contacts, &w.scratch);
   stats.pairs = w.pairs.size();
