@@ -48,7 +48,7 @@ const std::map<std::string, uint64_t>& golden() {
       {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xe20e4645b4fbcae5ull},
       {"towers", 0xefd2e01bd19bcdcbull},         {"tumbler", 0x3081007ef9cdea37ull},
       {"compounds", 0x52406209260c1e3bull},      {"convex_vs_mesh", 0xad94df121d22d54cull},
-      {"geometry_demo", 0x02db841f25470e04ull},  {"heightfield_rain", 0xaee37f5aa65fd1dbull},
+      {"geometry_demo", 0x02db841f25470e04ull},  {"heightfield_rain", 0x67295a8a1586ddb2ull},
   };
   return table;
 }
