@@ -7,6 +7,7 @@
 #include "core/base/heap_bytes.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
+#include "core/base/splitmix.hpp"
 
 namespace elan::detail {
 
@@ -14,6 +15,8 @@ namespace {
 
 constexpr uint32_t kNoSlot = 0xFFFFFFFFu;
 constexpr uint64_t kOpen = ~uint64_t{0};  // the bar of a set not yet full
+// Sets a thread's candidates are reserved for up front (size_for): 140 kB a thread.
+constexpr std::size_t kReservedSlots = 1024;
 
 bool better(const DeepSieve::Candidate& x, const DeepSieve::Candidate& y) {
   return x.rank < y.rank || (x.rank == y.rank && x.partner < y.partner);
@@ -29,14 +32,9 @@ inline bool deep_test(const DeepBall& a, const DeepBall& b, Real& d2) {
   return a.r > 0 && b.r > 0 && d2 < reach * reach;
 }
 
-// The finaliser of splitmix64 (Steele, Lea and Flood 2014): neighbouring keys get unrelated ranks.
+// Neighbouring keys get unrelated ranks (core/base/splitmix.hpp).
 inline uint32_t mix(uint64_t key) {
-  key ^= key >> 30;
-  key *= 0xBF58476D1CE4E5B9ull;
-  key ^= key >> 27;
-  key *= 0x94D049BB133111EBull;
-  key ^= key >> 31;
-  return uint32_t(key);
+  return uint32_t(splitmix64_finalize(key));
 }
 
 inline uint64_t rank_of(const DeepBall& a, const DeepBall& b, uint64_t key) {
@@ -63,6 +61,13 @@ void DeepSieve::size_for(Sets& s, std::size_t bodies) {
   if (s.slot_of.size() < bodies) {
     s.slot_of.resize(bodies, kNoSlot);
     s.bar.resize(bodies, kOpen);
+    // Which thread takes which batch changes from run to run, so a thread's sets would reach new
+    // highs, and reallocate, long after the scene is warm (ragdolls: jointed limbs are deep
+    // pairs until the joint filter drops them). Reserved once for up to kReservedSlots bodies.
+    const std::size_t slots = std::min<std::size_t>(bodies, kReservedSlots);
+    s.owner.reserve(slots);
+    s.count.reserve(slots);
+    s.entries.reserve(slots * kCandidates);
   }
 }
 

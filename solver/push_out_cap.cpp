@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/base/grow.hpp"
 #include "solver/contact_solver.hpp"
 
 namespace elan::detail {
@@ -14,7 +15,7 @@ void find_capped(const BodyStore& bodies, std::span<const ManifoldHead> contacts
   st.capped.clear();
   if (!marked && st.most_deep <= kPushShare) return;
   const uint32_t end = st.half_start[kHalves];  // the written (awake dynamic) packets
-  st.capped.assign(end, 0);
+  grow_fill(st.capped, end, uint8_t{0});
   for (uint32_t k = 1; k < end; ++k) {
     const bool carries = (bodies.flags[st.masses[k].body] & kSeparating) != 0;
     st.capped[k] = carries || st.deep_count[k] > 0 ? 1 : 0;

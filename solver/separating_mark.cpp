@@ -2,6 +2,7 @@
 // mark_separating(): see separating_mark.hpp.
 #include "solver/separating_mark.hpp"
 
+#include "core/base/grow.hpp"
 #include "solver/contact_solver.hpp"
 
 namespace elan::detail {
@@ -13,7 +14,7 @@ bool mark_separating(BodyStore& bodies, std::span<const ManifoldHead> contacts, 
   const uint32_t end = st.half_start[kHalves];  // the written (awake dynamic) packets
   // The new marks, per packet, from the marks at the step's start (read from the flags, written
   // only below), so the order of the manifolds does not matter.
-  st.separating.assign(end, 0);
+  grow_fill(st.separating, end, uint8_t{0});
   if (clique || marked) {
     for (uint32_t k = 1; k < end; ++k) st.separating[k] = st.deep_count[k] > 0 ? 1 : 0;
   }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "core/base/grow.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
 #include "core/world/world_state.hpp"
@@ -26,7 +27,7 @@ Real deep_radius(const WorldState& w, uint32_t i) {
 
 DeepSieve* prepare_deep_sieve(WorldState& w) {
   const std::size_t n = w.bodies.size();
-  w.deep_balls.resize(n);
+  grow_to(w.deep_balls, n);
   // determinism: indexed writes (rule 1).
   for_blocks(n, kBallGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
     for (std::size_t i = begin; i < end; ++i) {
@@ -53,7 +54,11 @@ void add_deep_candidates(WorldState& w) {
   if (!w.deep_sieved) return;
   std::vector<uint64_t>& deep = w.deep_candidates;
   deep.clear();
-  w.deep_crowded.assign(w.bodies.size(), 0);
+  // As the sieve's sets (deep_sieve.cpp): reserved once, not grown at each new high.
+  const std::size_t reserved =
+      DeepSieve::kCandidates * std::min<std::size_t>(w.bodies.size(), 1024);
+  if (deep.capacity() < reserved) deep.reserve(reserved);
+  grow_fill(w.deep_crowded, w.bodies.size(), uint8_t{0});
   w.deep_taken = w.deep_sieve.collect(deep, w.deep_crowded);
   w.deep_crowd = w.deep_taken > 0 && std::find(w.deep_crowded.begin(), w.deep_crowded.end(),
                                                uint8_t{1}) != w.deep_crowded.end();
@@ -78,8 +83,8 @@ std::size_t limit_deep_pairs(WorldState& w) {
   const std::size_t blocks = block_count(n, kDeepGrain);
   std::vector<uint8_t>& deep = w.deep_pair;
   std::vector<uint8_t>& block_deep = w.deep_block;
-  deep.resize(n);
-  block_deep.assign(blocks, 0);
+  grow_to(deep, n);
+  grow_fill(block_deep, blocks, uint8_t{0});
   const bool crowded = w.deep_sieved && w.deep_crowded.size() == w.bodies.size();
   // determinism: a flag per pair and one per block, each written by its block (rule 1).
   for_blocks(n, kDeepGrain, [&](std::size_t begin, std::size_t end, std::size_t block) {
@@ -108,7 +113,7 @@ std::size_t limit_deep_pairs(WorldState& w) {
   // not depend on how the pairs were found.
   // Deep pairs and a crowd's near pairs have a budget each (kept_deep[2 i], kept_deep[2 i + 1]).
   std::vector<uint32_t>& kept_deep = w.deep_kept;
-  kept_deep.assign(2 * w.bodies.size(), 0);
+  grow_fill(kept_deep, 2 * w.bodies.size(), uint32_t{0});
   std::size_t kept = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const uint64_t key = w.pairs[k];
