@@ -19,24 +19,11 @@ timed over (its first 3):
 Usage: bench/make_cylinder_pile.py [OUT_DIR] | --settled TRAJECTORY.csv [OUT_DIR]
 """
 import json
-import math
 import os
 import random
 import sys
 
-
-def static_box(name, half, pos):
-    return {"name": name, "motion": "static",
-            "shape": {"type": "box", "half_extents": list(half)}, "position": list(pos)}
-
-
-def random_quat(rng):
-    # Shoemake's uniform random rotation, written [w, x, y, z].
-    u1, u2, u3 = rng.random(), rng.random(), rng.random()
-    a, b = math.sqrt(1 - u1), math.sqrt(u1)
-    q = [b * math.cos(2 * math.pi * u3), a * math.sin(2 * math.pi * u2),
-         a * math.cos(2 * math.pi * u2), b * math.sin(2 * math.pi * u3)]
-    return [round(c, 6) for c in q]
+from make_scenes import random_quat, static_box
 
 
 def cylinder_pile_drop():

@@ -9,6 +9,7 @@
 
 #include "core/base/compound.hpp"
 #include "core/base/heightfield.hpp"
+#include "core/base/splitmix.hpp"
 #include "core/base/triangle_mesh.hpp"
 #include "narrowphase/collide.hpp"
 #include "narrowphase/manifold_reduce.hpp"
@@ -55,13 +56,8 @@ struct Candidates {
 // 32 bits from the pieces (parts of A and B, 0 for none), the triangle and the piece's own id:
 // splitmix64's finaliser over the packed words, so that ids of different pieces rarely collide.
 uint32_t feature_id(uint32_t parts, uint32_t triangle, uint32_t local) {
-  uint64_t h = (uint64_t(parts) << 32 | triangle) ^ (uint64_t(local) * 0x9E3779B97F4A7C15ull);
-  h ^= h >> 30;
-  h *= 0xBF58476D1CE4E5B9ull;
-  h ^= h >> 27;
-  h *= 0x94D049BB133111EBull;
-  h ^= h >> 31;
-  return uint32_t(h);
+  const uint64_t h = (uint64_t(parts) << 32 | triangle) ^ (uint64_t(local) * 0x9E3779B97F4A7C15ull);
+  return uint32_t(splitmix64_finalize(h));
 }
 
 Transform compose(const Transform& outer, const Transform& inner) {

@@ -2,6 +2,7 @@
 // State hash: a word-at-a-time multiply-xorshift mix (the finaliser of SplitMix64 / Stafford's
 // Mix13), fast enough to run every step for recordings.
 #include "core/base/state_hash.hpp"
+#include "core/base/splitmix.hpp"
 
 #include <cstring>
 
@@ -10,12 +11,7 @@ namespace elan::detail {
 namespace {
 inline uint64_t mix(uint64_t h, uint64_t w) {
   h ^= w + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-  h ^= h >> 30;
-  h *= 0xBF58476D1CE4E5B9ull;
-  h ^= h >> 27;
-  h *= 0x94D049BB133111EBull;
-  h ^= h >> 31;
-  return h;
+  return splitmix64_finalize(h);
 }
 inline uint64_t bits(Real x) {
   if constexpr (sizeof(Real) == 8) {

@@ -16,17 +16,12 @@ namespace elan {
 namespace deep_contact_determinism_test {
 
 std::vector<uint64_t> hashes(int threads, BroadphaseType broadphase, int steps) {
-  const std::string path =
-      std::string(ELAN_SOURCE_DIR) + "/bench/cliffs/cylinders500_one_point.json";
-  const Scene scene = load_scene(path);
-  WorldDef def = scene.world;
-  def.threads = threads;
-  def.broadphase = broadphase;
-  World world(def);
-  load_into(scene, world, path);
+  Real dt = 0;
+  World world =
+      test::load_world("../bench/cliffs/cylinders500_one_point.json", threads, dt, broadphase);
   std::vector<uint64_t> out;
   for (int n = 0; n < steps; ++n) {
-    world.step(scene.timestep);
+    world.step(dt);
     EXPECT_TRUE(test::all_finite(world)) << "step " << n + 1;
     out.push_back(world.state_hash());
   }
