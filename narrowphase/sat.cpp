@@ -271,12 +271,21 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
     report_separation(separation, Separation::Kind::FaceOfB, fb.separation);
     return false;
   }
-  const EdgeQuery ee = query_edges(a, b);
+  EdgeQuery ee = query_edges(a, b);
   if (ee.separation > speculative_distance) {
-    if (separation != nullptr) {
-      *separation = {Separation::Kind::EdgePair, ee.separation, ee.edge_a, ee.edge_b};
+    // Checked by the supports along the pair's own axis before it is believed: a hull's edges
+    // once gave an axis whose gap, measured from the two edges, was 1.29 m for shapes 0.34 m into
+    // each other (found by fuzz_narrowphase). An axis along which the shapes' extents overlap
+    // separates nothing; the faces then decide. The gap along n, from A towards B, is
+    // min over B of n.x - max over A of n.x.
+    const Real gap = min_projection(b, ee.normal) + min_projection(a, -ee.normal);
+    if (gap > speculative_distance) {
+      if (separation != nullptr) {
+        *separation = {Separation::Kind::EdgePair, ee.separation, ee.edge_a, ee.edge_b};
+      }
+      return false;
     }
-    return false;
+    ee = EdgeQuery{};
   }
 
   // Non-finite input (a pose far past the supported range overflows) compares false everywhere,
