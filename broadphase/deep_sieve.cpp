@@ -24,9 +24,9 @@ bool better(const DeepSieve::Candidate& x, const DeepSieve::Candidate& y) {
 
 // perf: the sieve's hot loop calls these inline versions (the exported ones cannot be inlined
 // into it in a shared library build, which must allow their interposition).
-inline bool deep_test(const DeepBall& a, const DeepBall& b, Real& d2) {
+inline bool deep_test(const DeepBall& a, const DeepBall& b) {
   const Real dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
-  d2 = dx * dx + dy * dy + dz * dz;
+  const Real d2 = dx * dx + dy * dy + dz * dz;
   const Real reach = kDeepFraction * (a.r + b.r);
   // NaN centres (a quarantined body) compare false: never deep.
   return a.r > 0 && b.r > 0 && d2 < reach * reach;
@@ -44,8 +44,8 @@ inline uint64_t rank_of(const DeepBall& a, const DeepBall& b, uint64_t key) {
 
 }  // namespace
 
-bool balls_deep(const DeepBall& a, const DeepBall& b, Real& d2) {
-  return deep_test(a, b, d2);
+bool balls_deep(const DeepBall& a, const DeepBall& b) {
+  return deep_test(a, b);
 }
 
 uint64_t deep_pair_rank(const DeepBall& a, const DeepBall& b, uint64_t key) {
@@ -107,8 +107,7 @@ std::size_t DeepSieve::sieve(uint64_t* keys, std::size_t count) {
   for (std::size_t k = 0; k < count; ++k) {
     const uint64_t key = keys[k];
     const uint32_t a = pair_first(key), b = pair_second(key);
-    Real d2;
-    if (!deep_test(balls[a], balls[b], d2)) {
+    if (!deep_test(balls[a], balls[b])) {
       keys[kept++] = key;
       continue;
     }

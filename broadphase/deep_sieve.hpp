@@ -47,9 +47,9 @@ struct DeepBall {
 };
 
 // True when the two balls are deep (both radii positive, centres closer than kDeepFraction of
-// their sum); d2 gets the squared distance of the centres. The one test of the sieve and the
+// their sum). The one test of the sieve and the
 // budget. Symmetric in a and b: the differences change sign, their squares do not.
-bool balls_deep(const DeepBall& a, const DeepBall& b, Real& d2);
+bool balls_deep(const DeepBall& a, const DeepBall& b);
 
 // A deep pair's rank in its bodies' sets, lower is better: |a - b| for a pair within one run, else
 // 2^32 + a hash of the key (make_pair_key). Equal ranks (the partners a - d and a + d) fall back

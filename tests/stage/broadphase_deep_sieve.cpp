@@ -85,8 +85,7 @@ void expected(const Crowd& c, std::vector<uint64_t>& stored, std::vector<uint64_
   stored.clear();
   for (const uint64_t key : all) {
     const uint32_t a = pair_first(key), b = pair_second(key);
-    Real d2;
-    if (!balls_deep(c.balls[a], c.balls[b], d2)) {
+    if (!balls_deep(c.balls[a], c.balls[b])) {
       stored.push_back(key);
       continue;
     }
