@@ -55,6 +55,10 @@ uint64_t deep_pair_rank(const DeepBall& a, const DeepBall& b, uint64_t key) {
 void DeepSieve::begin(std::span<const DeepBall> balls) {
   balls_ = balls;
   if (threads_.size() < thread_slots()) threads_.resize(thread_slots());
+  // Every thread's sets are sized here, not at its first batch: a worker that first takes a batch
+  // long after the scene is warm would otherwise allocate its sets in that step.
+  for (Sets& s : threads_) size_for(s, balls.size());
+  size_for(merged_, balls.size());
 }
 
 void DeepSieve::size_for(Sets& s, std::size_t bodies) {
@@ -100,7 +104,6 @@ void DeepSieve::offer(Sets& s, uint32_t body, const Candidate& c) {
 std::size_t DeepSieve::sieve(uint64_t* keys, std::size_t count) {
   // perf: the thread's sets are looked up once a batch, not once a pair.
   Sets& s = threads_[thread_slot()];
-  size_for(s, balls_.size());
   const DeepBall* balls = balls_.data();
   const uint64_t* bar = s.bar.data();
   std::size_t kept = 0;
@@ -135,7 +138,6 @@ void DeepSieve::reset(Sets& s) {
 // the merged sets do not depend on which thread took which pair nor on the order they are merged.
 std::size_t DeepSieve::collect(std::vector<uint64_t>& out, std::span<uint8_t> crowded) {
   std::size_t taken = 0;
-  size_for(merged_, balls_.size());
   for (Sets& s : threads_) {
     taken += s.taken;
     for (std::size_t slot = 0; slot < s.owner.size(); ++slot) {

@@ -170,5 +170,29 @@ TEST(DeepSieve, FewDeepPartnersAreAllKept) {
   EXPECT_TRUE(got == all);
 }
 
+// begin() sizes every thread's sets: a worker that takes its first batch only when the scene is
+// long warm must not allocate then (ragdolls at 2 threads did, in CI). A batch of deep pairs
+// sieved after begin() leaves the sieve's heap as begin() left it.
+TEST(DeepSieve, BeginSizesEveryThreadsSets) {
+  const Crowd crowd = make_crowd(300, 5);
+  std::vector<uint64_t> stored, candidates;
+  expected(crowd, stored, candidates);
+  ASSERT_GT(candidates.size(), 100u);
+  DeepSieve sieve;
+  tbb::task_arena arena(2);
+  arena.execute([&] {
+    sieve.begin(crowd.balls);
+    const std::size_t sized = sieve.heap_bytes();
+    std::vector<uint64_t> batch = candidates;
+    // Every pair of the batch is deep, so each sieve() call offers them all to its thread's sets.
+    EXPECT_EQ(sieve.sieve(batch.data(), batch.size()), 0u);
+    EXPECT_EQ(sieve.heap_bytes(), sized);
+    std::vector<uint64_t> out;
+    out.reserve(candidates.size());
+    sieve.collect(out);
+    EXPECT_EQ(out.size(), candidates.size());
+  });
+}
+
 }  // namespace broadphase_deep_sieve_test
 }  // namespace elan::detail
