@@ -38,6 +38,9 @@ constexpr double kDependentPivot = 1e-12;
 // do not cycle between equal splits; it costs a give of eps A_ii lambda / beta: 2 micrometres
 // for 500 kg on 1 kg, 4 cm for 1e6 kg on 1 kg (which then stands).
 constexpr double kCompliance = 1e-6;
+// A system's whole envelope (below the diagonal) is kept for its active-set rounds up to this
+// many entries: the small systems of stacks and piles, whose rounds it spares the assembly.
+constexpr std::size_t kWholeEnvelope = 16 * 1024;
 
 // Capacity for n, a quarter past it when it must grow: the buffers are sized to what a step can
 // need at most (every lane and joint loaded, a system of kDirectMaxRows), so a warm step
@@ -103,9 +106,19 @@ bool solve_active(const DirectState& ds, DirectScratch& ws, uint32_t base, uint3
   };
   for (std::size_t i = 0; i < n; ++i) {
     const uint32_t ri = ws.active[i];
-    for (std::size_t j = std::size_t(ws.first[i]); j < i; ++j) {
-      const uint32_t rj = ws.active[j];
-      at(i, j) = entry(ws, ds.rows[base + ri], ds.rows[base + rj], ri, rj);
+    if (ws.whole_ready) {
+      // The active rows of i's envelope are rows of its envelope over all rows (the first active
+      // row on a slot of i comes no earlier than the first row on it).
+      const double* whole = ws.whole.data() + ws.whole_offset[ri];
+      const uint32_t whole_first = ws.whole_first[ri];
+      for (std::size_t j = std::size_t(ws.first[i]); j < i; ++j) {
+        at(i, j) = whole[ws.active[j] - whole_first];
+      }
+    } else {
+      for (std::size_t j = std::size_t(ws.first[i]); j < i; ++j) {
+        const uint32_t rj = ws.active[j];
+        at(i, j) = entry(ws, ds.rows[base + ri], ds.rows[base + rj], ri, rj);
+      }
     }
     at(i, i) = ws.diagonal[ri];
     at(i, i) *= 1 + kCompliance;
@@ -405,6 +418,9 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
   reserve_for(ws.first, rows_max);
   reserve_for(ws.offset, rows_max + 1);
   reserve_for(ws.factor, kDirectMaxEnvelope);
+  reserve_for(ws.whole, kWholeEnvelope);
+  reserve_for(ws.whole_first, rows_max);
+  reserve_for(ws.whole_offset, rows_max);
   reserve_for(ws.velocity, 6 * slots_max);
   reserve_for(ws.trial, 6 * slots_max);
   reserve_for(ws.slot_first, slots_max);
@@ -420,6 +436,8 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
       v->resize(n);
     }
     ws.in_set.resize(n);
+    ws.whole_first.resize(n);
+    ws.whole_offset.resize(n);
     ws.velocity.resize(6 * std::size_t(slots));
     ws.trial.resize(6 * std::size_t(slots));
     if (ws.slot_first.size() < slots) ws.slot_first.resize(slots);
@@ -527,6 +545,35 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
     // perf: A's diagonal, read by every active-set round (the compliance term and the
     // envelope), once a pass: entry() of the same rows, so the same bits.
     for (uint32_t i = 0; i < n; ++i) ws.diagonal[i] = entry(ws, rows[i], rows[i], i, i);
+    // perf: and A's envelope over all the rows, once a pass rather than once an active-set round
+    // (the same entry() of the same rows, so the rounds factor the same bits), when it fits.
+    ws.whole_ready = false;
+    {
+      for (uint32_t s = 0; s < slots; ++s) ws.slot_first[s] = -1;
+      std::size_t size = 0;
+      for (uint32_t i = 0; i < n; ++i) {
+        int32_t f = int32_t(i);
+        for (int s = 0; s < 2; ++s) {
+          if (rows[i].slot[s] < 0) continue;
+          int32_t& first = ws.slot_first[rows[i].slot[s]];
+          if (first < 0) first = int32_t(i);
+          f = std::min(f, first);
+        }
+        ws.whole_first[i] = uint32_t(f);
+        ws.whole_offset[i] = size;
+        size += i - uint32_t(f);
+      }
+      if (size <= kWholeEnvelope) {
+        ws.whole.resize(size);
+        for (uint32_t i = 0; i < n; ++i) {
+          double* out = &ws.whole[ws.whole_offset[i]];
+          for (uint32_t j = ws.whole_first[i]; j < i; ++j) {
+            *out++ = entry(ws, rows[i], rows[j], i, j);
+          }
+        }
+        ws.whole_ready = true;
+      }
+    }
     // The biased targets of a manifold of three or more points, fitted by one plane: -beta s_k
     // over the points' offsets in the contact plane, least squares. The rows of coplanar points
     // are dependent (three independent rows for four points), and their separations are only

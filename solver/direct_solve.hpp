@@ -129,6 +129,12 @@ struct DirectScratch {
   std::vector<std::size_t> offset;
   std::vector<double> factor;
   std::vector<uint8_t> dependent;
+  // A's envelope over all the system's rows, built once a pass (solve_direct): row i's entries
+  // for rows [whole_first[i], i) from whole[whole_offset[i]]; whole_ready when it fit.
+  std::vector<double> whole;
+  std::vector<uint32_t> whole_first;
+  std::vector<std::size_t> whole_offset;
+  bool whole_ready = false;
 
   std::size_t heap_bytes() const {
     std::size_t sum = 0;
@@ -136,7 +142,7 @@ struct DirectScratch {
     add(jac), add(mjac), add(target), add(lambda), add(rhs), add(delta), add(fixed), add(lever);
     add(diagonal);
     add(velocity), add(trial), add(active), add(in_set), add(first), add(slot_first);
-    add(offset), add(factor), add(dependent);
+    add(offset), add(factor), add(dependent), add(whole), add(whole_first), add(whole_offset);
     return sum;
   }
 };
