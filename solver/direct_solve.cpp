@@ -188,6 +188,68 @@ void set6(double* out, const Vec3& a, const Vec3& b, double sign) {
   }
 }
 
+// The blocks of the direct stage: runs of systems of about equal rows (a system's cost grows with
+// its rows), each a set of whole groups of systems that share a contact bundle (two systems'
+// lanes of one bundle are solved by one block: a store into one lane of a SIMD vector may be a
+// read-modify-write of the whole vector). Groups go to the first block until its rows reach
+// 1 / kDirectBlocks of all, and so on; within a block systems keep their order. Systems share no
+// written body, so their order and blocks change no bit of their solutions.
+// Its buffers are reserved by build_direct_systems.
+void deal_systems(DirectState& ds) {
+  const uint32_t count = uint32_t(ds.systems.size());
+  // Groups by union-find over the systems, each system linked to the first that used its
+  // bundles; linked toward the lower index (determinism: roots do not depend on visit order).
+  ds.group.resize(count);
+  for (uint32_t si = 0; si < count; ++si) ds.group[si] = si;
+  for (uint32_t si = 0; si < count; ++si) {
+    for (uint32_t r = ds.systems[si].row_begin; r < ds.systems[si].row_end; ++r) {
+      const DirectRow& row = ds.rows[r];
+      if (row.kind == kDirectJoint) continue;
+      uint32_t& owner = ds.system_of_bundle[row.source];
+      if (owner == UINT32_MAX) {
+        owner = si;
+        continue;
+      }
+      const uint32_t ra = find_root(ds.group, owner), rb = find_root(ds.group, si);
+      if (ra < rb) ds.group[rb] = ra;
+      if (rb < ra) ds.group[ra] = rb;
+    }
+  }
+  for (const DirectRow& row : ds.rows) {
+    if (row.kind != kDirectJoint) ds.system_of_bundle[row.source] = UINT32_MAX;
+  }
+  for (uint32_t si = 0; si < count; ++si) ds.group[si] = find_root(ds.group, si);
+  for (uint32_t& b : ds.block_begin) b = 0;
+  if (kDirectBlocks == 1 || count == 0) {
+    for (uint32_t b = 1; b <= kDirectBlocks; ++b) ds.block_begin[b] = count;
+    return;
+  }
+  // A group's rows, at its root (its first system), then the root's block: in root order, block b
+  // while the rows of the groups before are under (b + 1) / kDirectBlocks of all.
+  ds.group_rows.assign(count, 0);
+  for (uint32_t si = 0; si < count; ++si) {
+    ds.group_rows[ds.group[si]] += ds.systems[si].row_end - ds.systems[si].row_begin;
+  }
+  const uint64_t total = ds.rows.size();
+  uint64_t before = 0;
+  for (uint32_t si = 0; si < count; ++si) {
+    if (ds.group[si] != si) continue;
+    const uint64_t rows = ds.group_rows[si];
+    ds.group_rows[si] = std::min<uint64_t>(kDirectBlocks - 1, before * kDirectBlocks / total);
+    before += rows;
+  }
+  // The systems in block order, each block's in their own order.
+  ds.dealt.clear();
+  for (uint32_t b = 0; b < kDirectBlocks; ++b) {
+    ds.block_begin[b] = uint32_t(ds.dealt.size());
+    for (uint32_t si = 0; si < count; ++si) {
+      if (ds.group_rows[ds.group[si]] == b) ds.dealt.push_back(ds.systems[si]);
+    }
+  }
+  ds.block_begin[kDirectBlocks] = count;
+  ds.systems.swap(ds.dealt);
+}
+
 }  // namespace
 
 Real give_per_impulse(const Softness& s) {
@@ -243,6 +305,13 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
   // new face contact may bring a pile's first system on any step (prepare_bundle).
   reserve_for(ds.items, 2 * item_bound);
   reserve_for(ds.systems, item_bound);
+  reserve_for(ds.group, item_bound);
+  reserve_for(ds.group_rows, item_bound);
+  reserve_for(ds.dealt, item_bound);
+  if (ds.system_of_bundle.size() < ctx.bundles.size()) {
+    reserve_for(ds.system_of_bundle, ctx.bundles.size());
+    ds.system_of_bundle.resize(ctx.bundles.size(), UINT32_MAX);
+  }
   reserve_for(ds.rows, (3 + kMaxManifoldPoints) * ctx.lane_manifolds.size() + 3 * joints.size());
   reserve_for(ds.packets, ctx.bodies.size());
   reserve_for(ds.order, std::max<std::size_t>(item_bound, kDirectMaxRows));
@@ -384,17 +453,7 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     }
     k = end;
   }
-  // The blocks: runs of systems of about equal rows (a system's cost grows with its rows), cut
-  // where the rows so far first reach b / kDirectBlocks of all.
-  const uint64_t total = ds.rows.size();
-  uint32_t next = 1;
-  for (uint32_t si = 0; si < ds.systems.size() && next < kDirectBlocks; ++si) {
-    while (next < kDirectBlocks &&
-           uint64_t(ds.systems[si].row_end) * kDirectBlocks >= total * next) {
-      ds.block_begin[next++] = si + 1;
-    }
-  }
-  while (next <= kDirectBlocks) ds.block_begin[next++] = uint32_t(ds.systems.size());
+  deal_systems(ds);
   return !ds.systems.empty();
 }
 

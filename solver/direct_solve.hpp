@@ -147,13 +147,13 @@ struct DirectScratch {
   }
 };
 
-// The direct stage's blocks: the systems are dealt into this many contiguous runs of about
-// equal rows, one a block of the stage. One: systems share no written body, but two systems'
-// rows can be lanes of one contact bundle, and a store into one lane of a SIMD vector may be a
-// read-modify-write of the whole vector (clang at -O1 makes it one), so two blocks at once raced
-// on the bundle (the sanitized build's 2-thread hashes changed from run to run). A count above
-// one needs systems dealt so that no bundle spans two blocks.
-inline constexpr uint32_t kDirectBlocks = 1;
+// The direct stage's blocks: the systems are dealt into this many runs of about equal rows, one a
+// block of the stage. Systems share no written body, but two systems' rows can be lanes of one
+// contact bundle, and a store into one lane of a SIMD vector may be a read-modify-write of the
+// whole vector (clang at -O1 makes it one): blocks cut by rows alone raced on the bundle (the
+// sanitized build's 2-thread hashes changed from run to run). So systems that share a bundle are
+// dealt as a group, a group to one block (build_direct_systems).
+inline constexpr uint32_t kDirectBlocks = 2;
 
 // The loaded lanes' bits of DirectState::loaded_lanes; the deep lanes' are above them.
 static_assert(2 * kLanes <= 32, "loaded_lanes: two bits a lane");
@@ -177,6 +177,13 @@ struct DirectState {
   std::vector<uint32_t> parent;  // per packet (union-find)
   std::vector<int32_t> slot_of;  // per packet
   std::vector<uint32_t> order;   // the items sorted by key
+  // Deal scratch: per bundle the first system on it (UINT32_MAX between steps); per system its
+  // group's root (union-find), and at a root the group's rows, then its block; the systems in
+  // block order.
+  std::vector<uint32_t> system_of_bundle;
+  std::vector<uint32_t> group;
+  std::vector<uint64_t> group_rows;
+  std::vector<DirectSystem> dealt;
   DirectScratch scratch[kDirectBlocks];
 
   // The bytes its buffers hold (the memory report).
@@ -185,6 +192,7 @@ struct DirectState {
     auto add = [&](const auto& v) { sum += v.capacity() * sizeof(v[0]); };
     add(loaded_lanes), add(loaded_joint_blocks), add(systems), add(rows), add(packets);
     add(items), add(item_source), add(parent), add(slot_of), add(order);
+    add(system_of_bundle), add(group), add(group_rows), add(dealt);
     for (const DirectScratch& w : scratch) sum += w.heap_bytes();
     return sum;
   }
