@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace elan::detail {
 
@@ -380,10 +381,24 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     uint32_t row_count = 0;
     // One manifold, not pressed deep into a static surface (kDirectDepth).
     bool lone = false;
+    uint32_t manifolds = 0;
+    bool joint = false, deep = false;
+    Real most_inv = 0, least_inv = std::numeric_limits<Real>::max();
     while (end < count && (ds.items[2 * ds.order[end]] >> 32) == root) {
       const uint64_t item = ds.item_source[ds.order[end]];
-      lone = end == k && !(item >> 32) &&
-             !((ds.loaded_lanes[item >> 8] >> (kLanes + (item & 0xff))) & 1u);
+      const bool item_deep =
+          !(item >> 32) && ((ds.loaded_lanes[item >> 8] >> (kLanes + (item & 0xff))) & 1u);
+      lone = end == k && !(item >> 32) && !item_deep;
+      joint = joint || (item >> 32);
+      deep = deep || item_deep;
+      manifolds += (item >> 32) ? 0u : 1u;
+      uint32_t pa, pb;
+      packets_of(item, pa, pb);
+      for (const uint32_t p : {pa, pb}) {
+        if (p == 0) continue;
+        most_inv = std::max(most_inv, ctx.masses[p].inv_mass);
+        least_inv = std::min(least_inv, ctx.masses[p].inv_mass);
+      }
       row_count +=
           (item >> 32)
               ? 3u
@@ -399,7 +414,14 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     // active set that chases a bouncing body seldom settles. A mass ratio has a second loaded
     // row (the light body's support), a tower many. A face pressed deep into a static surface
     // (a body sinking into a thin mesh) is solved alone all the same.
-    if (row_count <= kDirectMaxRows && !lone) {
+    // So is a short stack of even masses (kDirectShortStack, kDirectEvenMass): no light body
+    // under a heavy one and no long chain, so the passes carry its load within a step or two,
+    // and its rows give what kDirectGive allows a few bodies' weight. The active set of such a
+    // system is mostly chasing landing bodies (a pile's columns as they fall onto each other),
+    // whose speculative rows the passes let close within the substep.
+    const bool short_even = !joint && !deep && manifolds <= kDirectShortStack &&
+                            most_inv <= kDirectEvenMass * least_inv;
+    if (row_count <= kDirectMaxRows && !lone && !short_even) {
       DirectSystem system;
       system.row_begin = uint32_t(ds.rows.size());
       system.packet_begin = uint32_t(ds.packets.size());

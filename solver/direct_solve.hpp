@@ -77,6 +77,15 @@ inline constexpr Real kDirectRestSpeed = Real(0.5);  // m/s
 // dynamic bodies that deep have met in an impact (a table's leg through another's top) or were
 // spawned overlapping: the push-out, not a load.
 inline constexpr Real kDirectDepth = Real(0.005);  // m
+// A system of contacts only, none deep, of at most this many manifolds whose bodies' masses are
+// within kDirectEvenMass of each other is left to Gauss-Seidel (build_direct_systems): a column
+// of four even bodies on the ground, whose upper contacts carry three bodies' weight and give
+// about kDirectGive (three 0.5 m cubes on one: 0.5 mm), the ground's a quarter of that under four
+// (twice as stiff), while the passes carry the weight of so short a chain of even masses within
+// a step or two. A light body under a heavy one, a taller column, a pyramid, or any joint, is
+// solved directly as before.
+inline constexpr uint32_t kDirectShortStack = 4;
+inline constexpr Real kDirectEvenMass = 2;  // heaviest over lightest
 // Systems with more rows are left to Gauss-Seidel: the envelope of a large pile is dense, and
 // its factor would cost more than the passes it replaces.
 inline constexpr uint32_t kDirectMaxRows = 640;
@@ -201,7 +210,8 @@ struct DirectState {
 // Serial, before the substeps: the loaded rows of islands (islands.hpp: `island_root` per body,
 // `island_size` per root) of at most kDirectMaxBodies bodies, one system per set of them linked
 // through their bodies, but for a set of one manifold that is not deep (left to the passes:
-// one contact's give is bounded by its bodies' weight; direct_solve.cpp). Reads
+// one contact's give is bounded by its bodies' weight; direct_solve.cpp) and a short stack of
+// even masses (kDirectShortStack). Reads
 // ds.loaded_lanes, ds.loaded_joint_blocks (block size `joint_grain`), the bundles' lanes and point
 // counts, the joint rows' packets and flags. Returns whether any system is to be solved.
 bool build_direct_systems(const ContactSolverContext& ctx, std::span<const ManifoldHead> contacts,
