@@ -91,6 +91,9 @@ struct Walk {
   // motion was given.
   Real base;
   Vec3 displacement;
+  // perf: A's piece as a polyhedron, kept while the walk meets B's parts one by one (the same
+  // piece, pose and frame every time, so the same bits as building it anew).
+  PolyhedronCache& polyhedron;
 };
 
 // A convex piece p (A's side, or a plane) against a piece q of B's side: convex, plane or surface.
@@ -137,7 +140,8 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
     return;
   }
   Manifold m;
-  if (!collide(p, xp, q, xq, w.speculative, m)) return;
+  Separation unused;
+  if (!collide(p, xp, q, xq, w.speculative, m, w.polyhedron, unused)) return;
   for (int k = 0; k < int(m.point_count); ++k) {
     const ContactPoint& c = m.points[k];
     w.out.push({c.anchor_a + offset, m.normal, c.separation,
@@ -308,7 +312,8 @@ bool collide_composite(const Shape& a, const Transform& xa, const Shape& b, cons
     return true;
   }
   Candidates cands;
-  Walk w{xa, speculative_distance, cands, speculative_distance, Vec3::Zero()};
+  PolyhedronCache polyhedron;  // default-initialised: only its key is set, not its arrays
+  Walk w{xa, speculative_distance, cands, speculative_distance, Vec3::Zero(), polyhedron};
   if (motion != nullptr) w.base = motion->base_speculative, w.displacement = motion->displacement;
   if (a.type == ShapeType::Compound) {
     Vec3 lo, hi;

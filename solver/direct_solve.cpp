@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace elan::detail {
 
@@ -38,6 +39,9 @@ constexpr double kDependentPivot = 1e-12;
 // do not cycle between equal splits; it costs a give of eps A_ii lambda / beta: 2 micrometres
 // for 500 kg on 1 kg, 4 cm for 1e6 kg on 1 kg (which then stands).
 constexpr double kCompliance = 1e-6;
+// A system's whole envelope (below the diagonal) is kept for its active-set rounds up to this
+// many entries: the small systems of stacks and piles, whose rounds it spares the assembly.
+constexpr std::size_t kWholeEnvelope = 16 * 1024;
 
 // Capacity for n, a quarter past it when it must grow: the buffers are sized to what a step can
 // need at most (every lane and joint loaded, a system of kDirectMaxRows), so a warm step
@@ -103,9 +107,19 @@ bool solve_active(const DirectState& ds, DirectScratch& ws, uint32_t base, uint3
   };
   for (std::size_t i = 0; i < n; ++i) {
     const uint32_t ri = ws.active[i];
-    for (std::size_t j = std::size_t(ws.first[i]); j < i; ++j) {
-      const uint32_t rj = ws.active[j];
-      at(i, j) = entry(ws, ds.rows[base + ri], ds.rows[base + rj], ri, rj);
+    if (ws.whole_ready) {
+      // The active rows of i's envelope are rows of its envelope over all rows (the first active
+      // row on a slot of i comes no earlier than the first row on it).
+      const double* whole = ws.whole.data() + ws.whole_offset[ri];
+      const uint32_t whole_first = ws.whole_first[ri];
+      for (std::size_t j = std::size_t(ws.first[i]); j < i; ++j) {
+        at(i, j) = whole[ws.active[j] - whole_first];
+      }
+    } else {
+      for (std::size_t j = std::size_t(ws.first[i]); j < i; ++j) {
+        const uint32_t rj = ws.active[j];
+        at(i, j) = entry(ws, ds.rows[base + ri], ds.rows[base + rj], ri, rj);
+      }
     }
     at(i, i) = ws.diagonal[ri];
     at(i, i) *= 1 + kCompliance;
@@ -175,6 +189,68 @@ void set6(double* out, const Vec3& a, const Vec3& b, double sign) {
   }
 }
 
+// The blocks of the direct stage: runs of systems of about equal rows (a system's cost grows with
+// its rows), each a set of whole groups of systems that share a contact bundle (two systems'
+// lanes of one bundle are solved by one block: a store into one lane of a SIMD vector may be a
+// read-modify-write of the whole vector). Groups go to the first block until its rows reach
+// 1 / kDirectBlocks of all, and so on; within a block systems keep their order. Systems share no
+// written body, so their order and blocks change no bit of their solutions.
+// Its buffers are reserved by build_direct_systems.
+void deal_systems(DirectState& ds) {
+  const uint32_t count = uint32_t(ds.systems.size());
+  // Groups by union-find over the systems, each system linked to the first that used its
+  // bundles; linked toward the lower index (determinism: roots do not depend on visit order).
+  ds.group.resize(count);
+  for (uint32_t si = 0; si < count; ++si) ds.group[si] = si;
+  for (uint32_t si = 0; si < count; ++si) {
+    for (uint32_t r = ds.systems[si].row_begin; r < ds.systems[si].row_end; ++r) {
+      const DirectRow& row = ds.rows[r];
+      if (row.kind == kDirectJoint) continue;
+      uint32_t& owner = ds.system_of_bundle[row.source];
+      if (owner == UINT32_MAX) {
+        owner = si;
+        continue;
+      }
+      const uint32_t ra = find_root(ds.group, owner), rb = find_root(ds.group, si);
+      if (ra < rb) ds.group[rb] = ra;
+      if (rb < ra) ds.group[ra] = rb;
+    }
+  }
+  for (const DirectRow& row : ds.rows) {
+    if (row.kind != kDirectJoint) ds.system_of_bundle[row.source] = UINT32_MAX;
+  }
+  for (uint32_t si = 0; si < count; ++si) ds.group[si] = find_root(ds.group, si);
+  for (uint32_t& b : ds.block_begin) b = 0;
+  if (kDirectBlocks == 1 || count == 0) {
+    for (uint32_t b = 1; b <= kDirectBlocks; ++b) ds.block_begin[b] = count;
+    return;
+  }
+  // A group's rows, at its root (its first system), then the root's block: in root order, block b
+  // while the rows of the groups before are under (b + 1) / kDirectBlocks of all.
+  ds.group_rows.assign(count, 0);
+  for (uint32_t si = 0; si < count; ++si) {
+    ds.group_rows[ds.group[si]] += ds.systems[si].row_end - ds.systems[si].row_begin;
+  }
+  const uint64_t total = ds.rows.size();
+  uint64_t before = 0;
+  for (uint32_t si = 0; si < count; ++si) {
+    if (ds.group[si] != si) continue;
+    const uint64_t rows = ds.group_rows[si];
+    ds.group_rows[si] = std::min<uint64_t>(kDirectBlocks - 1, before * kDirectBlocks / total);
+    before += rows;
+  }
+  // The systems in block order, each block's in their own order.
+  ds.dealt.clear();
+  for (uint32_t b = 0; b < kDirectBlocks; ++b) {
+    ds.block_begin[b] = uint32_t(ds.dealt.size());
+    for (uint32_t si = 0; si < count; ++si) {
+      if (ds.group_rows[ds.group[si]] == b) ds.dealt.push_back(ds.systems[si]);
+    }
+  }
+  ds.block_begin[kDirectBlocks] = count;
+  ds.systems.swap(ds.dealt);
+}
+
 }  // namespace
 
 Real give_per_impulse(const Softness& s) {
@@ -230,6 +306,13 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
   // new face contact may bring a pile's first system on any step (prepare_bundle).
   reserve_for(ds.items, 2 * item_bound);
   reserve_for(ds.systems, item_bound);
+  reserve_for(ds.group, item_bound);
+  reserve_for(ds.group_rows, item_bound);
+  reserve_for(ds.dealt, item_bound);
+  if (ds.system_of_bundle.size() < ctx.bundles.size()) {
+    reserve_for(ds.system_of_bundle, ctx.bundles.size());
+    ds.system_of_bundle.resize(ctx.bundles.size(), UINT32_MAX);
+  }
   reserve_for(ds.rows, (3 + kMaxManifoldPoints) * ctx.lane_manifolds.size() + 3 * joints.size());
   reserve_for(ds.packets, ctx.bodies.size());
   reserve_for(ds.order, std::max<std::size_t>(item_bound, kDirectMaxRows));
@@ -298,10 +381,24 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     uint32_t row_count = 0;
     // One manifold, not pressed deep into a static surface (kDirectDepth).
     bool lone = false;
+    uint32_t manifolds = 0;
+    bool joint = false, deep = false;
+    Real most_inv = 0, least_inv = std::numeric_limits<Real>::max();
     while (end < count && (ds.items[2 * ds.order[end]] >> 32) == root) {
       const uint64_t item = ds.item_source[ds.order[end]];
-      lone = end == k && !(item >> 32) &&
-             !((ds.loaded_lanes[item >> 8] >> (kLanes + (item & 0xff))) & 1u);
+      const bool item_deep =
+          !(item >> 32) && ((ds.loaded_lanes[item >> 8] >> (kLanes + (item & 0xff))) & 1u);
+      lone = end == k && !(item >> 32) && !item_deep;
+      joint = joint || (item >> 32);
+      deep = deep || item_deep;
+      manifolds += (item >> 32) ? 0u : 1u;
+      uint32_t pa, pb;
+      packets_of(item, pa, pb);
+      for (const uint32_t p : {pa, pb}) {
+        if (p == 0) continue;
+        most_inv = std::max(most_inv, ctx.masses[p].inv_mass);
+        least_inv = std::min(least_inv, ctx.masses[p].inv_mass);
+      }
       row_count +=
           (item >> 32)
               ? 3u
@@ -317,7 +414,14 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     // active set that chases a bouncing body seldom settles. A mass ratio has a second loaded
     // row (the light body's support), a tower many. A face pressed deep into a static surface
     // (a body sinking into a thin mesh) is solved alone all the same.
-    if (row_count <= kDirectMaxRows && !lone) {
+    // So is a short stack of even masses (kDirectShortStack, kDirectEvenMass): no light body
+    // under a heavy one and no long chain, so the passes carry its load within a step or two,
+    // and its rows give what kDirectGive allows a few bodies' weight. The active set of such a
+    // system is mostly chasing landing bodies (a pile's columns as they fall onto each other),
+    // whose speculative rows the passes let close within the substep.
+    const bool short_even = !joint && !deep && manifolds <= kDirectShortStack &&
+                            most_inv <= kDirectEvenMass * least_inv;
+    if (row_count <= kDirectMaxRows && !lone && !short_even) {
       DirectSystem system;
       system.row_begin = uint32_t(ds.rows.size());
       system.packet_begin = uint32_t(ds.packets.size());
@@ -371,17 +475,7 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     }
     k = end;
   }
-  // The blocks: runs of systems of about equal rows (a system's cost grows with its rows), cut
-  // where the rows so far first reach b / kDirectBlocks of all.
-  const uint64_t total = ds.rows.size();
-  uint32_t next = 1;
-  for (uint32_t si = 0; si < ds.systems.size() && next < kDirectBlocks; ++si) {
-    while (next < kDirectBlocks &&
-           uint64_t(ds.systems[si].row_end) * kDirectBlocks >= total * next) {
-      ds.block_begin[next++] = si + 1;
-    }
-  }
-  while (next <= kDirectBlocks) ds.block_begin[next++] = uint32_t(ds.systems.size());
+  deal_systems(ds);
   return !ds.systems.empty();
 }
 
@@ -405,6 +499,9 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
   reserve_for(ws.first, rows_max);
   reserve_for(ws.offset, rows_max + 1);
   reserve_for(ws.factor, kDirectMaxEnvelope);
+  reserve_for(ws.whole, kWholeEnvelope);
+  reserve_for(ws.whole_first, rows_max);
+  reserve_for(ws.whole_offset, rows_max);
   reserve_for(ws.velocity, 6 * slots_max);
   reserve_for(ws.trial, 6 * slots_max);
   reserve_for(ws.slot_first, slots_max);
@@ -420,6 +517,8 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
       v->resize(n);
     }
     ws.in_set.resize(n);
+    ws.whole_first.resize(n);
+    ws.whole_offset.resize(n);
     ws.velocity.resize(6 * std::size_t(slots));
     ws.trial.resize(6 * std::size_t(slots));
     if (ws.slot_first.size() < slots) ws.slot_first.resize(slots);
@@ -527,6 +626,35 @@ void solve_direct(ContactSolverContext& ctx, std::span<JointRow> joints, bool us
     // perf: A's diagonal, read by every active-set round (the compliance term and the
     // envelope), once a pass: entry() of the same rows, so the same bits.
     for (uint32_t i = 0; i < n; ++i) ws.diagonal[i] = entry(ws, rows[i], rows[i], i, i);
+    // perf: and A's envelope over all the rows, once a pass rather than once an active-set round
+    // (the same entry() of the same rows, so the rounds factor the same bits), when it fits.
+    ws.whole_ready = false;
+    {
+      for (uint32_t s = 0; s < slots; ++s) ws.slot_first[s] = -1;
+      std::size_t size = 0;
+      for (uint32_t i = 0; i < n; ++i) {
+        int32_t f = int32_t(i);
+        for (int s = 0; s < 2; ++s) {
+          if (rows[i].slot[s] < 0) continue;
+          int32_t& first = ws.slot_first[rows[i].slot[s]];
+          if (first < 0) first = int32_t(i);
+          f = std::min(f, first);
+        }
+        ws.whole_first[i] = uint32_t(f);
+        ws.whole_offset[i] = size;
+        size += i - uint32_t(f);
+      }
+      if (size <= kWholeEnvelope) {
+        ws.whole.resize(size);
+        for (uint32_t i = 0; i < n; ++i) {
+          double* out = &ws.whole[ws.whole_offset[i]];
+          for (uint32_t j = ws.whole_first[i]; j < i; ++j) {
+            *out++ = entry(ws, rows[i], rows[j], i, j);
+          }
+        }
+        ws.whole_ready = true;
+      }
+    }
     // The biased targets of a manifold of three or more points, fitted by one plane: -beta s_k
     // over the points' offsets in the contact plane, least squares. The rows of coplanar points
     // are dependent (three independent rows for four points), and their separations are only

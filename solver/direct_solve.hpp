@@ -77,6 +77,15 @@ inline constexpr Real kDirectRestSpeed = Real(0.5);  // m/s
 // dynamic bodies that deep have met in an impact (a table's leg through another's top) or were
 // spawned overlapping: the push-out, not a load.
 inline constexpr Real kDirectDepth = Real(0.005);  // m
+// A system of contacts only, none deep, of at most this many manifolds whose bodies' masses are
+// within kDirectEvenMass of each other is left to Gauss-Seidel (build_direct_systems): a column
+// of four even bodies on the ground, whose upper contacts carry three bodies' weight and give
+// about kDirectGive (three 0.5 m cubes on one: 0.5 mm), the ground's a quarter of that under four
+// (twice as stiff), while the passes carry the weight of so short a chain of even masses within
+// a step or two. A light body under a heavy one, a taller column, a pyramid, or any joint, is
+// solved directly as before.
+inline constexpr uint32_t kDirectShortStack = 4;
+inline constexpr Real kDirectEvenMass = 2;  // heaviest over lightest
 // Systems with more rows are left to Gauss-Seidel: the envelope of a large pile is dense, and
 // its factor would cost more than the passes it replaces.
 inline constexpr uint32_t kDirectMaxRows = 640;
@@ -129,6 +138,12 @@ struct DirectScratch {
   std::vector<std::size_t> offset;
   std::vector<double> factor;
   std::vector<uint8_t> dependent;
+  // A's envelope over all the system's rows, built once a pass (solve_direct): row i's entries
+  // for rows [whole_first[i], i) from whole[whole_offset[i]]; whole_ready when it fit.
+  std::vector<double> whole;
+  std::vector<uint32_t> whole_first;
+  std::vector<std::size_t> whole_offset;
+  bool whole_ready = false;
 
   std::size_t heap_bytes() const {
     std::size_t sum = 0;
@@ -136,18 +151,18 @@ struct DirectScratch {
     add(jac), add(mjac), add(target), add(lambda), add(rhs), add(delta), add(fixed), add(lever);
     add(diagonal);
     add(velocity), add(trial), add(active), add(in_set), add(first), add(slot_first);
-    add(offset), add(factor), add(dependent);
+    add(offset), add(factor), add(dependent), add(whole), add(whole_first), add(whole_offset);
     return sum;
   }
 };
 
-// The direct stage's blocks: the systems are dealt into this many contiguous runs of about
-// equal rows, one a block of the stage. One: systems share no written body, but two systems'
-// rows can be lanes of one contact bundle, and a store into one lane of a SIMD vector may be a
-// read-modify-write of the whole vector (clang at -O1 makes it one), so two blocks at once raced
-// on the bundle (the sanitized build's 2-thread hashes changed from run to run). A count above
-// one needs systems dealt so that no bundle spans two blocks.
-inline constexpr uint32_t kDirectBlocks = 1;
+// The direct stage's blocks: the systems are dealt into this many runs of about equal rows, one a
+// block of the stage. Systems share no written body, but two systems' rows can be lanes of one
+// contact bundle, and a store into one lane of a SIMD vector may be a read-modify-write of the
+// whole vector (clang at -O1 makes it one): blocks cut by rows alone raced on the bundle (the
+// sanitized build's 2-thread hashes changed from run to run). So systems that share a bundle are
+// dealt as a group, a group to one block (build_direct_systems).
+inline constexpr uint32_t kDirectBlocks = 2;
 
 // The loaded lanes' bits of DirectState::loaded_lanes; the deep lanes' are above them.
 static_assert(2 * kLanes <= 32, "loaded_lanes: two bits a lane");
@@ -171,6 +186,13 @@ struct DirectState {
   std::vector<uint32_t> parent;  // per packet (union-find)
   std::vector<int32_t> slot_of;  // per packet
   std::vector<uint32_t> order;   // the items sorted by key
+  // Deal scratch: per bundle the first system on it (UINT32_MAX between steps); per system its
+  // group's root (union-find), and at a root the group's rows, then its block; the systems in
+  // block order.
+  std::vector<uint32_t> system_of_bundle;
+  std::vector<uint32_t> group;
+  std::vector<uint64_t> group_rows;
+  std::vector<DirectSystem> dealt;
   DirectScratch scratch[kDirectBlocks];
 
   // The bytes its buffers hold (the memory report).
@@ -179,6 +201,7 @@ struct DirectState {
     auto add = [&](const auto& v) { sum += v.capacity() * sizeof(v[0]); };
     add(loaded_lanes), add(loaded_joint_blocks), add(systems), add(rows), add(packets);
     add(items), add(item_source), add(parent), add(slot_of), add(order);
+    add(system_of_bundle), add(group), add(group_rows), add(dealt);
     for (const DirectScratch& w : scratch) sum += w.heap_bytes();
     return sum;
   }
@@ -187,7 +210,8 @@ struct DirectState {
 // Serial, before the substeps: the loaded rows of islands (islands.hpp: `island_root` per body,
 // `island_size` per root) of at most kDirectMaxBodies bodies, one system per set of them linked
 // through their bodies, but for a set of one manifold that is not deep (left to the passes:
-// one contact's give is bounded by its bodies' weight; direct_solve.cpp). Reads
+// one contact's give is bounded by its bodies' weight; direct_solve.cpp) and a short stack of
+// even masses (kDirectShortStack). Reads
 // ds.loaded_lanes, ds.loaded_joint_blocks (block size `joint_grain`), the bundles' lanes and point
 // counts, the joint rows' packets and flags. Returns whether any system is to be solved.
 bool build_direct_systems(const ContactSolverContext& ctx, std::span<const ManifoldHead> contacts,

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/world/world_access.hpp"
 #include "physics/physics_util.hpp"
 
 namespace elan {
@@ -116,6 +117,59 @@ TEST(MassRatio, MixedMassColumnsStandAndSleep) {
   expect_column_stands_and_sleeps(up, "heavy on light");
   expect_column_stands_and_sleeps(down, "light on heavy");
   expect_column_stands_and_sleeps(alternating, "alternating 1 and 100 kg");
+}
+
+// A column of four 0.5 m cubes of the given masses (bottom first), placed touching, stepped for
+// 3 s: the most the top sank below its rigid height over the last second, and whether any step
+// solved a system directly.
+struct ShortColumn {
+  Real settled_sink = 0;
+  bool direct = false;
+};
+ShortColumn short_column(const std::vector<Real>& masses) {
+  World world = make_world();
+  std::vector<BodyId> cubes;
+  for (std::size_t k = 0; k < masses.size(); ++k) {
+    cubes.push_back(add_cube(world, masses[k], 2 * kHalf * Real(k)));
+  }
+  const Real rest = world.position(cubes.back()).y();
+  ShortColumn out;
+  const int steps = int(std::lround(Real(3) / kDt));
+  for (int s = 0; s < steps; ++s) {
+    world.step(kDt);
+    EXPECT_TRUE(test::all_finite(world)) << "step " << s;
+    if (s >= steps - int(std::lround(Real(1) / kDt))) {
+      out.settled_sink = std::max(out.settled_sink, rest - world.position(cubes.back()).y());
+    }
+    out.direct = out.direct || !detail::state_of(world).solver.direct.systems.empty();
+  }
+  return out;
+}
+
+// Four even cubes on the ground are a short stack of even masses (detail::kDirectShortStack):
+// left to the passes, their rows give as soft springs, F / (m_eff omega^2) each. The header's
+// figure for one 0.5 m cube on another is 0.2 mm, so the contacts under three, two and one cube
+// give about 0.6 + 0.4 + 0.2 mm, and the ground's under four, twice as stiff in frequency, a
+// quarter of 0.8 mm: 1.4 mm in all. 2 mm bounds it; a load the passes did not carry would sink
+// the top by a give per pass, far past it.
+TEST(MassRatio, ShortEvenColumnIsLeftToThePassesAndHolds) {
+  const ShortColumn even = short_column({1, 1, 1, 1});
+  std::printf("four even cubes: top sank %.5f m, direct %d\n", double(even.settled_sink),
+              int(even.direct));
+  EXPECT_FALSE(even.direct);
+  EXPECT_LT(even.settled_sink, Real(0.002));
+  EXPECT_GT(even.settled_sink, Real(0));
+}
+
+// The same column with a top ten times heavier is past detail::kDirectEvenMass: its loaded rows
+// are solved directly on some step, and the column holds within the even column's bound (a light
+// body under a heavy one is what the passes cannot carry).
+TEST(MassRatio, HeavyTopOnShortColumnIsSolvedDirectly) {
+  const ShortColumn heavy = short_column({1, 1, 1, 10});
+  std::printf("three cubes under a tenfold one: top sank %.5f m, direct %d\n",
+              double(heavy.settled_sink), int(heavy.direct));
+  EXPECT_TRUE(heavy.direct);
+  EXPECT_LT(heavy.settled_sink, Real(0.002));
 }
 
 }  // namespace mass_ratio_test
