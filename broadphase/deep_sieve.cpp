@@ -22,16 +22,6 @@ bool better(const DeepSieve::Candidate& x, const DeepSieve::Candidate& y) {
   return x.rank < y.rank || (x.rank == y.rank && x.partner < y.partner);
 }
 
-// perf: the sieve's hot loop calls these inline versions (the exported ones cannot be inlined
-// into it in a shared library build, which must allow their interposition).
-inline bool deep_test(const DeepBall& a, const DeepBall& b) {
-  const Real dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
-  const Real d2 = dx * dx + dy * dy + dz * dz;
-  const Real reach = kDeepFraction * (a.r + b.r);
-  // NaN centres (a quarantined body) compare false: never deep.
-  return a.r > 0 && b.r > 0 && d2 < reach * reach;
-}
-
 // Neighbouring keys get unrelated ranks (core/base/splitmix.hpp).
 inline uint32_t mix(uint64_t key) {
   return uint32_t(splitmix64_finalize(key));
@@ -45,7 +35,7 @@ inline uint64_t rank_of(const DeepBall& a, const DeepBall& b, uint64_t key) {
 }  // namespace
 
 bool balls_deep(const DeepBall& a, const DeepBall& b) {
-  return deep_test(a, b);
+  return deep_balls_inline(a, b);
 }
 
 uint64_t deep_pair_rank(const DeepBall& a, const DeepBall& b, uint64_t key) {
@@ -101,6 +91,10 @@ void DeepSieve::offer(Sets& s, uint32_t body, const Candidate& c) {
   if (n + 1 == K) s.bar[body] = e[K - 1].rank;
 }
 
+void DeepSieve::count_taken(std::size_t count) {
+  threads_[thread_slot()].taken += count;
+}
+
 std::size_t DeepSieve::sieve(uint64_t* keys, std::size_t count) {
   // perf: the thread's sets are looked up once a batch, not once a pair.
   Sets& s = threads_[thread_slot()];
@@ -110,7 +104,7 @@ std::size_t DeepSieve::sieve(uint64_t* keys, std::size_t count) {
   for (std::size_t k = 0; k < count; ++k) {
     const uint64_t key = keys[k];
     const uint32_t a = pair_first(key), b = pair_second(key);
-    if (!deep_test(balls[a], balls[b])) {
+    if (!deep_balls_inline(balls[a], balls[b])) {
       keys[kept++] = key;
       continue;
     }

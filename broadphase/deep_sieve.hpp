@@ -51,6 +51,17 @@ struct DeepBall {
 // budget. Symmetric in a and b: the differences change sign, their squares do not.
 bool balls_deep(const DeepBall& a, const DeepBall& b);
 
+// The same test inline, for the hot loops (the exported one cannot be inlined into them in a
+// shared library build, which must allow its interposition). The squared distance is summed x, y,
+// then z; a vector lane that does the same operations in the same order gives the same answer.
+inline bool deep_balls_inline(const DeepBall& a, const DeepBall& b) {
+  const Real dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+  const Real d2 = dx * dx + dy * dy + dz * dz;
+  const Real reach = kDeepFraction * (a.r + b.r);
+  // NaN centres (a quarantined body) compare false: never deep.
+  return a.r > 0 && b.r > 0 && d2 < reach * reach;
+}
+
 // A deep pair's rank in its bodies' sets, lower is better: |a - b| for a pair within one run, else
 // 2^32 + a hash of the key (make_pair_key). Equal ranks (the partners a - d and a + d) fall back
 // to the partner's index.
@@ -70,6 +81,11 @@ class DeepSieve {
   // Takes the deep pairs of keys[0, count) into the calling thread's sets and moves the others,
   // in order, to the front. Returns how many are left. Safe from any worker thread of the arena.
   std::size_t sieve(uint64_t* keys, std::size_t count);
+  // Counts deep pairs a finder passed by without offering them, as the sieve would have turned
+  // them away (closed_runs.hpp), among the calling thread's taken pairs.
+  void count_taken(std::size_t count);
+  // The balls begin() was given.
+  std::span<const DeepBall> balls() const { return balls_; }
   // After the finder: the merged candidates' pair keys, appended to `out` unsorted, unique. Returns
   // how many deep pairs were taken (0: the update found none). Empties the sets for the next
   // update.
