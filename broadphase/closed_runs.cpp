@@ -5,62 +5,74 @@
 #include <algorithm>
 
 #include "broadphase/pair_test.hpp"
+#include "core/base/parallel.hpp"
 
 namespace elan::detail {
 
 namespace {
 
 constexpr uint32_t kRun = DeepSieve::kRun;
+constexpr uint32_t kWanted = DeepSieve::kCandidates;
+constexpr std::size_t kClosedGrain = 512;
 
-// Marks the members of one run that are deep with, and paired with, every other member.
-std::size_t close_run(const BroadphaseInput& in, std::span<const DeepBall> balls,
-                      const uint32_t* members, uint32_t count, std::span<uint32_t> closed) {
-  if (count != kRun) return 0;
-  std::size_t found = 0;
-  for (uint32_t p = 0; p < kRun; ++p) {
-    const uint32_t a = members[p];
-    bool all = true;
-    // perf: in an ordinary scene the first run-mate is already apart.
-    for (uint32_t q = 0; q < kRun && all; ++q) {
-      const uint32_t b = members[q];
-      all = q == p || (deep_balls_inline(balls[a], balls[b]) && boxes_overlap(*in.bounds, a, b) &&
-                       accept_pair(in, a, b));
-    }
-    if (all) {
-      closed[a] = balls[a].run;
-      ++found;
-    }
-  }
-  return found;
+// The ordinals [begin, end) of the bodies with r > 0 in the group of level `level` of ordinal o's
+// run, clipped to the m ordinals there are.
+struct Range {
+  std::size_t begin, end;
+};
+Range group_of(std::size_t o, uint32_t level, std::size_t m) {
+  const std::size_t s = kLevelShift * (level - 1);
+  const std::size_t first_run = ((o / kRun) >> s) << s;
+  const std::size_t begin = first_run * kRun;
+  return {begin, std::min(m, begin + (kRun << s))};
 }
 
 }  // namespace
 
 std::size_t find_closed_runs(const BroadphaseInput& in, std::span<const DeepBall> balls,
-                             std::span<uint32_t> closed) {
-  std::fill(closed.begin(), closed.end(), kOpenRun);
-  uint32_t members[kRun] = {};
-  uint32_t count = 0, run = 0;
-  bool ordered = true;
-  std::size_t found = 0;
+                             std::span<const uint8_t> deepen, std::span<uint32_t> order,
+                             std::span<uint32_t> shift) {
+  std::fill(shift.begin(), shift.end(), kOpenShift);
+  // The bodies with r > 0 in index order; their runs must be their ordinals over kRun.
+  std::size_t m = 0;
   for (uint32_t i = 0; i < balls.size(); ++i) {
     if (!(balls[i].r > 0)) continue;
-    if (count > 0 && balls[i].run != run) {
-      ordered = ordered && balls[i].run > run;
-      found += close_run(in, balls, members, count, closed);
-      count = 0;
+    if (balls[i].run != m / kRun) {
+      std::fill(shift.begin(), shift.end(), kOpenShift);
+      return 0;
     }
-    run = balls[i].run;
-    // A run of more than kRun bodies (not prepare_deep_sieve's) is never closed.
-    if (count < kRun) members[count] = i;
-    count = std::min(count + 1, kRun + 1);
+    order[m++] = i;
   }
-  found += close_run(in, balls, members, count, closed);
-  // A run met in two places has members this pass did not see together: nothing is closed.
-  if (!ordered) {
-    std::fill(closed.begin(), closed.end(), kOpenRun);
-    return 0;
-  }
+  const auto paired_deep = [&](uint32_t a, uint32_t b) {
+    return deep_balls_inline(balls[a], balls[b]) && boxes_overlap(*in.bounds, a, b) &&
+           accept_pair(in, a, b);
+  };
+  // determinism: each block writes its own bodies' shifts (rule 1).
+  for_blocks(m, kClosedGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t o = begin; o < end; ++o) {
+      const uint32_t a = order[o];
+      const uint32_t top = !deepen.empty() && deepen[a] != 0 ? kMaxClosedLevel : 1;
+      uint32_t count = 0;
+      Range seen{o, o};
+      for (uint32_t level = 1; level <= top && count < kWanted; ++level) {
+        const Range g = group_of(o, level, m);
+        // perf: level 1 alone (no hint) stops at the first run-mate apart, as in an ordinary
+        // scene the first one is.
+        for (std::size_t p = g.begin; p < g.end && count < kWanted; ++p) {
+          if (p == o || (p >= seen.begin && p < seen.end)) continue;
+          if (paired_deep(a, order[p])) {
+            ++count;
+          } else if (top == 1) {
+            break;
+          }
+        }
+        seen = g;
+        if (count >= kWanted) shift[a] = kLevelShift * (level - 1);
+      }
+    }
+  });
+  std::size_t found = 0;
+  for (std::size_t o = 0; o < m; ++o) found += shift[order[o]] != kOpenShift ? 1 : 0;
   return found;
 }
 

@@ -29,7 +29,7 @@ inline uint32_t mix(uint64_t key) {
 
 inline uint64_t rank_of(const DeepBall& a, const DeepBall& b, uint64_t key) {
   if (a.run == b.run) return pair_second(key) - pair_first(key);
-  return (uint64_t{1} << 32) | mix(key);
+  return (uint64_t(deep_pair_level(a.run, b.run) - 1) << 32) | mix(key);
 }
 
 }  // namespace
@@ -49,6 +49,8 @@ void DeepSieve::begin(std::span<const DeepBall> balls) {
   // long after the scene is warm would otherwise allocate its sets in that step.
   for (Sets& s : threads_) size_for(s, balls.size());
   size_for(merged_, balls.size());
+  // Kept from the last update: a body's flag is only a hint (closed_runs.hpp).
+  if (crowded_last_.size() != balls.size()) crowded_last_.assign(balls.size(), 0);
 }
 
 void DeepSieve::size_for(Sets& s, std::size_t bodies) {
@@ -142,10 +144,14 @@ std::size_t DeepSieve::collect(std::vector<uint64_t>& out, std::span<uint8_t> cr
   }
   // A pair kept by both its bodies appears twice: the lower body's set writes it, the higher one's
   // only when the lower one did not keep it.
+  std::fill(crowded_last_.begin(), crowded_last_.end(), uint8_t{0});
   for (std::size_t slot = 0; slot < merged_.owner.size(); ++slot) {
     const uint32_t body = merged_.owner[slot];
     const Candidate* e = merged_.entries.data() + slot * kCandidates;
-    if (!crowded.empty() && merged_.count[slot] == kCandidates) crowded[body] = 1;
+    if (merged_.count[slot] == kCandidates) {
+      if (!crowded.empty()) crowded[body] = 1;
+      if (body < crowded_last_.size()) crowded_last_[body] = 1;
+    }
     for (uint32_t q = 0; q < merged_.count[slot]; ++q) {
       const uint32_t partner = e[q].partner;
       if (body > partner) {
@@ -169,7 +175,8 @@ std::size_t DeepSieve::heap_bytes() const {
     return detail::heap_bytes(s.slot_of) + detail::heap_bytes(s.bar) + detail::heap_bytes(s.owner) +
            detail::heap_bytes(s.count) + detail::heap_bytes(s.entries);
   };
-  std::size_t bytes = detail::heap_bytes(threads_) + sets_bytes(merged_);
+  std::size_t bytes =
+      detail::heap_bytes(threads_) + sets_bytes(merged_) + detail::heap_bytes(crowded_last_);
   for (const Sets& s : threads_) bytes += sets_bytes(s);
   return bytes;
 }

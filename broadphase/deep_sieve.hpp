@@ -29,6 +29,7 @@
 // compare.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -62,9 +63,18 @@ inline bool deep_balls_inline(const DeepBall& a, const DeepBall& b) {
   return a.r > 0 && b.r > 0 && d2 < reach * reach;
 }
 
+// Runs form groups level by level (deep_sieve.hpp): a group of level L is 8^(L - 1) consecutive
+// runs, those whose numbers agree but for their last kLevelShift (L - 1) bits (level 1: the run).
+// A pair's level: the lowest whose group holds both bodies' runs.
+inline constexpr uint32_t kLevelShift = 3;
+inline uint32_t deep_pair_level(uint32_t run_a, uint32_t run_b) {
+  const uint32_t width = uint32_t(std::bit_width(run_a ^ run_b));
+  return 1 + (width + kLevelShift - 1) / kLevelShift;
+}
+
 // A deep pair's rank in its bodies' sets, lower is better: |a - b| for a pair within one run, else
-// 2^32 + a hash of the key (make_pair_key). Equal ranks (the partners a - d and a + d) fall back
-// to the partner's index.
+// (level - 1) 2^32 + a 32-bit hash of the key (make_pair_key). Equal ranks (the partners a - d
+// and a + d) fall back to the partner's index.
 uint64_t deep_pair_rank(const DeepBall& a, const DeepBall& b, uint64_t key);
 
 class DeepSieve {
@@ -86,6 +96,9 @@ class DeepSieve {
   void count_taken(std::size_t count);
   // The balls begin() was given.
   std::span<const DeepBall> balls() const { return balls_; }
+  // Per body, 1 when its set was full at the last collect() (a crowd's body), else 0; all 0 for a
+  // body count new since. A hint for closed_runs.hpp, which no result depends on.
+  std::span<const uint8_t> crowded_last() const { return crowded_last_; }
   // After the finder: the merged candidates' pair keys, appended to `out` unsorted, unique. Returns
   // how many deep pairs were taken (0: the update found none). Empties the sets for the next
   // update.
@@ -122,6 +135,7 @@ class DeepSieve {
   std::span<const DeepBall> balls_;
   std::vector<Sets> threads_;
   Sets merged_;
+  std::vector<uint8_t> crowded_last_;
 };
 
 }  // namespace elan::detail

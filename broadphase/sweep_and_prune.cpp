@@ -243,8 +243,10 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
   take_from(sorted_strips_, scratch, 2 * n);
   closed_count_ = 0;
   if (in.deep != nullptr && in.deep->balls().size() == n) {
-    take_from(body_closed_, scratch, n);
-    closed_count_ = find_closed_runs(in, in.deep->balls(), body_closed_);
+    take_from(body_order_, scratch, n);
+    take_from(body_shift_, scratch, n);
+    closed_count_ =
+        find_closed_runs(in, in.deep->balls(), in.deep->crowded_last(), body_order_, body_shift_);
   }
   // Room for the most any spread of these n boxes can need (blocks * strips <= n / 4 + strips,
   // strips <= n / kMinBoxesPerStrip), so a scene that spreads out does not grow it in a warm step.
@@ -299,7 +301,8 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
     take_from(entry_ball_y_, scratch, entries);
     take_from(entry_ball_z_, scratch, entries);
     take_from(entry_ball_r_, scratch, entries);
-    take_from(entry_closed_, scratch, entries);
+    take_from(entry_run_, scratch, entries);
+    take_from(entry_shift_, scratch, entries);
   }
   const DeepBall* balls = in.deep != nullptr ? in.deep->balls().data() : nullptr;
   // determinism: every block writes the entries its offsets reserve (rule 1).
@@ -327,7 +330,8 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
           entry_ball_y_[e] = balls[i].y;
           entry_ball_z_[e] = balls[i].z;
           entry_ball_r_[e] = balls[i].r;
-          entry_closed_[e] = body_closed_[i];
+          entry_run_[e] = balls[i].run;
+          entry_shift_[e] = body_shift_[i];
         }
       }
     }
@@ -351,7 +355,8 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
         entry_ball_y_[e] = kNaN;
         entry_ball_z_[e] = kNaN;
         entry_ball_r_[e] = 0;
-        entry_closed_[e] = kOpenRun;
+        entry_run_[e] = 0;
+        entry_shift_[e] = kOpenShift;
       }
     }
   }
@@ -380,7 +385,8 @@ void SweepAndPrune::take_pair_blocks(const BroadphaseInput& in, std::size_t entr
 
 void SweepAndPrune::release_entries() {
   // The last taken first, so that the scratch's next buffers start where the entries did.
-  release(entry_closed_);
+  release(entry_shift_);
+  release(entry_run_);
   release(entry_ball_r_);
   release(entry_ball_z_);
   release(entry_ball_y_);
@@ -400,7 +406,8 @@ void SweepAndPrune::release_entries() {
 
 void SweepAndPrune::release_update_buffers() {
   for (std::size_t t = block_pairs_.size(); t-- > 0;) release(block_pairs_[t]);
-  release(body_closed_);
+  release(body_shift_);
+  release(body_order_);
   release(sorted_strips_);
   release(sorted_hi2_);
   release(sorted_lo2_);
@@ -449,7 +456,8 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, Step
     strips.ball_y = entry_ball_y_.data();
     strips.ball_z = entry_ball_z_.data();
     strips.ball_r = entry_ball_r_.data();
-    strips.closed = entry_closed_.data();
+    strips.run = entry_run_.data();
+    strips.shift = entry_shift_.data();
   }
   const SweepKernel sweep = sweep_kernel(in.simd);
   for_blocks(entries, kSweepGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
@@ -512,13 +520,13 @@ std::size_t SweepAndPrune::heap_bytes() const {
          heap_bytes(entry_lo1_) + heap_bytes(entry_hi1_) + heap_bytes(entry_lo2_) +
          heap_bytes(entry_hi2_) + heap_bytes(entry_body_) + heap_bytes(entry_first_) +
          heap_bytes(entry_kind_) + heap_bytes(entry_category_) + heap_bytes(entry_mask_) +
-         heap_bytes(body_closed_) + heap_bytes(entry_ball_x_) + heap_bytes(entry_ball_y_) +
-         heap_bytes(entry_ball_z_) + heap_bytes(entry_ball_r_) + heap_bytes(entry_closed_) +
-         heap_bytes(strip_begin_) + heap_bytes(sorted_strips_) + heap_bytes(deal_counts_) +
-         heap_bytes(axis_partials_) + heap_bytes(planes_) + heap_bytes(block_pairs_) +
-         heap_bytes(sort_keys_) + heap_bytes(range_partials_) + heap_bytes(key_sort_) +
-         heap_bytes(pair_sort_) + heap_bytes(block_room_) +
-         (own_scratch_ ? own_scratch_->heap_bytes() : 0);
+         heap_bytes(body_order_) + heap_bytes(body_shift_) + heap_bytes(entry_ball_x_) +
+         heap_bytes(entry_ball_y_) + heap_bytes(entry_ball_z_) + heap_bytes(entry_ball_r_) +
+         heap_bytes(entry_run_) + heap_bytes(entry_shift_) + heap_bytes(strip_begin_) +
+         heap_bytes(sorted_strips_) + heap_bytes(deal_counts_) + heap_bytes(axis_partials_) +
+         heap_bytes(planes_) + heap_bytes(block_pairs_) + heap_bytes(sort_keys_) +
+         heap_bytes(range_partials_) + heap_bytes(key_sort_) + heap_bytes(pair_sort_) +
+         heap_bytes(block_room_) + (own_scratch_ ? own_scratch_->heap_bytes() : 0);
 }
 
 }  // namespace elan::detail

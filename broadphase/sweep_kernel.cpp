@@ -36,11 +36,11 @@ struct ChunkTest {
   R hi = 0, l1 = 0, h1 = 0, l2 = 0, h2 = 0;
   uint32_t f = 0, strip = 0, cat = 0, msk = 0;
   uint32_t partner_kinds = 0;  // bit c set when should_pair(this kind, c)
-  // The closed-run test (closed_runs.hpp): the candidates' balls and runs, this entry's.
+  // The shut-out test (closed_runs.hpp): the candidates' balls, runs and shifts, this entry's.
   const R *bx = nullptr, *by = nullptr, *bz = nullptr, *br = nullptr;
-  const uint32_t* closed = nullptr;
+  const uint32_t *runs = nullptr, *shifts = nullptr;
   R x = 0, y = 0, z = 0, r = 0;
-  uint32_t run = 0;
+  uint32_t run = 0, shift = 0;
 };
 
 uint32_t partner_kinds(BroadKind k) {
@@ -104,9 +104,9 @@ uint32_t chunk_hits(const ChunkTest<R>& t, std::size_t j, bool& more) {
   return hits;
 }
 
-// Bit q set when candidate j + q is closed in another run than this entry (itself closed) and
-// deep with it: shut_out and the sieve's deep test (deep_balls_inline), the same operations in
-// the same order in each lane (rule 10), so a lane and the scalar test agree on every pair.
+// Bit q set when the sieve would turn candidate j + q away (closed_runs.hpp: shut_out, and the
+// sieve's deep test deep_balls_inline), the same operations in the same order in each lane
+// (rule 10), so a lane and the scalar test agree on every pair. This entry is closed.
 template <class R>
 uint32_t chunk_shut_out(const ChunkTest<R>& t, std::size_t j) {
 #if defined(__AVX2__)
@@ -120,9 +120,14 @@ uint32_t chunk_shut_out(const ChunkTest<R>& t, std::size_t j) {
         _mm256_mul_ps(_mm256_set1_ps(kDeepFraction),
                       _mm256_add_ps(_mm256_set1_ps(t.r), _mm256_loadu_ps(t.br + j)));
     const __m256 deep = _mm256_cmp_ps(d2, _mm256_mul_ps(reach, reach), _CMP_LT_OQ);
-    const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.closed + j));
-    const __m256i same = _mm256_or_si256(_mm256_cmpeq_epi32(c, _mm256_set1_epi32(int(kOpenRun))),
-                                         _mm256_cmpeq_epi32(c, _mm256_set1_epi32(int(t.run))));
+    // perf: a shift of 32 or more (open) shifts every bit out, so an open lane is never shut.
+    const auto load = [](const uint32_t* p) {
+      return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+    };
+    const __m256i shift = _mm256_max_epu32(load(t.shifts + j), _mm256_set1_epi32(int(t.shift)));
+    const __m256i apart =
+        _mm256_srlv_epi32(_mm256_xor_si256(load(t.runs + j), _mm256_set1_epi32(int(t.run))), shift);
+    const __m256i same = _mm256_cmpeq_epi32(apart, _mm256_setzero_si256());
     return uint32_t(_mm256_movemask_ps(_mm256_andnot_ps(_mm256_castsi256_ps(same), deep)));
   }
 #endif
@@ -133,7 +138,9 @@ uint32_t chunk_shut_out(const ChunkTest<R>& t, std::size_t j) {
     const R dx = t.x - t.bx[c], dy = t.y - t.by[c], dz = t.z - t.bz[c];
     const R d2 = dx * dx + dy * dy + dz * dz;
     const R reach = kDeepFraction * (t.r + t.br[c]);
-    const bool hit = (d2 < reach * reach) & (t.closed[c] != kOpenRun) & (t.closed[c] != t.run);
+    const uint32_t sh = std::max(t.shift, t.shifts[c]);
+    const bool hit =
+        (d2 < reach * reach) & (sh < kOpenShift) & (((t.run ^ t.runs[c]) >> (sh & 31u)) != 0);
     shut |= uint32_t(hit) << q;
   }
   return shut;
@@ -193,7 +200,7 @@ inline uint32_t emit_pairs(uint32_t hits, uint32_t i0, const uint32_t* body, uin
 // pair overlapping on the strip axis shares every strip holding m = max(lo_a, lo_b), and is kept
 // only in strip_of(m), so it is reported once; strip_of is monotonic, so
 // strip_of(m) = max(strip_of(lo_a), strip_of(lo_b)) = max(first).
-// kClosed: the strips carry closed runs (closed_runs.hpp), whose shut-out pairs are passed by.
+// kClosed: the strips carry closed levels (closed_runs.hpp), whose shut-out pairs are passed by.
 template <bool kClosed>
 void sweep(const SweepStrips& s, std::size_t begin, std::size_t end, DeepSieve* deep,
            ScratchVector<uint64_t>& out) {
@@ -203,7 +210,8 @@ void sweep(const SweepStrips& s, std::size_t begin, std::size_t end, DeepSieve* 
     t.by = s.ball_y;
     t.bz = s.ball_z;
     t.br = s.ball_r;
-    t.closed = s.closed;
+    t.runs = s.run;
+    t.shifts = s.shift;
   }
   const uint32_t* body = s.body;
   const std::span<const uint32_t> strip_begin = s.strip_begin;
@@ -233,8 +241,9 @@ void sweep(const SweepStrips& s, std::size_t begin, std::size_t end, DeepSieve* 
         t.y = s.ball_y[k];
         t.z = s.ball_z[k];
         t.r = s.ball_r[k];
-        t.run = s.closed[k];
-        closed = t.run != kOpenRun;
+        t.run = s.run[k];
+        t.shift = s.shift[k];
+        closed = t.shift < kOpenShift;
       }
       // perf: candidates in chunks of kChunk with a branch-free test; a chunk may run into
       // the strip's sentinels, which fail it. Sorted keys: once the chunk's last key is past
@@ -276,7 +285,7 @@ void sweep(const SweepStrips& s, std::size_t begin, std::size_t end, DeepSieve* 
 
 void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end, DeepSieve* deep,
                   ScratchVector<uint64_t>& out) {
-  if (deep != nullptr && s.closed != nullptr) {
+  if (deep != nullptr && s.shift != nullptr) {
     sweep<true>(s, begin, end, deep, out);
   } else {
     sweep<false>(s, begin, end, deep, out);
