@@ -106,7 +106,8 @@ uint32_t chunk_hits(const ChunkTest<R>& t, std::size_t j, bool& more) {
 
 // Bit q set when the sieve would turn candidate j + q away (closed_runs.hpp: shut_out, and the
 // sieve's deep test deep_balls_inline), the same operations in the same order in each lane
-// (rule 10), so a lane and the scalar test agree on every pair. This entry is closed.
+// (rule 10; the differences may have the other sign, their squares and the radii's sum do not
+// change), so a lane and the scalar test agree on every pair. This entry is closed.
 template <class R>
 uint32_t chunk_shut_out(const ChunkTest<R>& t, std::size_t j) {
 #if defined(__AVX2__)
@@ -120,7 +121,7 @@ uint32_t chunk_shut_out(const ChunkTest<R>& t, std::size_t j) {
         _mm256_mul_ps(_mm256_set1_ps(kDeepFraction),
                       _mm256_add_ps(_mm256_set1_ps(t.r), _mm256_loadu_ps(t.br + j)));
     const __m256 deep = _mm256_cmp_ps(d2, _mm256_mul_ps(reach, reach), _CMP_LT_OQ);
-    // perf: a shift of 32 or more (open) shifts every bit out, so an open lane is never shut.
+    // A shift of 32 or more (open) shifts every bit out, so an open lane is never shut.
     const auto load = [](const uint32_t* p) {
       return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
     };
