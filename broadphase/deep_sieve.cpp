@@ -22,16 +22,6 @@ bool better(const DeepSieve::Candidate& x, const DeepSieve::Candidate& y) {
   return x.rank < y.rank || (x.rank == y.rank && x.partner < y.partner);
 }
 
-// perf: the sieve's hot loop calls these inline versions (the exported ones cannot be inlined
-// into it in a shared library build, which must allow their interposition).
-inline bool deep_test(const DeepBall& a, const DeepBall& b) {
-  const Real dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
-  const Real d2 = dx * dx + dy * dy + dz * dz;
-  const Real reach = kDeepFraction * (a.r + b.r);
-  // NaN centres (a quarantined body) compare false: never deep.
-  return a.r > 0 && b.r > 0 && d2 < reach * reach;
-}
-
 // Neighbouring keys get unrelated ranks (core/base/splitmix.hpp).
 inline uint32_t mix(uint64_t key) {
   return uint32_t(splitmix64_finalize(key));
@@ -39,13 +29,13 @@ inline uint32_t mix(uint64_t key) {
 
 inline uint64_t rank_of(const DeepBall& a, const DeepBall& b, uint64_t key) {
   if (a.run == b.run) return pair_second(key) - pair_first(key);
-  return (uint64_t{1} << 32) | mix(key);
+  return (uint64_t(deep_pair_level(a.run, b.run) - 1) << 32) | mix(key);
 }
 
 }  // namespace
 
 bool balls_deep(const DeepBall& a, const DeepBall& b) {
-  return deep_test(a, b);
+  return deep_balls_inline(a, b);
 }
 
 uint64_t deep_pair_rank(const DeepBall& a, const DeepBall& b, uint64_t key) {
@@ -59,6 +49,8 @@ void DeepSieve::begin(std::span<const DeepBall> balls) {
   // long after the scene is warm would otherwise allocate its sets in that step.
   for (Sets& s : threads_) size_for(s, balls.size());
   size_for(merged_, balls.size());
+  // Kept from the last update: a body's flag is only a hint (closed_runs.hpp).
+  if (crowded_last_.size() != balls.size()) crowded_last_.assign(balls.size(), 0);
 }
 
 void DeepSieve::size_for(Sets& s, std::size_t bodies) {
@@ -101,6 +93,10 @@ void DeepSieve::offer(Sets& s, uint32_t body, const Candidate& c) {
   if (n + 1 == K) s.bar[body] = e[K - 1].rank;
 }
 
+void DeepSieve::count_taken(std::size_t count) {
+  threads_[thread_slot()].taken += count;
+}
+
 std::size_t DeepSieve::sieve(uint64_t* keys, std::size_t count) {
   // perf: the thread's sets are looked up once a batch, not once a pair.
   Sets& s = threads_[thread_slot()];
@@ -110,7 +106,7 @@ std::size_t DeepSieve::sieve(uint64_t* keys, std::size_t count) {
   for (std::size_t k = 0; k < count; ++k) {
     const uint64_t key = keys[k];
     const uint32_t a = pair_first(key), b = pair_second(key);
-    if (!deep_test(balls[a], balls[b])) {
+    if (!deep_balls_inline(balls[a], balls[b])) {
       keys[kept++] = key;
       continue;
     }
@@ -148,10 +144,14 @@ std::size_t DeepSieve::collect(std::vector<uint64_t>& out, std::span<uint8_t> cr
   }
   // A pair kept by both its bodies appears twice: the lower body's set writes it, the higher one's
   // only when the lower one did not keep it.
+  std::fill(crowded_last_.begin(), crowded_last_.end(), uint8_t{0});
   for (std::size_t slot = 0; slot < merged_.owner.size(); ++slot) {
     const uint32_t body = merged_.owner[slot];
     const Candidate* e = merged_.entries.data() + slot * kCandidates;
-    if (!crowded.empty() && merged_.count[slot] == kCandidates) crowded[body] = 1;
+    if (merged_.count[slot] == kCandidates) {
+      if (!crowded.empty()) crowded[body] = 1;
+      if (body < crowded_last_.size()) crowded_last_[body] = 1;
+    }
     for (uint32_t q = 0; q < merged_.count[slot]; ++q) {
       const uint32_t partner = e[q].partner;
       if (body > partner) {
@@ -175,7 +175,8 @@ std::size_t DeepSieve::heap_bytes() const {
     return detail::heap_bytes(s.slot_of) + detail::heap_bytes(s.bar) + detail::heap_bytes(s.owner) +
            detail::heap_bytes(s.count) + detail::heap_bytes(s.entries);
   };
-  std::size_t bytes = detail::heap_bytes(threads_) + sets_bytes(merged_);
+  std::size_t bytes =
+      detail::heap_bytes(threads_) + sets_bytes(merged_) + detail::heap_bytes(crowded_last_);
   for (const Sets& s : threads_) bytes += sets_bytes(s);
   return bytes;
 }

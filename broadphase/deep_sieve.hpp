@@ -11,11 +11,12 @@
 // Deep (as deep_pairs.hpp): both bodies have an inner ball (radius r > 0) and their centres are
 // closer than kDeepFraction (r_a + r_b). Best (deep_pair_rank): first the partners of the body's
 // own run of kRun consecutive bodies that can be deep (DeepBall::run), nearest in index first; then
-// the others in the order of a hash of the pair. The order is a function of the pair and its
-// bodies' runs (the scene's state), so a body's best kCandidates are a function of the set of its
-// deep partners, whatever order the pairs come in and however they are split between threads: each
-// thread keeps sets of its own, merged at the end, and the candidates are the same for every finder
-// and any thread count.
+// those of its run's group of 8 runs, of 64 runs, and so on (deep_pair_level), each level in the
+// order of a hash of the pair. The order is a function of the pair and its bodies' runs (the
+// scene's state), so a body's best kCandidates are a function of the set of its deep partners,
+// whatever order the pairs come in and however they are split between threads: each thread keeps
+// sets of its own, merged at the end, and the candidates are the same for every finder and any
+// thread count.
 //
 // Why runs: bodies spawned at one point are made one after the other, and a run of kRun of them
 // keeps all its kRun (kRun - 1) / 2 pairs, kDeepPairBudget = kRun - 1 a body, so the crowd parts
@@ -26,9 +27,13 @@
 // tests/physics/spawn_overlap.cpp). Why the hash for the rest: the finders meet pairs in index
 // order, and by index distance nearly every offer would improve a set (each partner nearer than the
 // last); in hash order a set's worst improves rarely, and most offers are turned away by one
-// compare.
+// compare. Why the levels: once a crowd's runs have parted, a body with kCandidates deep partners
+// in its group of 8 (or 64) runs takes none from outside it, so a finder can pass by, unoffered,
+// the pairs between two such bodies of different groups (closed_runs.hpp): 10,000 boxes at one
+// point still overlap in tens of millions of deep pairs a step then.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -51,9 +56,29 @@ struct DeepBall {
 // budget. Symmetric in a and b: the differences change sign, their squares do not.
 bool balls_deep(const DeepBall& a, const DeepBall& b);
 
+// The same test inline, for the hot loops (the exported one cannot be inlined into them in a
+// shared library build, which must allow its interposition). The squared distance is summed x, y,
+// then z; a vector lane that does the same operations in the same order gives the same answer.
+inline bool deep_balls_inline(const DeepBall& a, const DeepBall& b) {
+  const Real dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+  const Real d2 = dx * dx + dy * dy + dz * dz;
+  const Real reach = kDeepFraction * (a.r + b.r);
+  // NaN centres (a quarantined body) compare false: never deep.
+  return a.r > 0 && b.r > 0 && d2 < reach * reach;
+}
+
+// Runs form groups level by level (deep_sieve.hpp): a group of level L is 8^(L - 1) consecutive
+// runs, those whose numbers agree but for their last kLevelShift (L - 1) bits (level 1: the run).
+// A pair's level: the lowest whose group holds both bodies' runs.
+inline constexpr uint32_t kLevelShift = 3;
+inline uint32_t deep_pair_level(uint32_t run_a, uint32_t run_b) {
+  const uint32_t width = uint32_t(std::bit_width(run_a ^ run_b));
+  return 1 + (width + kLevelShift - 1) / kLevelShift;
+}
+
 // A deep pair's rank in its bodies' sets, lower is better: |a - b| for a pair within one run, else
-// 2^32 + a hash of the key (make_pair_key). Equal ranks (the partners a - d and a + d) fall back
-// to the partner's index.
+// (level - 1) 2^32 + a 32-bit hash of the key (make_pair_key). Equal ranks (the partners a - d
+// and a + d) fall back to the partner's index.
 uint64_t deep_pair_rank(const DeepBall& a, const DeepBall& b, uint64_t key);
 
 class DeepSieve {
@@ -70,6 +95,14 @@ class DeepSieve {
   // Takes the deep pairs of keys[0, count) into the calling thread's sets and moves the others,
   // in order, to the front. Returns how many are left. Safe from any worker thread of the arena.
   std::size_t sieve(uint64_t* keys, std::size_t count);
+  // Counts deep pairs a finder passed by without offering them, as the sieve would have turned
+  // them away (closed_runs.hpp), among the calling thread's taken pairs.
+  void count_taken(std::size_t count);
+  // The balls begin() was given.
+  std::span<const DeepBall> balls() const { return balls_; }
+  // Per body, 1 when its set was full at the last collect() (a crowd's body), else 0; all 0 for a
+  // body count new since. A hint for closed_runs.hpp, which no result depends on.
+  std::span<const uint8_t> crowded_last() const { return crowded_last_; }
   // After the finder: the merged candidates' pair keys, appended to `out` unsorted, unique. Returns
   // how many deep pairs were taken (0: the update found none). Empties the sets for the next
   // update.
@@ -106,6 +139,7 @@ class DeepSieve {
   std::span<const DeepBall> balls_;
   std::vector<Sets> threads_;
   Sets merged_;
+  std::vector<uint8_t> crowded_last_;
 };
 
 }  // namespace elan::detail

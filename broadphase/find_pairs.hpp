@@ -125,6 +125,13 @@ class SweepAndPrune {
   // The box's kind, filter category and mask, so the accept test runs in the sweep's lanes.
   ScratchVector<uint8_t> entry_kind_;
   ScratchVector<uint32_t> entry_category_, entry_mask_;
+  // With a deep sieve: each body's closed level as a shift (closed_runs.hpp; body_order_ its
+  // scratch); when some body is closed, the entries' inner balls, runs and shifts, for the kernel
+  // to pass shut-out pairs by.
+  ScratchVector<uint32_t> body_order_, body_shift_;
+  std::size_t closed_count_ = 0;
+  ScratchVector<Real> entry_ball_x_, entry_ball_y_, entry_ball_z_, entry_ball_r_;
+  ScratchVector<uint32_t> entry_run_, entry_shift_;
   std::vector<uint32_t> strip_begin_;      // per strip: first entry; strip_begin_[s + 1] - pad: end
   ScratchVector<uint32_t> sorted_strips_;  // per sorted box: first and last strip (first > last:
                                            // no entry)

@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "broadphase/closed_runs.hpp"
 #include "broadphase/find_pairs.hpp"
 #include "broadphase/pair_test.hpp"
 #include "broadphase/sweep_kernel.hpp"
@@ -240,6 +241,13 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
   take_from(sorted_lo2_, scratch, n);
   take_from(sorted_hi2_, scratch, n);
   take_from(sorted_strips_, scratch, 2 * n);
+  closed_count_ = 0;
+  if (in.deep != nullptr && in.deep->balls().size() == n) {
+    take_from(body_order_, scratch, n);
+    take_from(body_shift_, scratch, n);
+    closed_count_ =
+        find_closed_runs(in, in.deep->balls(), in.deep->crowded_last(), body_order_, body_shift_);
+  }
   // Room for the most any spread of these n boxes can need (blocks * strips <= n / 4 + strips,
   // strips <= n / kMinBoxesPerStrip), so a scene that spreads out does not grow it in a warm step.
   const std::size_t most_strips = n / kMinBoxesPerStrip + 1;
@@ -287,6 +295,16 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
   take_from(entry_kind_, scratch, entries);
   take_from(entry_category_, scratch, entries);
   take_from(entry_mask_, scratch, entries);
+  const bool closed = closed_count_ != 0;
+  if (closed) {
+    take_from(entry_ball_x_, scratch, entries);
+    take_from(entry_ball_y_, scratch, entries);
+    take_from(entry_ball_z_, scratch, entries);
+    take_from(entry_ball_r_, scratch, entries);
+    take_from(entry_run_, scratch, entries);
+    take_from(entry_shift_, scratch, entries);
+  }
+  const DeepBall* balls = in.deep != nullptr ? in.deep->balls().data() : nullptr;
   // determinism: every block writes the entries its offsets reserve (rule 1).
   for_blocks(n, grain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
     uint32_t* cursor = deal_counts_.data() + blk * strips;
@@ -307,6 +325,14 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
         const BodyTraits& traits = in.trait_table[in.traits[i]];
         entry_category_[e] = traits.category;
         entry_mask_[e] = traits.mask;
+        if (closed) {
+          entry_ball_x_[e] = balls[i].x;
+          entry_ball_y_[e] = balls[i].y;
+          entry_ball_z_[e] = balls[i].z;
+          entry_ball_r_[e] = balls[i].r;
+          entry_run_[e] = balls[i].run;
+          entry_shift_[e] = body_shift_[i];
+        }
       }
     }
   });
@@ -324,6 +350,14 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
       entry_kind_[e] = 0;
       entry_category_[e] = 0;
       entry_mask_[e] = 0;
+      if (closed) {
+        entry_ball_x_[e] = kNaN;
+        entry_ball_y_[e] = kNaN;
+        entry_ball_z_[e] = kNaN;
+        entry_ball_r_[e] = 0;
+        entry_run_[e] = 0;
+        entry_shift_[e] = kOpenShift;
+      }
     }
   }
 }
@@ -351,6 +385,12 @@ void SweepAndPrune::take_pair_blocks(const BroadphaseInput& in, std::size_t entr
 
 void SweepAndPrune::release_entries() {
   // The last taken first, so that the scratch's next buffers start where the entries did.
+  release(entry_shift_);
+  release(entry_run_);
+  release(entry_ball_r_);
+  release(entry_ball_z_);
+  release(entry_ball_y_);
+  release(entry_ball_x_);
   release(entry_mask_);
   release(entry_category_);
   release(entry_kind_);
@@ -366,6 +406,8 @@ void SweepAndPrune::release_entries() {
 
 void SweepAndPrune::release_update_buffers() {
   for (std::size_t t = block_pairs_.size(); t-- > 0;) release(block_pairs_[t]);
+  release(body_shift_);
+  release(body_order_);
   release(sorted_strips_);
   release(sorted_hi2_);
   release(sorted_lo2_);
@@ -405,10 +447,18 @@ void SweepAndPrune::find_pairs(const BroadphaseInput& in, Pairs& out_pairs, Step
   // Each chunk scans forward from its own entries to the end of their strip, possibly past the
   // chunk's end.
   // determinism: one buffer per chunk, joined in chunk order, then sorted (rule 1).
-  const SweepStrips strips{entry_min_.data(),  entry_max_.data(),   entry_lo1_.data(),
-                           entry_hi1_.data(),  entry_lo2_.data(),   entry_hi2_.data(),
-                           entry_body_.data(), entry_first_.data(), entry_category_.data(),
-                           entry_mask_.data(), entry_kind_.data(),  strip_begin_};
+  SweepStrips strips{entry_min_.data(),  entry_max_.data(),   entry_lo1_.data(),
+                     entry_hi1_.data(),  entry_lo2_.data(),   entry_hi2_.data(),
+                     entry_body_.data(), entry_first_.data(), entry_category_.data(),
+                     entry_mask_.data(), entry_kind_.data(),  strip_begin_};
+  if (closed_count_ != 0) {
+    strips.ball_x = entry_ball_x_.data();
+    strips.ball_y = entry_ball_y_.data();
+    strips.ball_z = entry_ball_z_.data();
+    strips.ball_r = entry_ball_r_.data();
+    strips.run = entry_run_.data();
+    strips.shift = entry_shift_.data();
+  }
   const SweepKernel sweep = sweep_kernel(in.simd);
   for_blocks(entries, kSweepGrain, [&](std::size_t begin, std::size_t end, std::size_t blk) {
     sweep(strips, begin, end, in.deep, block_pairs_[blk]);
@@ -470,11 +520,13 @@ std::size_t SweepAndPrune::heap_bytes() const {
          heap_bytes(entry_lo1_) + heap_bytes(entry_hi1_) + heap_bytes(entry_lo2_) +
          heap_bytes(entry_hi2_) + heap_bytes(entry_body_) + heap_bytes(entry_first_) +
          heap_bytes(entry_kind_) + heap_bytes(entry_category_) + heap_bytes(entry_mask_) +
-         heap_bytes(strip_begin_) + heap_bytes(sorted_strips_) + heap_bytes(deal_counts_) +
-         heap_bytes(axis_partials_) + heap_bytes(planes_) + heap_bytes(block_pairs_) +
-         heap_bytes(sort_keys_) + heap_bytes(range_partials_) + heap_bytes(key_sort_) +
-         heap_bytes(pair_sort_) + heap_bytes(block_room_) +
-         (own_scratch_ ? own_scratch_->heap_bytes() : 0);
+         heap_bytes(body_order_) + heap_bytes(body_shift_) + heap_bytes(entry_ball_x_) +
+         heap_bytes(entry_ball_y_) + heap_bytes(entry_ball_z_) + heap_bytes(entry_ball_r_) +
+         heap_bytes(entry_run_) + heap_bytes(entry_shift_) + heap_bytes(strip_begin_) +
+         heap_bytes(sorted_strips_) + heap_bytes(deal_counts_) + heap_bytes(axis_partials_) +
+         heap_bytes(planes_) + heap_bytes(block_pairs_) + heap_bytes(sort_keys_) +
+         heap_bytes(range_partials_) + heap_bytes(key_sort_) + heap_bytes(pair_sort_) +
+         heap_bytes(block_room_) + (own_scratch_ ? own_scratch_->heap_bytes() : 0);
 }
 
 }  // namespace elan::detail

@@ -13,6 +13,7 @@
 #include <immintrin.h>
 #endif
 
+#include "broadphase/closed_runs.hpp"
 #include "broadphase/deep_sieve.hpp"
 #include "broadphase/find_pairs.hpp"
 #include "core/base/pair_key.hpp"
@@ -35,6 +36,11 @@ struct ChunkTest {
   R hi = 0, l1 = 0, h1 = 0, l2 = 0, h2 = 0;
   uint32_t f = 0, strip = 0, cat = 0, msk = 0;
   uint32_t partner_kinds = 0;  // bit c set when should_pair(this kind, c)
+  // The shut-out test (closed_runs.hpp): the candidates' balls, runs and shifts, this entry's.
+  const R *bx = nullptr, *by = nullptr, *bz = nullptr, *br = nullptr;
+  const uint32_t *runs = nullptr, *shifts = nullptr;
+  R x = 0, y = 0, z = 0, r = 0;
+  uint32_t run = 0, shift = 0;
 };
 
 uint32_t partner_kinds(BroadKind k) {
@@ -98,6 +104,49 @@ uint32_t chunk_hits(const ChunkTest<R>& t, std::size_t j, bool& more) {
   return hits;
 }
 
+// Bit q set when the sieve would turn candidate j + q away (closed_runs.hpp: shut_out, and the
+// sieve's deep test deep_balls_inline), the same operations in the same order in each lane
+// (rule 10; the differences may have the other sign, their squares and the radii's sum do not
+// change), so a lane and the scalar test agree on every pair. This entry is closed.
+template <class R>
+uint32_t chunk_shut_out(const ChunkTest<R>& t, std::size_t j) {
+#if defined(__AVX2__)
+  if constexpr (std::is_same_v<R, float>) {
+    const __m256 dx = _mm256_sub_ps(_mm256_set1_ps(t.x), _mm256_loadu_ps(t.bx + j));
+    const __m256 dy = _mm256_sub_ps(_mm256_set1_ps(t.y), _mm256_loadu_ps(t.by + j));
+    const __m256 dz = _mm256_sub_ps(_mm256_set1_ps(t.z), _mm256_loadu_ps(t.bz + j));
+    const __m256 d2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+                                    _mm256_mul_ps(dz, dz));
+    const __m256 reach =
+        _mm256_mul_ps(_mm256_set1_ps(kDeepFraction),
+                      _mm256_add_ps(_mm256_set1_ps(t.r), _mm256_loadu_ps(t.br + j)));
+    const __m256 deep = _mm256_cmp_ps(d2, _mm256_mul_ps(reach, reach), _CMP_LT_OQ);
+    // A shift of 32 or more (open) shifts every bit out, so an open lane is never shut.
+    const auto load = [](const uint32_t* p) {
+      return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+    };
+    const __m256i shift = _mm256_max_epu32(load(t.shifts + j), _mm256_set1_epi32(int(t.shift)));
+    const __m256i apart =
+        _mm256_srlv_epi32(_mm256_xor_si256(load(t.runs + j), _mm256_set1_epi32(int(t.run))), shift);
+    const __m256i same = _mm256_cmpeq_epi32(apart, _mm256_setzero_si256());
+    return uint32_t(_mm256_movemask_ps(_mm256_andnot_ps(_mm256_castsi256_ps(same), deep)));
+  }
+#endif
+  uint32_t shut = 0;
+#pragma omp simd reduction(| : shut)
+  for (std::size_t q = 0; q < 8; ++q) {
+    const std::size_t c = j + q;
+    const R dx = t.x - t.bx[c], dy = t.y - t.by[c], dz = t.z - t.bz[c];
+    const R d2 = dx * dx + dy * dy + dz * dz;
+    const R reach = kDeepFraction * (t.r + t.br[c]);
+    const uint32_t sh = std::max(t.shift, t.shifts[c]);
+    const bool hit =
+        (d2 < reach * reach) & (sh < kOpenShift) & (((t.run ^ t.runs[c]) >> (sh & 31u)) != 0);
+    shut |= uint32_t(hit) << q;
+  }
+  return shut;
+}
+
 #if defined(__AVX2__)
 // Per 8-bit hit mask, the lanes of its set bits in order, a nibble each: the shuffle that packs
 // hits to the front.
@@ -147,22 +196,30 @@ inline uint32_t emit_pairs(uint32_t hits, uint32_t i0, const uint32_t* body, uin
 #endif
 }
 
-}  // namespace
-
 // Pairs of each entry in [begin, end) with the later entries of its strip. Within a strip a pair
 // is met once, from whichever box comes first (ties in min included: key_j == key_i <= max_i). A
 // pair overlapping on the strip axis shares every strip holding m = max(lo_a, lo_b), and is kept
 // only in strip_of(m), so it is reported once; strip_of is monotonic, so
 // strip_of(m) = max(strip_of(lo_a), strip_of(lo_b)) = max(first).
-void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end, DeepSieve* deep,
-                  ScratchVector<uint64_t>& out) {
+// kClosed: the strips carry closed levels (closed_runs.hpp), whose shut-out pairs are passed by.
+template <bool kClosed>
+void sweep(const SweepStrips& s, std::size_t begin, std::size_t end, DeepSieve* deep,
+           ScratchVector<uint64_t>& out) {
   ChunkTest<Real> t{s.min, s.lo1, s.hi1, s.lo2, s.hi2, s.first, s.category, s.mask, s.kind};
+  if constexpr (kClosed) {
+    t.bx = s.ball_x;
+    t.by = s.ball_y;
+    t.bz = s.ball_z;
+    t.br = s.ball_r;
+    t.runs = s.run;
+    t.shifts = s.shift;
+  }
   const uint32_t* body = s.body;
   const std::span<const uint32_t> strip_begin = s.strip_begin;
   // perf: pairs gather in a small local buffer, 8 slots of slack for emit_pairs.
   constexpr std::size_t kBuffer = 512;
   uint64_t buffer[kBuffer + 8];
-  std::size_t used = 0;
+  std::size_t used = 0, passed_by = 0;
   std::size_t strip =
       std::size_t(std::upper_bound(strip_begin.begin(), strip_begin.end(), uint32_t(begin)) -
                   strip_begin.begin() - 1);
@@ -179,12 +236,33 @@ void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end, Deep
       t.cat = s.category[k];
       t.msk = s.mask[k];
       t.partner_kinds = partner_kinds(BroadKind(s.kind[k]));
+      bool closed = false;
+      if constexpr (kClosed) {
+        t.x = s.ball_x[k];
+        t.y = s.ball_y[k];
+        t.z = s.ball_z[k];
+        t.r = s.ball_r[k];
+        t.run = s.run[k];
+        t.shift = s.shift[k];
+        closed = t.shift < kOpenShift;
+      }
       // perf: candidates in chunks of kChunk with a branch-free test; a chunk may run into
       // the strip's sentinels, which fail it. Sorted keys: once the chunk's last key is past
       // hi, so is every later one.
       for (std::size_t j = k + 1; j < stop; j += kChunk) {
         bool more;
-        const uint32_t hits = chunk_hits(t, j, more);
+        uint32_t hits = chunk_hits(t, j, more);
+        if (kClosed && closed && hits != 0) {
+          // The sieve would turn these away (closed_runs.hpp): never written out.
+          const uint32_t shut = hits & chunk_shut_out(t, j);
+          hits &= ~shut;
+          passed_by += uint32_t(std::popcount(shut));
+          // perf: in a closed crowd nearly every chunk is left empty; skip its write.
+          if (hits == 0) {
+            if (!more) break;
+            continue;
+          }
+        }
         used += emit_pairs(hits, body[k], body + j, buffer + used);
         if (used > kBuffer) {
           // The sieve takes the deep pairs as they come: a crowd's are never stored.
@@ -197,8 +275,22 @@ void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end, Deep
     }
     k = std::max<std::size_t>(k, strip_begin[strip + 1]);
   }
-  if (deep != nullptr) used = deep->sieve(buffer, used);
+  if (deep != nullptr) {
+    used = deep->sieve(buffer, used);
+    if (passed_by != 0) deep->count_taken(passed_by);
+  }
   out.insert(out.end(), buffer, buffer + used);
+}
+
+}  // namespace
+
+void sweep_strips(const SweepStrips& s, std::size_t begin, std::size_t end, DeepSieve* deep,
+                  ScratchVector<uint64_t>& out) {
+  if (deep != nullptr && s.shift != nullptr) {
+    sweep<true>(s, begin, end, deep, out);
+  } else {
+    sweep<false>(s, begin, end, deep, out);
+  }
 }
 
 ELAN_ISA_END

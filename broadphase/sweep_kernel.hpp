@@ -25,6 +25,11 @@ struct SweepStrips {
   const uint32_t *category, *mask;
   const uint8_t* kind;  // BroadKind
   std::span<const uint32_t> strip_begin;
+  // With a deep sieve that has closed bodies (closed_runs.hpp), else null: the entries' inner
+  // balls (DeepBall x, y, z, r), runs and closed levels as shifts. A shut-out pair is then passed
+  // by in the kernel, counted as taken, and never written out.
+  const Real *ball_x = nullptr, *ball_y = nullptr, *ball_z = nullptr, *ball_r = nullptr;
+  const uint32_t *run = nullptr, *shift = nullptr;
 };
 
 // Appends to `out` the pair keys of each entry in [begin, end) with the later entries of its

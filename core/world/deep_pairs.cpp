@@ -93,7 +93,7 @@ std::size_t limit_deep_pairs(WorldState& w) {
       const uint64_t key = w.pairs[k];
       const uint32_t a = pair_first(key), b = pair_second(key);
       const DeepBall &ba = w.deep_balls[a], &bb = w.deep_balls[b];
-      uint8_t is_deep = balls_deep(ba, bb) ? 1 : 0;
+      uint8_t is_deep = deep_balls_inline(ba, bb) ? 1 : 0;
       // A crowd's near pair: not deep, but a body of it is in a crowd (w.deep_crowded).
       if (!is_deep && crowded && ba.r > 0 && bb.r > 0 &&
           (w.deep_crowded[a] | w.deep_crowded[b]) != 0) {

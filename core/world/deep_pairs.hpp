@@ -11,8 +11,10 @@
 // count and every broadphase:
 // - in the broadphase, the deep sieve (broadphase/deep_sieve.hpp) keeps of each body's deep
 //   pairs only its DeepSieve::kCandidates best (those in its own run of 9 consecutive indices,
-//   then by a hash of the pair), so a crowd's pairs are never all stored nor sorted (10,000 boxes
-//   at one point: 50 million pairs);
+//   then those of its run's group of 8 runs, 64, ..., each level by a hash of the pair), so a
+//   crowd's pairs are never all stored nor sorted (10,000 boxes at one point: 50 million pairs),
+//   and the sweep passes by, without offering them, the pairs the sieve would turn away
+//   (broadphase/closed_runs.hpp);
 // - after the pair filters, the budget: in sorted pair order, each deep pair one of whose bodies
 //   already keeps kDeepPairBudget deep pairs is dropped; and a crowd's near pairs have a budget
 //   of their own: a pair of two dynamic convex bodies that is not deep, one of whose bodies has at

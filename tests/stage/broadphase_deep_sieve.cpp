@@ -13,8 +13,10 @@
 #include <utility>
 #include <vector>
 
+#include "broadphase/closed_runs.hpp"
 #include "broadphase/find_pairs.hpp"
 #include "core/base/pair_key.hpp"
+#include "core/base/simd_path.hpp"
 
 namespace elan::detail {
 namespace broadphase_deep_sieve_test {
@@ -35,7 +37,9 @@ struct Crowd {
 
 // n unit boxes: a third exactly at the origin, a third scattered within 0.3 m of it, a third
 // spread over 12 m (few of them deep); some bodies sleep, some are static (no ball: never deep).
-Crowd make_crowd(std::size_t n, uint32_t seed) {
+// With a clump, the first `clump` bodies are all at the origin instead, so that most of their
+// runs are closed (closed_runs.hpp): all but those holding two sleeping bodies, never paired.
+Crowd make_crowd(std::size_t n, uint32_t seed, std::size_t clump = 0) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> near(-0.3, 0.3), far(-6, 6);
   Crowd c;
@@ -51,6 +55,7 @@ Crowd make_crowd(std::size_t n, uint32_t seed) {
     Vec3 p = Vec3::Zero();
     if (i % 3 == 1) p = Vec3(Real(near(rng)), Real(near(rng)), Real(near(rng)));
     if (i % 3 == 2) p = Vec3(Real(far(rng)), Real(far(rng)), Real(far(rng)));
+    if (i < clump) p = Vec3::Zero();
     const Real h = Real(0.5);
     c.bounds.min_x[i] = p.x() - h;
     c.bounds.min_y[i] = p.y() - h;
@@ -105,6 +110,58 @@ void expected(const Crowd& c, std::vector<uint64_t>& stored, std::vector<uint64_
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
 }
 
+// Every finder under 1 and 2 threads (SAP on every SIMD path this CPU runs) against the oracle,
+// each with a fresh sieve (cold) and with one that has collected the same crowd once (warm: its
+// crowded bodies are then looked for closed at levels above their run's, closed_runs.hpp).
+void expect_every_finder_matches(const Crowd& crowd, const std::vector<uint64_t>& stored,
+                                 const std::vector<uint64_t>& candidates) {
+  SweepAndPrune sap;
+  AllPairs all;
+  TreePairs tree;
+  std::vector<SimdPath> paths;
+  for (const SimdPath path : {SimdPath::Sse2, SimdPath::Avx2, SimdPath::Avx512, SimdPath::Native}) {
+    if (cpu_runs(path)) paths.push_back(path);
+  }
+  for (const bool warm : {false, true}) {
+    for (int threads = 1; threads <= 2; ++threads) {
+      for (std::size_t method = 0; method < 2 + paths.size(); ++method) {
+        const std::string what =
+            std::string(method == 0   ? "all-pairs"
+                        : method == 1 ? "tree"
+                                      : "SAP path " + std::to_string(int(paths[method - 2]))) +
+            ", threads " + std::to_string(threads) + (warm ? ", warm" : ", cold");
+        std::vector<uint64_t> got, got_candidates;
+        std::size_t taken = 0;
+        DeepSieve sieve;
+        tbb::task_arena arena(threads);
+        arena.execute([&] {
+          if (warm) {
+            sieve.begin(crowd.balls);
+            all.find_pairs(crowd.input(&sieve), got);
+            sieve.collect(got_candidates);
+            got.clear();
+            got_candidates.clear();
+          }
+          sieve.begin(crowd.balls);
+          BroadphaseInput in = crowd.input(&sieve);
+          if (method == 0) all.find_pairs(in, got);
+          if (method == 1) tree.find_pairs(in, got);
+          if (method >= 2) {
+            in.simd = paths[method - 2];
+            sap.find_pairs(in, got);
+          }
+          taken = sieve.collect(got_candidates);
+        });
+        std::sort(got_candidates.begin(), got_candidates.end());
+        EXPECT_TRUE(got == stored) << what << ": " << got.size() << " vs " << stored.size();
+        EXPECT_TRUE(got_candidates == candidates)
+            << what << ": " << got_candidates.size() << " vs " << candidates.size();
+        EXPECT_GT(taken, got_candidates.size()) << what;
+      }
+    }
+  }
+}
+
 TEST(DeepSieve, EveryFinderKeepsTheSameCandidatesAndStoresTheRest) {
   const Crowd crowd = make_crowd(900, 7);
   std::vector<uint64_t> stored, candidates;
@@ -113,35 +170,89 @@ TEST(DeepSieve, EveryFinderKeepsTheSameCandidatesAndStoresTheRest) {
   ASSERT_GT(candidates.size(), 1000u);
   ASSERT_LT(candidates.size(), crowd.balls.size() * DeepSieve::kCandidates);
   ASSERT_GT(stored.size(), 100u);
+  expect_every_finder_matches(crowd, stored, candidates);
+}
 
-  SweepAndPrune sap;
-  AllPairs all;
-  TreePairs tree;
-  DeepSieve sieve;
-  for (int threads = 1; threads <= 2; ++threads) {
-    for (int method = 0; method < 3; ++method) {
-      const std::string what = std::string(method == 0   ? "SAP"
-                                           : method == 1 ? "all-pairs"
-                                                         : "tree") +
-                               ", threads " + std::to_string(threads);
-      std::vector<uint64_t> got, got_candidates;
-      std::size_t taken = 0;
-      tbb::task_arena arena(threads);
-      arena.execute([&] {
-        sieve.begin(crowd.balls);
-        const BroadphaseInput in = crowd.input(&sieve);
-        if (method == 0) sap.find_pairs(in, got);
-        if (method == 1) all.find_pairs(in, got);
-        if (method == 2) tree.find_pairs(in, got);
-        taken = sieve.collect(got_candidates);
-      });
-      std::sort(got_candidates.begin(), got_candidates.end());
-      EXPECT_TRUE(got == stored) << what << ": " << got.size() << " vs " << stored.size();
-      EXPECT_TRUE(got_candidates == candidates)
-          << what << ": " << got_candidates.size() << " vs " << candidates.size();
-      EXPECT_GT(taken, got_candidates.size()) << what;
+// The closed levels (closed_runs.hpp) from their definition: a body is closed at the lowest level
+// (up to 1 without a hint, kMaxClosedLevel with one) whose group holds kCandidates of its deep
+// partners that the finders report; its shift is kLevelShift (level - 1).
+std::vector<uint32_t> closed_by_definition(const Crowd& c, bool hinted) {
+  const std::size_t n = c.balls.size();
+  std::vector<uint32_t> shift(n, kOpenShift);
+  std::vector<uint64_t> all;
+  find_pairs_brute_force(c.input(nullptr), all);
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!(c.balls[i].r > 0)) continue;
+    for (uint32_t level = 1; level <= (hinted ? kMaxClosedLevel : 1u); ++level) {
+      const uint32_t s = kLevelShift * (level - 1);
+      uint32_t count = 0;
+      for (uint32_t j = 0; j < n; ++j) {
+        if (j == i || !(c.balls[j].r > 0) || (c.balls[j].run >> s) != (c.balls[i].run >> s)) {
+          continue;
+        }
+        const bool paired = std::binary_search(all.begin(), all.end(), make_pair_key(i, j));
+        count += paired && balls_deep(c.balls[i], c.balls[j]) ? 1 : 0;
+      }
+      if (count >= DeepSieve::kCandidates) {
+        shift[i] = s;
+        break;
+      }
     }
   }
+  return shift;
+}
+
+std::size_t closed_count(const std::vector<uint32_t>& shift, uint32_t above = 0) {
+  return std::size_t(std::count_if(shift.begin(), shift.end(),
+                                   [&](uint32_t s) { return s != kOpenShift && s >= above; }));
+}
+
+TEST(DeepSieve, ClosedLevelsFollowTheirDefinition) {
+  for (const std::size_t clump : {std::size_t(0), std::size_t(300)}) {
+    const Crowd crowd = make_crowd(900, 11, clump);
+    for (const bool hinted : {false, true}) {
+      const std::vector<uint32_t> want = closed_by_definition(crowd, hinted);
+      const std::vector<uint8_t> hint(hinted ? crowd.balls.size() : 0, 1);
+      std::vector<uint32_t> got(crowd.balls.size()), order(crowd.balls.size());
+      const std::size_t count =
+          find_closed_runs(crowd.input(nullptr), crowd.balls, hint, order, got);
+      const std::string what = "clump " + std::to_string(clump) + (hinted ? ", hinted" : "");
+      EXPECT_TRUE(got == want) << what;
+      EXPECT_EQ(count, closed_count(want)) << what;
+      // The clump's runs close but for those with two sleeping bodies (never paired); the scattered
+      // crowd's runs mix bodies metres apart and close none. With the hint, the bodies at or near
+      // the origin close in their groups of 8 runs.
+      if (clump == 0 && !hinted) {
+        EXPECT_EQ(count, 0u) << what;
+      } else {
+        EXPECT_GT(count, 200u) << what;
+      }
+      if (hinted) {
+        EXPECT_GT(closed_count(want, kLevelShift), 100u) << what;
+      }
+    }
+  }
+  // Runs not as prepare_deep_sieve makes them (a run out of order) close nothing.
+  Crowd crowd = make_crowd(90, 3, 90);
+  std::vector<uint32_t> got(crowd.balls.size()), order(crowd.balls.size());
+  ASSERT_GT(find_closed_runs(crowd.input(nullptr), crowd.balls, {}, order, got), 0u);
+  std::swap(crowd.balls[1].run, crowd.balls[40].run);
+  EXPECT_EQ(find_closed_runs(crowd.input(nullptr), crowd.balls, {}, order, got), 0u);
+  EXPECT_EQ(closed_count(got), 0u);
+}
+
+// A crowd whose first 300 bodies are at one point: their runs are closed, and SAP passes the deep
+// pairs between two of them by in its kernel (closed_runs.hpp); the list and the candidates are
+// still the oracle's, with the bodies of the other runs, open, offering theirs to the sieve.
+TEST(DeepSieve, ClosedBodiesPassedByInTheSweepChangeNothing) {
+  const Crowd crowd = make_crowd(900, 13, 300);
+  std::vector<uint32_t> closed(crowd.balls.size()), order(crowd.balls.size());
+  ASSERT_GT(find_closed_runs(crowd.input(nullptr), crowd.balls, {}, order, closed), 200u);
+  std::vector<uint64_t> stored, candidates;
+  expected(crowd, stored, candidates);
+  ASSERT_GT(candidates.size(), 1000u);
+  ASSERT_GT(stored.size(), 100u);
+  expect_every_finder_matches(crowd, stored, candidates);
 }
 
 // A body with no more deep partners than its set holds keeps them all: the sieve changes nothing
