@@ -215,7 +215,29 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   // support rejects most of the triangles under a body's box.
   r.lowest = support_world(q.full, -r.face);
   r.plane_gap = r.face.dot(r.lowest - v[0]);
-  return !(r.plane_gap > r.speculative);
+  if (r.plane_gap > r.speculative) return false;
+  // A's distance to the triangle is at least its gap along the direction u from A's centre to the
+  // triangle's closest point c: no point of the triangle is nearer than |c| along u (c is the
+  // closest), and no point of A is farther than its support along u. When that gap is beyond the
+  // speculative distance, so is every contact: the closest features' distance (the GJK path),
+  // and A's points over the triangle within the speculative distance of its plane (the face
+  // path), which would be nearer the triangle than that. The margin covers the rounding of the
+  // gap and of the contact's own tests (as `lateral`'s). perf: a body resting on a smooth surface
+  // is within the speculative distance of the planes of most triangles around it, which the tests
+  // above keep, and a tilted body is above most of them by far more.
+  uint32_t region = kRegionFace;
+  const Vec3 closest = closest_on_triangle(v, region);
+  const Real dist2 = closest.squaredNorm();
+  if (dist2 > 0) {
+    const Real dist = std::sqrt(dist2);
+    const Vec3 u = closest / dist;
+    const Real gap = dist - u.dot(support_world(q.full, u));
+    const Real margin =
+        Real(1e-4) * (q.shape->bounding_radius + r.speculative + v[0].cwiseAbs().sum() +
+                      (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
+    if (gap > r.speculative + margin) return false;
+  }
+  return true;
 }
 
 bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
