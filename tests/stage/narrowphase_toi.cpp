@@ -167,7 +167,7 @@ TEST(TimeOfImpact, SurfaceImpactIsTheEarliestOverItsTriangles) {
     }
   }
   EXPECT_GT(hits, 60);
-  EXPECT_GT(misses, 30);
+  EXPECT_GT(misses, 20);
 }
 
 }  // namespace narrowphase_toi_test
