@@ -131,28 +131,15 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
       const HeightField& field = *q.heightfield;
       query.field = &field;
       // perf: a cell's two triangles lie in its box (x and z between its samples, y between its
-      // least and greatest height), so the piece's distance to them is at least its gap along
-      // the direction u from its centre to the box's closest point c (nothing of the box is
-      // nearer than |c| along u, nothing of the piece farther than its support). A cell whose
-      // gap is beyond the most any triangle's speculative distance can be (the base plus the
-      // whole motion) holds no contact, as reach_triangle's own distance test finds, for one
-      // support instead of the two triangles' tests; the margin covers the rounding as there.
+      // least and greatest height): a cell the piece is clear of by more than any triangle's
+      // speculative distance can be (the base plus the whole motion) holds no contact, found for
+      // one support instead of the two triangles' tests.
       const Real cell_speculative = w.base + motion.norm();
-      const Real cell_margin =
-          Real(1e-4) * (p.bounding_radius + cell_speculative + local.position.cwiseAbs().sum() +
-                        field.spacing_x + field.spacing_z + std::abs(field.max_height) +
-                        std::abs(field.min_height));
       for_each_cell(field, lo, hi, [&](uint32_t i, uint32_t j, Real low, Real high) {
         const Vec3 box_lo = Vec3(Real(i) * field.spacing_x, low, Real(j) * field.spacing_z);
         const Vec3 box_hi =
             Vec3(Real(i + 1) * field.spacing_x, high, Real(j + 1) * field.spacing_z);
-        const Vec3 c = local.position.cwiseMax(box_lo).cwiseMin(box_hi) - local.position;
-        const Real dist2 = c.squaredNorm();
-        if (dist2 > 0) {
-          const Real dist = std::sqrt(dist2);
-          const Vec3 u = c / dist;
-          if (dist - u.dot(support_world(query.full, u)) > cell_speculative + cell_margin) return;
-        }
+        if (clear_of_box(query, box_lo, box_hi, cell_speculative)) return;
         const uint32_t cell = j * (field.columns - 1) + i;
         for (const uint32_t index : {2 * cell, 2 * cell + 1}) {
           const MeshTriangle t = field.corners(index);

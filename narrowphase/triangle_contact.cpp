@@ -240,6 +240,21 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   return true;
 }
 
+bool clear_of_box(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real speculative) {
+  // Nothing of the box is nearer than |c| along u = c / |c| (c the box's closest point to A's
+  // centre), and nothing of A is farther than its support along u: their distance is at least
+  // the gap between the two, which bounds every triangle's in the box from below (as
+  // reach_triangle's distance test, whose margin this one keeps for the box's corners).
+  const Vec3 c = q.position.cwiseMax(lo).cwiseMin(hi) - q.position;
+  const Real dist2 = c.squaredNorm();
+  if (!(dist2 > 0)) return false;
+  const Real dist = std::sqrt(dist2);
+  const Vec3 u = c / dist;
+  const Real margin = Real(1e-4) * (q.shape->bounding_radius + speculative +
+                                    q.position.cwiseAbs().sum() + 2 * (hi - lo).cwiseAbs().sum());
+  return dist - u.dot(support_world(q.full, u)) > speculative + margin;
+}
+
 bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
                       Real speculative_distance, TriangleContact& out) {
   out.count = 0;

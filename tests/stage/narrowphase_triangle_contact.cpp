@@ -458,5 +458,65 @@ TEST(TriangleContact, ReachRejectsOnlyTrianglesWithoutAContact) {
   EXPECT_GT(kept, 2000);
 }
 
+// Oracle: the contact routine, given the triangle past reach_triangle's tests but its distance
+// test (which the cell's test would otherwise hide). Every triangle of a heightfield cell the body
+// is clear of (with the cell's speculative distance: the base plus the whole motion, as the
+// composite walk gives it) gives no contact at its own speculative distance; and when the body is
+// over the cell's box (its centre inside it), the box is never clear.
+TEST(TriangleContact, ClearOfBoxOnlyWhenItsTrianglesGiveNothing) {
+  constexpr uint32_t kColumns = 9;
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<Real> heights(kColumns * kColumns);
+  for (Real& h : heights) h = Real(0.15) * u(rng);
+  const HeightField field = build_heightfield(heights, kColumns, Real(0.5), Real(0.5));
+  const Shape shapes[] = {sphere(Real(0.3)),
+                          capsule(Real(0.2), Real(0.4)),
+                          box(Real(0.3), Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.2)),
+                          test::round_hull(20, Real(0.4)),
+                          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+  int clear = 0, not_clear = 0;
+  for (int trial = 0; trial < 1200; ++trial) {
+    const Shape& s = shapes[trial % 6];
+    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Transform xa =
+        at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng), q);
+    TriangleQuery query = make_triangle_query(s, xa, kSpec);
+    if (trial % 3 == 0) query.motion = Vec3(Real(0.05) * u(rng), Real(-0.1), Real(0.05) * u(rng));
+    query.field = &field;
+    const Real cell_speculative = kSpec + query.motion.norm();
+    for (uint32_t j = 0; j + 1 < kColumns; ++j) {
+      for (uint32_t i = 0; i + 1 < kColumns; ++i) {
+        const Real h[4] = {field.height(i, j), field.height(i + 1, j), field.height(i, j + 1),
+                           field.height(i + 1, j + 1)};
+        const Vec3 lo(Real(i) * field.spacing_x, std::min({h[0], h[1], h[2], h[3]}),
+                      Real(j) * field.spacing_z);
+        const Vec3 hi(Real(i + 1) * field.spacing_x, std::max({h[0], h[1], h[2], h[3]}),
+                      Real(j + 1) * field.spacing_z);
+        const bool inside =
+            (xa.position.array() >= lo.array()).all() && (xa.position.array() <= hi.array()).all();
+        if (!clear_of_box(query, lo, hi, cell_speculative)) {
+          ++not_clear;
+          continue;
+        }
+        ASSERT_FALSE(inside) << "trial " << trial;
+        ++clear;
+        const uint32_t cell = j * (kColumns - 1) + i;
+        for (const uint32_t t : {2 * cell, 2 * cell + 1}) {
+          const MeshTriangle tri = field.corners(t);
+          TriangleReach reach;
+          TriangleContact c;
+          ASSERT_FALSE(reach_without_distance(query, tri, reach) &&
+                       collide_reached_triangle(query, tri, reach, c))
+              << "trial " << trial << " triangle " << t;
+        }
+      }
+    }
+  }
+  EXPECT_GT(clear, 5000);
+  EXPECT_GT(not_clear, 5000);
+}
+
 }  // namespace narrowphase_triangle_contact_test
 }  // namespace elan::detail
