@@ -59,9 +59,10 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
   const uint32_t base =
       kFeatureSegment | (1u << 28) | ((fa.id & 0x7F) << 21) | ((fb.id & 0x7F) << 14);
   if (ref) {
+    const RefPlane plane = ref_plane(*ref, n, ref_is_a);
     for (int k = 0; k < clipped.count; ++k) {
       const Vec3& p = clipped.points[k];
-      const Real s = plane_gap(*ref, n, p, ref_is_a);
+      const Real s = plane.gap(p);
       if (s > speculative_distance) continue;
       points[count] = ref_is_a ? Vec3(p - Real(0.5) * s * n) : Vec3(p + Real(0.5) * s * n);
       seps[count] = s;

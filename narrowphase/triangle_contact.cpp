@@ -381,9 +381,10 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
     const bool ref_is_a = ref == &fa;
     ClipPolygon clipped;
     clip_against(*ref, ref_is_a ? fb : fa, clipped);
+    const RefPlane plane = ref_plane(*ref, n, ref_is_a);
     for (int k = 0; k < std::min(clipped.count, kMaxPoints); ++k) {
       const Vec3& p = clipped.points[k];
-      const Real s = plane_gap(*ref, n, p, ref_is_a);
+      const Real s = plane.gap(p);
       if (s > speculative_distance) continue;
       points[count] = ref_is_a ? Vec3(p - Real(0.5) * s * n) : Vec3(p + Real(0.5) * s * n);
       seps[count] = s;
