@@ -24,7 +24,7 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
   // the speculative distance; GJK stops once its lower bound shows them farther than that plus
   // kEarlyReject, whose bound the separation cache keeps (so the pair is skipped while it cannot
   // have closed that much). A pair nearer runs the whole search, as before.
-  constexpr Real kEarlyReject = Real(0.1);
+  constexpr Real kEarlyReject = Real(0.03);
   Simplex simplex;
   const GjkResult g = gjk_placed(place(a, xa, true), place(b, xb, true), Vec3::Zero(), simplex,
                                  speculative_distance + kEarlyReject);
