@@ -8,6 +8,7 @@
 
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/manifold_reduce.hpp"
+#include "narrowphase/minkowski.hpp"
 #include "narrowphase/sat.hpp"
 #include "narrowphase/supporting_feature.hpp"
 
@@ -19,7 +20,18 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
   Vec3 n;
   Real sep;
   Vec3 pa, pb;  // world closest / deepest points on A and B
-  const GjkResult g = gjk_distance(a, xa, b, xb, true);
+  // perf: most pairs of falling or scattered bodies whose boxes meet are apart by more than
+  // the speculative distance; GJK stops once its lower bound shows them farther than that plus
+  // kEarlyReject, whose bound the separation cache keeps (so the pair is skipped while it cannot
+  // have closed that much). A pair nearer runs the whole search, as before.
+  constexpr Real kEarlyReject = Real(0.03);
+  Simplex simplex;
+  const GjkResult g = gjk_placed(place(a, xa, true), place(b, xb, true), Vec3::Zero(), simplex,
+                                 speculative_distance + kEarlyReject);
+  if (g.beyond) {
+    report_separation(separation, Separation::Kind::Distance, g.lower_bound);
+    return false;
+  }
   if (!g.overlap && g.distance > Real(1e-6) * std::max(a.bounding_radius, b.bounding_radius)) {
     if (g.distance > speculative_distance) {
       report_separation(separation, Separation::Kind::Distance, g.lower_bound);
@@ -59,9 +71,10 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
   const uint32_t base =
       kFeatureSegment | (1u << 28) | ((fa.id & 0x7F) << 21) | ((fb.id & 0x7F) << 14);
   if (ref) {
+    const RefPlane plane = ref_plane(*ref, n, ref_is_a);
     for (int k = 0; k < clipped.count; ++k) {
       const Vec3& p = clipped.points[k];
-      const Real s = plane_gap(*ref, n, p, ref_is_a);
+      const Real s = plane.gap(p);
       if (s > speculative_distance) continue;
       points[count] = ref_is_a ? Vec3(p - Real(0.5) * s * n) : Vec3(p + Real(0.5) * s * n);
       seps[count] = s;

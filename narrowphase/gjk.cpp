@@ -231,6 +231,7 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s,
     // the caller wants no distance.
     if (searched_vw > 0 && searched_vw * searched_vw > reject_beyond * reject_beyond * vv) {
       result.beyond = true;
+      result.lower_bound = searched_vw / std::sqrt(vv);
       return result;
     }
     if (vv - searched_vw <= kRelTol * vv) break;
@@ -269,6 +270,13 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
   Vec3 d = initial_direction;
   if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
   return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s);
+}
+
+GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
+                     Simplex& s, Real reject_beyond) {
+  Vec3 d = initial_direction;
+  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
+  return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s, reject_beyond);
 }
 
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],

@@ -74,6 +74,11 @@ inline SimplexVertex support_minkowski_triangle(const PlacedShape& a, const Vec3
 // GJK on two placed shapes; leaves the terminating simplex in `out_simplex`.
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                      Simplex& out_simplex);
+// The same, stopping as soon as its lower bound shows the shapes farther apart than
+// `reject_beyond` (result.beyond, with that bound in result.lower_bound); otherwise the same
+// search, bit for bit.
+GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
+                     Simplex& out_simplex, Real reject_beyond);
 
 // GJK between a point or a segment (`core`: one point, or the two ends) and the core of `b`, all
 // in B's principal frame, as are the result's points. perf: B's support then needs no rotation

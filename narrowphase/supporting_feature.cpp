@@ -119,7 +119,7 @@ void clip_against(const Feature& ref, const Feature& inc, ClipPolygon& out) {
   const Vec3 nref = (ref.points[1] - ref.points[0]).cross(ref.points[2] - ref.points[0]);
   for (int k = 0; k < ref.count; ++k) {
     const Vec3& v0 = ref.points[k];
-    const Vec3& v1 = ref.points[(k + 1) % ref.count];
+    const Vec3& v1 = ref.points[k + 1 < ref.count ? k + 1 : 0];
     Vec3 side = (v1 - v0).cross(nref);
     if (side.dot(centroid - v0) > 0) side = -side;
     clip_polygon(*cur, side, v0, uint8_t(kSidePlaneLabel + k), *other);
@@ -128,11 +128,13 @@ void clip_against(const Feature& ref, const Feature& inc, ClipPolygon& out) {
 }
 
 Real plane_gap(const Feature& ref, const Vec3& n, const Vec3& p, bool ref_is_a) {
+  return ref_plane(ref, n, ref_is_a).gap(p);
+}
+
+RefPlane ref_plane(const Feature& ref, const Vec3& n, bool ref_is_a) {
   Vec3 nf = (ref.points[1] - ref.points[0]).cross(ref.points[2] - ref.points[0]);
   if (nf.dot(n) < 0) nf = -nf;
-  const Real along = nf.dot(n);
-  const Real t = nf.dot(p - ref.points[0]) / along;
-  return ref_is_a ? t : -t;
+  return {nf, ref.points[0], nf.dot(n), ref_is_a};
 }
 
 }  // namespace elan::detail

@@ -36,4 +36,19 @@ void clip_against(const Feature& ref, const Feature& inc, ClipPolygon& out);
 // Separation along n of point p (on the incident side) from the plane of polygon `ref`.
 Real plane_gap(const Feature& ref, const Vec3& n, const Vec3& p, bool ref_is_a);
 
+// plane_gap's plane made once for the many points of one clipping: gap(p) is plane_gap(ref, n, p,
+// ref_is_a), bit for bit (the same operations on the same values).
+struct RefPlane {
+  Vec3 normal;  // ref's unnormalised normal, turned to n's side
+  Vec3 origin;  // ref's first point
+  Real along;   // normal . n
+  bool ref_is_a;
+
+  Real gap(const Vec3& p) const {
+    const Real t = normal.dot(p - origin) / along;
+    return ref_is_a ? t : -t;
+  }
+};
+RefPlane ref_plane(const Feature& ref, const Vec3& n, bool ref_is_a);
+
 }  // namespace elan::detail

@@ -38,10 +38,12 @@ Transform compose(const Transform& outer, const Transform& inner) {
 
 // Conservative advancement from t = 0 on the distance at time t (distance(t, dir), dir the last
 // normal as GJK's warm start): `delta` is the relative linear motion over the unit interval,
-// `spin` the bound on the rotational speed of any surface point. Returns 1 if they do not meet.
+// `spin` the bound on the rotational speed of any surface point. Returns 1 if they do not meet
+// before `until` (at most 1): t only grows, so a caller taking the earliest of several impacts
+// stops each search at the earliest found so far, with the same minimum.
 template <class Distance>
 Real advance(const Distance& distance, const Vec3& delta, Real spin, Real target, Real tolerance,
-             Vec3 dir) {
+             Vec3 dir, Real until = 1) {
   Real t = 0;
   for (int iter = 0; iter < kMaxIterations; ++iter) {
     const GjkResult g = distance(t, dir);
@@ -52,7 +54,7 @@ Real advance(const Distance& distance, const Vec3& delta, Real spin, Real target
     const Real speed = delta.dot(n) + spin;
     if (!(speed > 0)) return 1;
     t += (g.distance - target) / speed;
-    if (t >= 1) return 1;
+    if (t >= until) return 1;
     dir = n;
   }
   return t;
@@ -117,11 +119,35 @@ Real surface_time_of_impact(const Shape& a, const Transform& xa0, const Transfor
   const Vec3 grow = Vec3::Constant(a.bounding_radius + target);
   const Vec3 lo = p0.position.cwiseMin(p1.position) - grow;
   const Vec3 hi = p0.position.cwiseMax(p1.position) + grow;
+  // A's points stay within its bounding radius of its centre, which runs along the segment p0 p1
+  // at every pose advance() tries; a triangle farther than this from that segment is never within
+  // the target. The relative margin covers the rounding of the distances below (coordinates of a
+  // few hundred metres round to about 1e-5 m), so that nothing the advancement would stop at is
+  // passed over.
+  const Real clear = a.bounding_radius + target + tolerance +
+                     Real(1e-4) * (a.bounding_radius + target + delta.cwiseAbs().sum() +
+                                   p0.position.cwiseAbs().sum());
   Real best = 1;
   const auto visit = [&](const MeshTriangle& tri) {
     // A one-sided triangle stops only what comes from its front.
     const Vec3 n = tri.normal();
     if (!tri.two_sided && n.dot(p0.position - tri.v[0]) < 0) return;
+    // perf: the swept box holds many triangles the segment passes far from. Two tests bound the
+    // segment's distance to the triangle from below: both ends on one side of its plane and
+    // farther than `clear` from it, or both beyond the plane through one edge along the normal
+    // (the triangle lies on the other side of it) by more than `clear`.
+    // Only the path up to the earliest impact found so far can give an earlier one.
+    const Vec3 ahead = best * delta;
+    const Vec3 w0 = tri.v[0] - p0.position;
+    const Real h0 = -n.dot(w0), h1 = n.dot(ahead) + h0;
+    if ((h0 > clear && h1 > clear) || (h0 < -clear && h1 < -clear)) return;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 from = tri.v[k] - p0.position;
+      const Vec3 out = (tri.v[(k + 1) % 3] - tri.v[k]).cross(n);  // outward for v's winding
+      const Real reach = clear * out.norm();
+      const Real b0 = -out.dot(from), b1 = out.dot(ahead) + b0;
+      if (b0 > reach && b1 > reach) return;
+    }
     const auto distance = [&](Real t, const Vec3& dir) {
       const Transform x = pose_at(p0, p1, t);
       const Vec3 v[3] = {tri.v[0] - x.position, tri.v[1] - x.position, tri.v[2] - x.position};
@@ -129,12 +155,14 @@ Real surface_time_of_impact(const Shape& a, const Transform& xa0, const Transfor
       return gjk_triangle(place(a, {Vec3::Zero(), x.rotation}, true), v, dir, s);
     };
     const Vec3 towards = (tri.v[0] + tri.v[1] + tri.v[2]) / 3 - p0.position;
-    best = std::min(best, advance(distance, delta, spin, target, tolerance, towards));
+    best = std::min(best, advance(distance, delta, spin, target, tolerance, towards, best));
   };
   if (b.type == ShapeType::Mesh) {
     for_each_triangle(*b.mesh, lo, hi, visit);
   } else {
-    for_each_triangle(*b.heightfield, lo, hi, visit);
+    // perf: the advancement reads a triangle's corners, not its active edges.
+    const HeightField& field = *b.heightfield;
+    for_each_triangle_index(field, lo, hi, [&](uint32_t t) { visit(field.corners(t)); });
   }
   return best;
 }

@@ -215,7 +215,44 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   // support rejects most of the triangles under a body's box.
   r.lowest = support_world(q.full, -r.face);
   r.plane_gap = r.face.dot(r.lowest - v[0]);
-  return !(r.plane_gap > r.speculative);
+  if (r.plane_gap > r.speculative) return false;
+  // A's distance to the triangle is at least its gap along the direction u from A's centre to the
+  // triangle's closest point c: no point of the triangle is nearer than |c| along u (c is the
+  // closest), and no point of A is farther than its support along u. When that gap is beyond the
+  // speculative distance, so is every contact: the closest features' distance (the GJK path),
+  // and A's points over the triangle within the speculative distance of its plane (the face
+  // path), which would be nearer the triangle than that. The margin covers the rounding of the
+  // gap and of the contact's own tests (as `lateral`'s). perf: a body resting on a smooth surface
+  // is within the speculative distance of the planes of most triangles around it, which the tests
+  // above keep, and a tilted body is above most of them by far more.
+  uint32_t region = kRegionFace;
+  const Vec3 closest = closest_on_triangle(v, region);
+  const Real dist2 = closest.squaredNorm();
+  if (dist2 > 0) {
+    const Real dist = std::sqrt(dist2);
+    const Vec3 u = closest / dist;
+    const Real gap = dist - u.dot(support_world(q.full, u));
+    const Real margin =
+        Real(1e-4) * (q.shape->bounding_radius + r.speculative + v[0].cwiseAbs().sum() +
+                      (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
+    if (gap > r.speculative + margin) return false;
+  }
+  return true;
+}
+
+bool clear_of_box(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real speculative) {
+  // Nothing of the box is nearer than |c| along u = c / |c| (c the box's closest point to A's
+  // centre), and nothing of A is farther than its support along u: their distance is at least
+  // the gap between the two, which bounds every triangle's in the box from below (as
+  // reach_triangle's distance test, whose margin this one keeps for the box's corners).
+  const Vec3 c = q.position.cwiseMax(lo).cwiseMin(hi) - q.position;
+  const Real dist2 = c.squaredNorm();
+  if (!(dist2 > 0)) return false;
+  const Real dist = std::sqrt(dist2);
+  const Vec3 u = c / dist;
+  const Real margin = Real(1e-4) * (q.shape->bounding_radius + speculative +
+                                    q.position.cwiseAbs().sum() + 2 * (hi - lo).cwiseAbs().sum());
+  return dist - u.dot(support_world(q.full, u)) > speculative + margin;
 }
 
 bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
@@ -344,9 +381,10 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
     const bool ref_is_a = ref == &fa;
     ClipPolygon clipped;
     clip_against(*ref, ref_is_a ? fb : fa, clipped);
+    const RefPlane plane = ref_plane(*ref, n, ref_is_a);
     for (int k = 0; k < std::min(clipped.count, kMaxPoints); ++k) {
       const Vec3& p = clipped.points[k];
-      const Real s = plane_gap(*ref, n, p, ref_is_a);
+      const Real s = plane.gap(p);
       if (s > speculative_distance) continue;
       points[count] = ref_is_a ? Vec3(p - Real(0.5) * s * n) : Vec3(p + Real(0.5) * s * n);
       seps[count] = s;

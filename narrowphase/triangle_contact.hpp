@@ -73,6 +73,13 @@ struct TriangleReach {
 // only when it is in reach.
 bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r);
 
+// Whether A (q's shape at q.position) is farther than `speculative` from every point of the box
+// [lo, hi] (surface frame): then no triangle inside the box gives a contact at any speculative
+// distance up to `speculative` (reach_triangle rejects it). One support: A's gap along the
+// direction from its centre to the box's closest point. perf: a heightfield cell's two triangles
+// are rejected together.
+bool clear_of_box(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real speculative);
+
 // collide_triangle for a triangle in reach (`r` from reach_triangle for the same triangle; its
 // active edges read from it, or from q.field): the same result.
 bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, const TriangleReach& r,

@@ -43,10 +43,11 @@ struct HeightField {
 HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, Real spacing_x,
                               Real spacing_z);
 
-// Calls f(uint32_t t) for each triangle t of the cells under [lo, hi] (x and z) whose heights
-// reach the box's y range, row by row, cell by cell, lower triangle first.
+// Calls f(uint32_t i, uint32_t j, Real low, Real high) for each cell (i, j) under [lo, hi] (x and
+// z) whose heights (low to high: the least and greatest of its four) reach the box's y range, row
+// by row, cell by cell.
 template <class F>
-void for_each_triangle_index(const HeightField& field, const Vec3& lo, const Vec3& hi, F&& f) {
+void for_each_cell(const HeightField& field, const Vec3& lo, const Vec3& hi, F&& f) {
   if (lo.y() > field.max_height || hi.y() < field.min_height) return;
   const auto cell_range = [](Real a, Real b, Real spacing, uint32_t samples, uint32_t& first,
                              uint32_t& last) {
@@ -66,11 +67,20 @@ void for_each_triangle_index(const HeightField& field, const Vec3& lo, const Vec
       const Real low = std::min(std::min(h00, h10), std::min(h01, h11));
       const Real high = std::max(std::max(h00, h10), std::max(h01, h11));
       if (low > hi.y() || high < lo.y()) continue;
-      const uint32_t c = j * (field.columns - 1) + i;
-      f(2 * c);
-      f(2 * c + 1);
+      f(i, j, low, high);
     }
   }
+}
+
+// Calls f(uint32_t t) for each triangle t of the cells under [lo, hi] (for_each_cell's), row by
+// row, cell by cell, lower triangle first.
+template <class F>
+void for_each_triangle_index(const HeightField& field, const Vec3& lo, const Vec3& hi, F&& f) {
+  for_each_cell(field, lo, hi, [&](uint32_t i, uint32_t j, Real, Real) {
+    const uint32_t c = j * (field.columns - 1) + i;
+    f(2 * c);
+    f(2 * c + 1);
+  });
 }
 
 // Calls f(const MeshTriangle&) for the same triangles in the same order, active edges included.

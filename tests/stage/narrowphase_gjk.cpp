@@ -222,5 +222,45 @@ TEST(Gjk, DegenerateInputsStayFiniteAndTerminate) {
   EXPECT_LE(g.iterations, 64);
 }
 
+// GJK between two shapes told to stop past a distance: when it stops early its lower bound is past
+// that distance and the search run to the end finds the shapes at least that far apart (to GJK's
+// relative tolerance, 1e-5); when it does not, it is the search run to the end, bit for bit.
+TEST(Gjk, StopsEarlyOnlyPastTheRejectDistance) {
+  const Shape shapes[] = {capsule(Real(0.2), Real(0.4)), box(Real(0.3), Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.2)), test::round_hull(20, Real(0.4))};
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int stopped = 0, ran = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Shape& sa = shapes[trial % 4];
+    const Shape& sb = shapes[(trial / 4) % 4];
+    const Quat qa = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat qb = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const PlacedShape a = place(sa, at(0, 0, 0, qa), true);
+    const PlacedShape b =
+        place(sb, at(Real(1.2) * u(rng), Real(1.2) * u(rng), Real(1.2) * u(rng), qb), true);
+    const Real reject = Real(0.05) + Real(0.1) * (u(rng) + 1);
+    Simplex s0, s1;
+    const GjkResult full = gjk_placed(a, b, Vec3::Zero(), s0);
+    const GjkResult cut = gjk_placed(a, b, Vec3::Zero(), s1, reject);
+    ASSERT_FALSE(full.beyond);
+    if (cut.beyond) {
+      ++stopped;
+      ASSERT_GT(cut.lower_bound, reject);
+      ASSERT_FALSE(full.overlap);
+      ASSERT_GE(full.distance, cut.lower_bound * (1 - Real(1e-5))) << trial;
+      continue;
+    }
+    ++ran;
+    ASSERT_EQ(cut.overlap, full.overlap);
+    ASSERT_EQ(cut.distance, full.distance);
+    ASSERT_EQ(cut.lower_bound, full.lower_bound);
+    ASSERT_EQ(cut.point_a, full.point_a);
+    ASSERT_EQ(cut.point_b, full.point_b);
+  }
+  EXPECT_GT(stopped, 500);
+  EXPECT_GT(ran, 500);
+}
+
 }  // namespace narrowphase_gjk_test
 }  // namespace elan::detail

@@ -1,12 +1,20 @@
 // SPDX-License-Identifier: MIT
-// Time of impact (conservative advancement) against the analytic contact time.
+// Time of impact (conservative advancement) against the analytic contact time, and against a
+// surface the distance sampled along the path.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <numbers>
+#include <random>
+#include <vector>
 
+#include "core/base/heightfield.hpp"
 #include "narrowphase/collide.hpp"
 #include "narrowphase/gjk.hpp"
+#include "narrowphase/minkowski.hpp"
 
 namespace elan::detail {
 namespace narrowphase_toi_test {
@@ -80,6 +88,86 @@ TEST(TimeOfImpact, RotationIsBoundedWithoutOvershoot) {
   const Real rho = std::hypot(Real(0.4), Real(0.6));
   const Real angle = std::atan2(Real(0.6), Real(0.4)) - std::asin((Real(0.16)) / rho);
   EXPECT_NEAR(t * Real(1.2), angle, 0.01);
+}
+
+// Oracle: the distance to every triangle, sampled along the path. Bodies of each shape pass
+// through, by and over a bumpy heightfield, turning as they go: before the returned time no
+// triangle facing the body (a heightfield's are one-sided) is nearer than the target, and at a
+// time below 1 one is within the stopping rule's allowance. A triangle the walk skipped that the
+// path meets first would show nearer than the target at a sample before the returned time.
+TEST(TimeOfImpact, SurfaceImpactIsTheEarliestOverItsTriangles) {
+  constexpr uint32_t kColumns = 9;
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<Real> heights(kColumns * kColumns);
+  for (Real& h : heights) h = Real(0.15) * u(rng);
+  auto field =
+      std::make_shared<HeightField>(build_heightfield(heights, kColumns, Real(0.5), Real(0.5)));
+  Shape surface;
+  surface.type = ShapeType::Heightfield;
+  surface.local_min = Vec3(0, field->min_height, 0);
+  surface.local_max = Vec3(4, field->max_height, 4);
+  surface.bounding_radius = Real(3);
+  surface.heightfield = field;
+  const auto round = [](ShapeType type, Real radius, Real half_height) {
+    ShapeDef d;
+    d.type = type;
+    d.radius = radius;
+    d.half_height = half_height;
+    return make_shape(d);
+  };
+  const Shape shapes[] = {make(ShapeType::Sphere, Real(0.2)),
+                          make(ShapeType::Box, 0, Vec3(Real(0.3), Real(0.1), Real(0.2))),
+                          round(ShapeType::Capsule, Real(0.1), Real(0.3)),
+                          round(ShapeType::Cylinder, Real(0.25), Real(0.1))};
+  const Real target = Real(0.01);
+  const Transform still = at(0, 0, 0);
+  int hits = 0, misses = 0;
+  for (int trial = 0; trial < 240; ++trial) {
+    const Shape& s = shapes[trial % 4];
+    const Quat q0 = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat q1 = (Quat(Eigen::AngleAxis<Real>(Real(0.8) * u(rng),
+                                                 Vec3(u(rng), u(rng), u(rng)).normalized())) *
+                     q0)
+                        .normalized();
+    const Transform x0 =
+        at(2 + Real(1.2) * u(rng), 1 + Real(0.4) * u(rng), 2 + Real(1.2) * u(rng), q0);
+    const Vec3 d(Real(1.5) * u(rng), Real(-1.2) + Real(0.6) * u(rng), Real(1.5) * u(rng));
+    Transform x1 = x0;
+    x1.position += d;
+    x1.rotation = q1;
+    const Real t = time_of_impact(s, x0, x1, surface, still, still, target);
+    const auto nearest = [&](Real time) {
+      Transform x;
+      x.position = x0.position + time * d;
+      x.rotation = x0.rotation.slerp(time, x1.rotation);
+      Real best = std::numeric_limits<Real>::max();
+      for (uint32_t k = 0; k < 2 * (kColumns - 1) * (kColumns - 1); ++k) {
+        const MeshTriangle tri = field->corners(k);
+        if (tri.normal().dot(x0.position - tri.v[0]) < 0) continue;  // behind: one-sided
+        const Vec3 v[3] = {tri.v[0] - x.position, tri.v[1] - x.position, tri.v[2] - x.position};
+        Simplex simplex;
+        const GjkResult g =
+            gjk_triangle(place(s, {Vec3::Zero(), x.rotation}, true), v, Vec3::UnitY(), simplex);
+        best = std::min(best, g.overlap ? Real(0) : g.distance);
+      }
+      return best;
+    };
+    constexpr int kSamples = 40;
+    for (int k = 0; k < kSamples; ++k) {
+      const Real time = t * Real(k) / kSamples;
+      ASSERT_GE(nearest(time), target - Real(1e-4)) << "trial " << trial << " at " << time;
+    }
+    if (t < 1) {
+      ++hits;
+      ASSERT_LE(nearest(t), target + allowance(target, s.bounding_radius) + Real(1e-4))
+          << "trial " << trial;
+    } else {
+      ++misses;
+    }
+  }
+  EXPECT_GT(hits, 60);
+  EXPECT_GT(misses, 20);
 }
 
 }  // namespace narrowphase_toi_test

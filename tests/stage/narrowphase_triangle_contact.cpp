@@ -390,5 +390,133 @@ TEST(TriangleContact, HeightfieldQueryMatchesWholeTriangles) {
   EXPECT_GT(rejected, 1000);
 }
 
+// reach_triangle before its distance test: the corners, the plane, the lateral and the lowest
+// point's tests alone (what collide_reached_triangle was given before the test was added).
+bool reach_without_distance(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r) {
+  for (int k = 0; k < 3; ++k) r.v[k] = t.v[k] - q.position;
+  Vec3 g = (r.v[1] - r.v[0]).cross(r.v[2] - r.v[0]);
+  if (!(g.norm() > 0)) return false;
+  g.normalize();
+  const Real centre_height = -g.dot(r.v[0]);
+  if (!t.two_sided && centre_height < 0) return false;
+  r.geometric = g;
+  r.face = centre_height >= 0 ? g : Vec3(-g);
+  r.speculative = q.speculative + std::max(Real(0), -r.face.dot(q.motion));
+  if (q.shape->type == ShapeType::Sphere) return true;
+  const Real lateral = q.shape->bounding_radius + r.speculative;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = r.v[(k + 1) % 3] - r.v[k];
+    const Real beyond = -e.cross(g).dot(r.v[k]);
+    if (beyond > 0 && beyond * beyond > lateral * lateral * e.squaredNorm()) return false;
+  }
+  r.lowest = support_world(q.full, -r.face);
+  r.plane_gap = r.face.dot(r.lowest - r.v[0]);
+  return !(r.plane_gap > r.speculative);
+}
+
+// Oracle: the contact routine itself. Every triangle reach_triangle's distance test rejects,
+// given to collide_reached_triangle as it was before that test, gives no contact: the test drops
+// nothing but triangles with nothing to give. Bodies of every shape, tilted, resting on and
+// hovering over a bumpy field and some moving towards it, so that both of the routine's paths
+// (the face's, the closest features') are reached.
+TEST(TriangleContact, ReachRejectsOnlyTrianglesWithoutAContact) {
+  constexpr uint32_t kColumns = 9;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<Real> heights(kColumns * kColumns);
+  for (Real& h : heights) h = Real(0.15) * u(rng);
+  const HeightField field = build_heightfield(heights, kColumns, Real(0.5), Real(0.5));
+  const Shape shapes[] = {capsule(Real(0.2), Real(0.4)), box(Real(0.3), Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.2)), test::round_hull(20, Real(0.4)),
+                          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+  int dropped = 0, kept = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const Shape& s = shapes[trial % 5];
+    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Transform xa =
+        at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng), q);
+    TriangleQuery query = make_triangle_query(s, xa, kSpec);
+    if (trial % 3 == 0) query.motion = Vec3(Real(0.05) * u(rng), Real(-0.1), Real(0.05) * u(rng));
+    for (uint32_t t = 0; t < 2 * (kColumns - 1) * (kColumns - 1); ++t) {
+      const MeshTriangle tri = field.triangle(t);
+      TriangleReach before, now;
+      if (!reach_without_distance(query, tri, before)) {
+        ASSERT_FALSE(reach_triangle(query, tri, now)) << "trial " << trial << " triangle " << t;
+        continue;
+      }
+      if (reach_triangle(query, tri, now)) {
+        ++kept;
+        continue;
+      }
+      ++dropped;
+      TriangleContact c;
+      ASSERT_FALSE(collide_reached_triangle(query, tri, before, c))
+          << "trial " << trial << " triangle " << t << " separation " << c.separation[0];
+    }
+  }
+  EXPECT_GT(dropped, 2000);
+  EXPECT_GT(kept, 2000);
+}
+
+// Oracle: the contact routine, given the triangle past reach_triangle's tests but its distance
+// test (which the cell's test would otherwise hide). Every triangle of a heightfield cell the body
+// is clear of (with the cell's speculative distance: the base plus the whole motion, as the
+// composite walk gives it) gives no contact at its own speculative distance; and when the body is
+// over the cell's box (its centre inside it), the box is never clear.
+TEST(TriangleContact, ClearOfBoxOnlyWhenItsTrianglesGiveNothing) {
+  constexpr uint32_t kColumns = 9;
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<Real> heights(kColumns * kColumns);
+  for (Real& h : heights) h = Real(0.15) * u(rng);
+  const HeightField field = build_heightfield(heights, kColumns, Real(0.5), Real(0.5));
+  const Shape shapes[] = {sphere(Real(0.3)),
+                          capsule(Real(0.2), Real(0.4)),
+                          box(Real(0.3), Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.2)),
+                          test::round_hull(20, Real(0.4)),
+                          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+  int clear = 0, not_clear = 0;
+  for (int trial = 0; trial < 1200; ++trial) {
+    const Shape& s = shapes[trial % 6];
+    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Transform xa =
+        at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng), q);
+    TriangleQuery query = make_triangle_query(s, xa, kSpec);
+    if (trial % 3 == 0) query.motion = Vec3(Real(0.05) * u(rng), Real(-0.1), Real(0.05) * u(rng));
+    query.field = &field;
+    const Real cell_speculative = kSpec + query.motion.norm();
+    for (uint32_t j = 0; j + 1 < kColumns; ++j) {
+      for (uint32_t i = 0; i + 1 < kColumns; ++i) {
+        const Real h[4] = {field.height(i, j), field.height(i + 1, j), field.height(i, j + 1),
+                           field.height(i + 1, j + 1)};
+        const Vec3 lo(Real(i) * field.spacing_x, std::min({h[0], h[1], h[2], h[3]}),
+                      Real(j) * field.spacing_z);
+        const Vec3 hi(Real(i + 1) * field.spacing_x, std::max({h[0], h[1], h[2], h[3]}),
+                      Real(j + 1) * field.spacing_z);
+        const bool inside =
+            (xa.position.array() >= lo.array()).all() && (xa.position.array() <= hi.array()).all();
+        if (!clear_of_box(query, lo, hi, cell_speculative)) {
+          ++not_clear;
+          continue;
+        }
+        ASSERT_FALSE(inside) << "trial " << trial;
+        ++clear;
+        const uint32_t cell = j * (kColumns - 1) + i;
+        for (const uint32_t t : {2 * cell, 2 * cell + 1}) {
+          const MeshTriangle tri = field.corners(t);
+          TriangleReach reach;
+          TriangleContact c;
+          ASSERT_FALSE(reach_without_distance(query, tri, reach) &&
+                       collide_reached_triangle(query, tri, reach, c))
+              << "trial " << trial << " triangle " << t;
+        }
+      }
+    }
+  }
+  EXPECT_GT(clear, 5000);
+  EXPECT_GT(not_clear, 5000);
+}
+
 }  // namespace narrowphase_triangle_contact_test
 }  // namespace elan::detail
