@@ -142,10 +142,10 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
         const Vec3 box_lo = Vec3(Real(i) * field.spacing_x, low, Real(j) * field.spacing_z);
         const Vec3 box_hi =
             Vec3(Real(i + 1) * field.spacing_x, high, Real(j + 1) * field.spacing_z);
-        if (clear_of_box(query, box_lo, box_hi, cell_speculative)) return;
         const uint32_t cell = j * (field.columns - 1) + i;
-        for (const uint32_t index : {2 * cell, 2 * cell + 1}) {
-          const MeshTriangle t = field.corners(index);
+        const MeshTriangle pair[2] = {field.corners(2 * cell), field.corners(2 * cell + 1)};
+        if (clear_of_box(query, box_lo, box_hi, cell_speculative, pair)) return;
+        for (const MeshTriangle& t : pair) {
           if (reach_triangle(query, t, reach)) contact(t);
         }
       });

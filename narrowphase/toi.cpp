@@ -98,8 +98,12 @@ bool pieces_stay_apart(const Shape& a, const Transform& xa0, const Transform& xa
   const Vec3 d = (xb1.position - xa1.position) - c0;
   const Real dd = d.squaredNorm();
   const Real t = dd > 0 ? std::clamp(-c0.dot(d) / dd, Real(0), Real(1)) : Real(0);
-  // A margin of a part in a thousand of the reach for the rounding of the closest approach.
-  const Real reach = (a.bounding_radius + b.bounding_radius + target + tolerance) * Real(1.001);
+  // A margin of a part in a thousand of the reach for the rounding of the closest approach, and
+  // one that grows with the coordinates for the advancement's own, which works in world
+  // coordinates (far from the origin a millimetre is a few ulps).
+  const Real reach = (a.bounding_radius + b.bounding_radius + target + tolerance) * Real(1.001) +
+                     Real(1e-6) * (xa0.position.cwiseAbs().sum() + xb0.position.cwiseAbs().sum() +
+                                   d.cwiseAbs().sum());
   return (c0 + t * d).squaredNorm() > reach * reach;
 }
 

@@ -220,8 +220,10 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   // triangle's closest point c: no point of the triangle is nearer than |c| along u (c is the
   // closest), and no point of A is farther than its support along u. When that gap is beyond the
   // speculative distance, so is every contact: the closest features' distance (the GJK path),
-  // and A's points over the triangle within the speculative distance of its plane (the face
-  // path), which would be nearer the triangle than that. The margin covers the rounding of the
+  // and A's points the face path reports, over the triangle or under it at any depth, L = F - d n
+  // (F on the triangle, n the face normal, d >= 0): u points from A's centre, on n's side, to the
+  // triangle, so u.n <= 0 and u.L >= u.F >= |c|, and such a point would be in the gap. (The
+  // cell's test, clear_of_box, has no such u and checks u.n.) The margin covers the rounding of the
   // gap and of the contact's own tests (as `lateral`'s). perf: a body resting on a smooth surface
   // is within the speculative distance of the planes of most triangles around it, which the tests
   // above keep, and a tilted body is above most of them by far more.
@@ -240,16 +242,27 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   return true;
 }
 
-bool clear_of_box(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real speculative) {
+bool clear_of_box(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real speculative,
+                  std::span<const MeshTriangle> in_box) {
   // Nothing of the box is nearer than |c| along u = c / |c| (c the box's closest point to A's
   // centre), and nothing of A is farther than its support along u: their distance is at least
   // the gap between the two, which bounds every triangle's in the box from below (as
   // reach_triangle's distance test, whose margin this one keeps for the box's corners).
+  // That bounds the GJK path's contacts. The face path also reports A's points under a triangle,
+  // L = F - d n (F on the triangle, n its face normal toward A's centre, d >= 0), at any depth;
+  // u.L = u.F - d u.n >= |c| holds for them only when u.n <= 0, which reach_triangle's own u (to
+  // the triangle's closest point) always has, and the box's u need not: a thin piece reaching
+  // under a steep cell from its upper side. So a triangle that faces along u keeps the cell.
   const Vec3 c = q.position.cwiseMax(lo).cwiseMin(hi) - q.position;
   const Real dist2 = c.squaredNorm();
   if (!(dist2 > 0)) return false;
   const Real dist = std::sqrt(dist2);
   const Vec3 u = c / dist;
+  for (const MeshTriangle& t : in_box) {
+    const Vec3 geometric = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
+    const Vec3 face = geometric.dot(q.position - t.v[0]) >= 0 ? geometric : Vec3(-geometric);
+    if (!(u.dot(face) <= 0)) return false;
+  }
   const Real margin = Real(1e-4) * (q.shape->bounding_radius + speculative +
                                     q.position.cwiseAbs().sum() + 2 * (hi - lo).cwiseAbs().sum());
   return dist - u.dot(support_world(q.full, u)) > speculative + margin;

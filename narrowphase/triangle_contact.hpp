@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "core/base/contact.hpp"
 #include "core/base/mesh_triangle.hpp"
@@ -73,12 +74,14 @@ struct TriangleReach {
 // only when it is in reach.
 bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r);
 
-// Whether A (q's shape at q.position) is farther than `speculative` from every point of the box
-// [lo, hi] (surface frame): then no triangle inside the box gives a contact at any speculative
-// distance up to `speculative` (reach_triangle rejects it). One support: A's gap along the
-// direction from its centre to the box's closest point. perf: a heightfield cell's two triangles
-// are rejected together.
-bool clear_of_box(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real speculative);
+// Whether no triangle of `in_box` (each inside the box [lo, hi], surface frame) gives a contact at
+// any speculative distance up to `speculative`: A (q's shape at q.position) is farther than that
+// from every point of the box, and no triangle faces toward A's centre along the direction of
+// that bound (see the definition: the contact routine's face path reports A's points under a
+// triangle at any depth). One support: A's gap along the direction from its centre to the box's
+// closest point. perf: a heightfield cell's two triangles are rejected together.
+bool clear_of_box(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real speculative,
+                  std::span<const MeshTriangle> in_box);
 
 // collide_triangle for a triangle in reach (`r` from reach_triangle for the same triangle; its
 // active edges read from it, or from q.field): the same result.
