@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -263,16 +264,29 @@ TEST(TriangleContact, FeatureIdsStayWhileSlidingOnOneTriangle) {
   }
 }
 
+// One of each convex shape, about the size of a heightfield cell below.
+std::array<Shape, 6> every_shape() {
+  return {sphere(Real(0.3)),
+          capsule(Real(0.2), Real(0.4)),
+          box(Real(0.3), Real(0.2), Real(0.5)),
+          cylinder(Real(0.3), Real(0.2)),
+          test::round_hull(20, Real(0.4)),
+          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+}
+
+// A columns x columns heightfield, 0.5 m cells, heights drawn in [-0.15, 0.15] from rng.
+HeightField bumpy_field(uint32_t columns, std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<Real> heights(columns * columns);
+  for (Real& h : heights) h = Real(0.15) * u(rng);
+  return build_heightfield(heights, columns, Real(0.5), Real(0.5));
+}
+
 // Random shapes and poses about random triangles (slivers, shapes centred on the plane, touching
 // exactly): the result is always finite, its normal unit, at most four points, each within the
 // speculative distance.
 TEST(TriangleContact, FiniteOnRandomAndDegenerateInput) {
-  const Shape shapes[] = {sphere(Real(0.3)),
-                          capsule(Real(0.2), Real(0.4)),
-                          box(Real(0.3), Real(0.2), Real(0.5)),
-                          cylinder(Real(0.3), Real(0.2)),
-                          test::round_hull(20, Real(0.4)),
-                          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+  const std::array<Shape, 6> shapes = every_shape();
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1, 1);
   int touching = 0;
@@ -346,15 +360,8 @@ TEST(TriangleContact, HeightfieldQueryMatchesWholeTriangles) {
   constexpr uint32_t kColumns = 9;
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1, 1);
-  std::vector<Real> heights(kColumns * kColumns);
-  for (Real& h : heights) h = Real(0.15) * u(rng);
-  const HeightField field = build_heightfield(heights, kColumns, Real(0.5), Real(0.5));
-  const Shape shapes[] = {sphere(Real(0.3)),
-                          capsule(Real(0.2), Real(0.4)),
-                          box(Real(0.3), Real(0.2), Real(0.5)),
-                          cylinder(Real(0.3), Real(0.2)),
-                          test::round_hull(20, Real(0.4)),
-                          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+  const HeightField field = bumpy_field(kColumns, rng);
+  const std::array<Shape, 6> shapes = every_shape();
   int contacts = 0, rejected = 0;
   for (int trial = 0; trial < 600; ++trial) {
     const Shape& s = shapes[trial % 6];
@@ -423,15 +430,11 @@ TEST(TriangleContact, ReachRejectsOnlyTrianglesWithoutAContact) {
   constexpr uint32_t kColumns = 9;
   std::mt19937 rng(17);
   std::uniform_real_distribution<float> u(-1, 1);
-  std::vector<Real> heights(kColumns * kColumns);
-  for (Real& h : heights) h = Real(0.15) * u(rng);
-  const HeightField field = build_heightfield(heights, kColumns, Real(0.5), Real(0.5));
-  const Shape shapes[] = {capsule(Real(0.2), Real(0.4)), box(Real(0.3), Real(0.2), Real(0.5)),
-                          cylinder(Real(0.3), Real(0.2)), test::round_hull(20, Real(0.4)),
-                          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+  const HeightField field = bumpy_field(kColumns, rng);
+  const std::array<Shape, 6> shapes = every_shape();  // the sphere (0) left out below
   int dropped = 0, kept = 0;
   for (int trial = 0; trial < 1500; ++trial) {
-    const Shape& s = shapes[trial % 5];
+    const Shape& s = shapes[1 + trial % 5];
     const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
     const Transform xa =
         at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng), q);
@@ -467,15 +470,8 @@ TEST(TriangleContact, ClearOfBoxOnlyWhenItsTrianglesGiveNothing) {
   constexpr uint32_t kColumns = 9;
   std::mt19937 rng(29);
   std::uniform_real_distribution<float> u(-1, 1);
-  std::vector<Real> heights(kColumns * kColumns);
-  for (Real& h : heights) h = Real(0.15) * u(rng);
-  const HeightField field = build_heightfield(heights, kColumns, Real(0.5), Real(0.5));
-  const Shape shapes[] = {sphere(Real(0.3)),
-                          capsule(Real(0.2), Real(0.4)),
-                          box(Real(0.3), Real(0.2), Real(0.5)),
-                          cylinder(Real(0.3), Real(0.2)),
-                          test::round_hull(20, Real(0.4)),
-                          box_hull(Real(0.2), Real(0.3), Real(0.4))};
+  const HeightField field = bumpy_field(kColumns, rng);
+  const std::array<Shape, 6> shapes = every_shape();
   int clear = 0, not_clear = 0;
   for (int trial = 0; trial < 1200; ++trial) {
     const Shape& s = shapes[trial % 6];
