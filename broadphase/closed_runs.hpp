@@ -34,7 +34,7 @@ inline constexpr uint32_t kOpenShift = 32;
 inline constexpr uint32_t kMaxClosedLevel = 3;
 
 // shift[i] gets body i's closed level as a shift, or kOpenShift. Levels above 1 are looked for
-// only for bodies with deepen[i] != 0 (an empty span: none; a hint, as DeepSieve::crowded_last:
+// only for bodies with deepen[i] != 0 (an empty span: none; a hint, as DeepSieve::crowded:
 // the sieve's result is the same whichever bodies are found closed). Runs as prepare_deep_sieve
 // makes them (DeepBall::run the ordinal among the bodies with r > 0, over kRun); with others,
 // nothing is closed. `order` is scratch, one entry per body. Returns the closed bodies' count.

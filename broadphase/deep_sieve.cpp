@@ -50,7 +50,7 @@ void DeepSieve::begin(std::span<const DeepBall> balls) {
   for (Sets& s : threads_) size_for(s, balls.size());
   size_for(merged_, balls.size());
   // Kept from the last update: a body's flag is only a hint (closed_runs.hpp).
-  if (crowded_last_.size() != balls.size()) crowded_last_.assign(balls.size(), 0);
+  if (crowded_.size() != balls.size()) crowded_.assign(balls.size(), 0);
 }
 
 void DeepSieve::size_for(Sets& s, std::size_t bodies) {
@@ -132,7 +132,7 @@ void DeepSieve::reset(Sets& s) {
 
 // determinism: the best kCandidates of a union are the best of the union of each part's best, so
 // the merged sets do not depend on which thread took which pair nor on the order they are merged.
-std::size_t DeepSieve::collect(std::vector<uint64_t>& out, std::span<uint8_t> crowded) {
+std::size_t DeepSieve::collect(std::vector<uint64_t>& out) {
   std::size_t taken = 0;
   for (Sets& s : threads_) {
     taken += s.taken;
@@ -144,14 +144,11 @@ std::size_t DeepSieve::collect(std::vector<uint64_t>& out, std::span<uint8_t> cr
   }
   // A pair kept by both its bodies appears twice: the lower body's set writes it, the higher one's
   // only when the lower one did not keep it.
-  std::fill(crowded_last_.begin(), crowded_last_.end(), uint8_t{0});
+  std::fill(crowded_.begin(), crowded_.end(), uint8_t{0});
   for (std::size_t slot = 0; slot < merged_.owner.size(); ++slot) {
     const uint32_t body = merged_.owner[slot];
     const Candidate* e = merged_.entries.data() + slot * kCandidates;
-    if (merged_.count[slot] == kCandidates) {
-      if (!crowded.empty()) crowded[body] = 1;
-      if (body < crowded_last_.size()) crowded_last_[body] = 1;
-    }
+    if (merged_.count[slot] == kCandidates && body < crowded_.size()) crowded_[body] = 1;
     for (uint32_t q = 0; q < merged_.count[slot]; ++q) {
       const uint32_t partner = e[q].partner;
       if (body > partner) {
@@ -176,7 +173,7 @@ std::size_t DeepSieve::heap_bytes() const {
            detail::heap_bytes(s.count) + detail::heap_bytes(s.entries);
   };
   std::size_t bytes =
-      detail::heap_bytes(threads_) + sets_bytes(merged_) + detail::heap_bytes(crowded_last_);
+      detail::heap_bytes(threads_) + sets_bytes(merged_) + detail::heap_bytes(crowded_);
   for (const Sets& s : threads_) bytes += sets_bytes(s);
   return bytes;
 }

@@ -100,15 +100,15 @@ class DeepSieve {
   void count_taken(std::size_t count);
   // The balls begin() was given.
   std::span<const DeepBall> balls() const { return balls_; }
-  // Per body, 1 when its set was full at the last collect() (a crowd's body), else 0; all 0 for a
-  // body count new since. A hint for closed_runs.hpp, which no result depends on.
-  std::span<const uint8_t> crowded_last() const { return crowded_last_; }
+  // Per body, 1 when its set was full at the last collect(): it has at least kCandidates deep
+  // partners (a crowd's body); else 0, and all 0 for a body count new since. Read after collect()
+  // for that update's crowd (deep_pairs.hpp), and at the next update as a hint for
+  // closed_runs.hpp, which no result depends on.
+  std::span<const uint8_t> crowded() const { return crowded_; }
   // After the finder: the merged candidates' pair keys, appended to `out` unsorted, unique. Returns
   // how many deep pairs were taken (0: the update found none). Empties the sets for the next
-  // update.
-  // crowded (one byte a body, or empty) gets 1 for each body whose set is full: it has at least
-  // kCandidates deep partners.
-  std::size_t collect(std::vector<uint64_t>& out, std::span<uint8_t> crowded = {});
+  // update, and rewrites crowded().
+  std::size_t collect(std::vector<uint64_t>& out);
   std::size_t heap_bytes() const;
 
   struct Candidate {
@@ -139,7 +139,7 @@ class DeepSieve {
   std::span<const DeepBall> balls_;
   std::vector<Sets> threads_;
   Sets merged_;
-  std::vector<uint8_t> crowded_last_;
+  std::vector<uint8_t> crowded_;
 };
 
 }  // namespace elan::detail

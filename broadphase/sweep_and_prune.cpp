@@ -246,7 +246,7 @@ void SweepAndPrune::deal_strips(const BroadphaseInput& in, StepScratch& scratch)
     take_from(body_order_, scratch, n);
     take_from(body_shift_, scratch, n);
     closed_count_ =
-        find_closed_runs(in, in.deep->balls(), in.deep->crowded_last(), body_order_, body_shift_);
+        find_closed_runs(in, in.deep->balls(), in.deep->crowded(), body_order_, body_shift_);
   }
   // Room for the most any spread of these n boxes can need (blocks * strips <= n / 4 + strips,
   // strips <= n / kMinBoxesPerStrip), so a scene that spreads out does not grow it in a warm step.

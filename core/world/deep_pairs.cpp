@@ -3,6 +3,7 @@
 #include "core/world/deep_pairs.hpp"
 
 #include <algorithm>
+#include <span>
 
 #include "core/base/grow.hpp"
 #include "core/base/pair_key.hpp"
@@ -58,10 +59,10 @@ void add_deep_candidates(WorldState& w) {
   const std::size_t reserved =
       DeepSieve::kCandidates * std::min<std::size_t>(w.bodies.size(), 1024);
   if (deep.capacity() < reserved) deep.reserve(reserved);
-  grow_fill(w.deep_crowded, w.bodies.size(), uint8_t{0});
-  w.deep_taken = w.deep_sieve.collect(deep, w.deep_crowded);
-  w.deep_crowd = w.deep_taken > 0 && std::find(w.deep_crowded.begin(), w.deep_crowded.end(),
-                                               uint8_t{1}) != w.deep_crowded.end();
+  w.deep_taken = w.deep_sieve.collect(deep);
+  const std::span<const uint8_t> crowded = w.deep_sieve.crowded();
+  w.deep_crowd =
+      w.deep_taken > 0 && std::find(crowded.begin(), crowded.end(), uint8_t{1}) != crowded.end();
   if (deep.empty()) return;
   std::sort(deep.begin(), deep.end());
   // Both sorted and disjoint (a pair is deep or not): one merge from the back, in place.
@@ -85,7 +86,8 @@ std::size_t limit_deep_pairs(WorldState& w) {
   std::vector<uint8_t>& block_deep = w.deep_block;
   grow_to(deep, n);
   grow_fill(block_deep, blocks, uint8_t{0});
-  const bool crowded = w.deep_sieved && w.deep_crowded.size() == w.bodies.size();
+  const std::span<const uint8_t> crowd = w.deep_sieve.crowded();
+  const bool crowded = w.deep_sieved && crowd.size() == w.bodies.size();
   // determinism: a flag per pair and one per block, each written by its block (rule 1).
   for_blocks(n, kDeepGrain, [&](std::size_t begin, std::size_t end, std::size_t block) {
     uint8_t any = 0;
@@ -94,9 +96,8 @@ std::size_t limit_deep_pairs(WorldState& w) {
       const uint32_t a = pair_first(key), b = pair_second(key);
       const DeepBall &ba = w.deep_balls[a], &bb = w.deep_balls[b];
       uint8_t is_deep = deep_balls_inline(ba, bb) ? 1 : 0;
-      // A crowd's near pair: not deep, but a body of it is in a crowd (w.deep_crowded).
-      if (!is_deep && crowded && ba.r > 0 && bb.r > 0 &&
-          (w.deep_crowded[a] | w.deep_crowded[b]) != 0) {
+      // A crowd's near pair: not deep, but a body of it is in a crowd (the sieve's crowded()).
+      if (!is_deep && crowded && ba.r > 0 && bb.r > 0 && (crowd[a] | crowd[b]) != 0) {
         is_deep = 2;
       }
       deep[k] = is_deep;

@@ -74,10 +74,9 @@ struct WorldState {
   std::vector<DeepBall> deep_balls;
   DeepSieve deep_sieve;
   std::vector<uint64_t> deep_candidates;
-  std::vector<uint8_t> deep_crowded;  // per body: at least kDeepPairBudget deep partners
-  bool deep_sieved = false;           // this step's pairs went through the sieve
-  std::size_t deep_taken = 0;         // deep pairs the sieve took this step
-  bool deep_crowd = false;            // some body of this step's pairs is in deep_crowded
+  bool deep_sieved = false;    // this step's pairs went through the sieve
+  std::size_t deep_taken = 0;  // deep pairs the sieve took this step
+  bool deep_crowd = false;     // some body is crowded (deep_sieve.crowded())
 
   // Contacts kept from step to step (manifolds, the body pair cache, the separation cache),
   // which the collide stage rewrites, with what it changed (the contact events).
