@@ -6,7 +6,7 @@
 //
 // Why: bodies spawned into each other (issue 42) overlap by most of their size, where EPA needs
 // many iterations to expand its polytope from the origin out to the far side (500 cylinders at
-// one point: 2,000 pairs at about 20 us each, 40 ms a step), and the exact minimum-translation
+// one point make 2,000 such pairs), and the exact minimum-translation
 // answer is worth little: such a pair is pushed apart over several steps at a capped speed
 // (solver/push_out_cap.hpp), and its normal changes as it goes. So a deep pair takes a bounded
 // separating-axis test on a few fixed candidate axes instead (like the SAT, but only over the

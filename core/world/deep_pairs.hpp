@@ -21,7 +21,7 @@
 //   least kDeepPairBudget deep partners (its sieve set is full), is dropped when one of its bodies
 //   already keeps kDeepPairBudget such pairs. A crowd that spreads has, besides its deep pairs,
 //   hundreds of overlaps a body just outside the deep test (10,000 boxes at one point after ten
-//   steps: 2.7 million pairs, 10.8 million contact points, 8 GB), which the bodies pass through
+//   steps: 2.7 million pairs), which the bodies pass through
 //   as they do their dropped deep ones. A body of an ordinary scene has a deep pair only where
 //   it is pressed hard (deep_overlap.hpp), never a crowd's.
 // A world with a user pair filter skips the sieve (the filter must see every pair; the budget
