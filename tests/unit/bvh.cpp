@@ -7,6 +7,7 @@
 #include <cstring>
 #include <random>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "core/base/bvh.hpp"
@@ -102,6 +103,32 @@ TEST(Bvh, BoxQueriesFindExactlyTheOverlappingItemsInAFixedOrder) {
     EXPECT_EQ(first.size(), expected.size());  // no item twice
     EXPECT_EQ(run(), first);
   }
+}
+
+// A query reports exactly the leaves whose own box overlaps the query box, in the order they are
+// stored (depth first, first child first): the order the mesh and compound walks, and so the
+// contact candidates, depend on.
+TEST(Bvh, BoxQueriesReportTheOverlappingLeavesInStoredOrder) {
+  const auto boxes = random_boxes(3000, 4);
+  std::vector<uint32_t> order;
+  const Bvh tree = build_bvh(boxes, 4, order);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<Real> pos(-55, 55), size(0.1f, 20);
+  int reported = 0;
+  for (int q = 0; q < 300; ++q) {
+    const Vec3 c(pos(rng), pos(rng), pos(rng));
+    const Vec3 h(size(rng), size(rng), size(rng));
+    const Vec3 lo = c - h, hi = c + h;
+    std::vector<std::pair<uint32_t, uint32_t>> expected, found;
+    for (const BvhNode& n : tree.nodes) {
+      if (n.leaf() && node_overlaps(n, lo, hi)) expected.emplace_back(n.index, n.count);
+    }
+    bvh_query(tree, lo, hi,
+              [&](uint32_t first, uint32_t count) { found.emplace_back(first, count); });
+    EXPECT_EQ(found, expected);
+    reported += int(found.size());
+  }
+  EXPECT_GT(reported, 1000);
 }
 
 TEST(Bvh, SameBoxesSameTree) {
