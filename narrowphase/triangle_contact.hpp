@@ -67,6 +67,9 @@ struct TriangleReach {
   Vec3 lowest;         // A's support along -face (not for a sphere)
   Real plane_gap{};    // lowest's height above the plane (not for a sphere)
   Real speculative{};  // m: q.speculative plus q.motion's approach along -face
+  // The triangle's closest point to A's centre, from it (not for a sphere): GJK's first search
+  // direction (zero: toward the triangle's centroid).
+  Vec3 closest = Vec3::Zero();
 };
 
 // Whether triangle `t` (corners and two_sided read; not its active edges) may give a contact:

@@ -47,8 +47,8 @@ const std::map<std::string, uint64_t>& golden() {
       {"pyramid20", 0x81f2803d6709df6eull},      {"rain", 0x98754b2205d9810dull},
       {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xe20e4645b4fbcae5ull},
       {"towers", 0xefd2e01bd19bcdcbull},         {"tumbler", 0xcc877a433287bc40ull},
-      {"compounds", 0xdbbe0dee9a3bf6fcull},      {"convex_vs_mesh", 0x461d54846ed02d28ull},
-      {"geometry_demo", 0x961f4aaeed37a9ebull},  {"heightfield_rain", 0x2523b06ecc7c955eull},
+      {"compounds", 0xdbbe0dee9a3bf6fcull},      {"convex_vs_mesh", 0x175871efdec82993ull},
+      {"geometry_demo", 0xcff2d33205c7a917ull},  {"heightfield_rain", 0x3f0f5221777cd73eull},
   };
   return table;
 }

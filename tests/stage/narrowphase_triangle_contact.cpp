@@ -353,6 +353,45 @@ TEST(TriangleContact, GjkStopsEarlyOnlyPastTheRejectDistance) {
   EXPECT_GT(ran, 500);
 }
 
+// GJK against a triangle started toward the triangle's closest point to A's centre (what
+// reach_triangle leaves for the contact routine) rather than along the face's normal: the same
+// distance and direction to GJK's tolerance, in fewer iterations over shapes beside and over
+// random triangles.
+TEST(TriangleContact, GjkFromTheClosestPointAgreesInFewerIterations) {
+  const Shape shapes[] = {capsule(Real(0.2), Real(0.4)), box(Real(0.3), Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.2)), test::round_hull(20, Real(0.4))};
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int compared = 0, from_face = 0, from_closest = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    MeshTriangle t;
+    for (int k = 0; k < 3; ++k) t.v[k] = Vec3(u(rng), Real(0.2) * u(rng), u(rng));
+    const Shape& s = shapes[trial % 4];
+    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const TriangleQuery query = make_triangle_query(
+        s, at(Real(1.5) * u(rng), Real(0.2) + Real(0.4) * u(rng), Real(1.5) * u(rng), q),
+        Real(0.5));
+    TriangleReach r;
+    if (!reach_triangle(query, t, r)) continue;
+    Simplex s0, s1;
+    const GjkResult a = gjk_triangle(query.core, r.v, Vec3(-r.face), s0);
+    const GjkResult b = gjk_triangle(query.core, r.v, r.closest, s1);
+    ASSERT_EQ(a.overlap, b.overlap) << trial;
+    if (a.overlap) continue;
+    ++compared;
+    from_face += a.iterations;
+    from_closest += b.iterations;
+    ASSERT_NEAR(a.distance, b.distance, kTol * (1 + a.distance)) << trial;
+    if (a.distance > Real(0.01)) {
+      const Vec3 na = (a.point_b - a.point_a) / a.distance;
+      const Vec3 nb = (b.point_b - b.point_a) / b.distance;
+      EXPECT_GT(na.dot(nb), 1 - Real(1e-3)) << trial;
+    }
+  }
+  EXPECT_GT(compared, 1000);
+  EXPECT_LT(from_closest, from_face);
+}
+
 // A heightfield's triangles walked as the composite pairs walk them (corners first, the query's
 // reach, active edges derived only where a contact reads them) give what the whole triangle
 // gives, bit for bit, for every shape over a bumpy field.
