@@ -145,6 +145,10 @@ Real surface_time_of_impact(const Shape& a, const Transform& xa0, const Transfor
   const Real margin = Real(1e-4) * (a.bounding_radius + target + delta.cwiseAbs().sum() +
                                     p0.position.cwiseAbs().sum());
   const Real clear = a.bounding_radius + target + tolerance + margin;
+  // perf: every triangle's advancement starts at t = 0, where A's pose and placement are the
+  // same for all: made once (the same computation, so the same bits).
+  const Transform start = pose_at(p0, p1, 0);
+  const PlacedShape placed_start = place(a, {Vec3::Zero(), start.rotation}, true);
   Real best = 1;
   const auto visit = [&](const MeshTriangle& tri) {
     // A one-sided triangle stops only what comes from its front.
@@ -167,9 +171,14 @@ Real surface_time_of_impact(const Shape& a, const Transform& xa0, const Transfor
       if (b0 > reach && b1 > reach) return;
     }
     const auto distance = [&](Real t, const Vec3& dir, const SweepBound& bound) {
+      Simplex s;
+      if (t == 0) {
+        const Vec3 v[3] = {tri.v[0] - start.position, tri.v[1] - start.position,
+                           tri.v[2] - start.position};
+        return gjk_triangle(placed_start, v, dir, s, bound);
+      }
       const Transform x = pose_at(p0, p1, t);
       const Vec3 v[3] = {tri.v[0] - x.position, tri.v[1] - x.position, tri.v[2] - x.position};
-      Simplex s;
       return gjk_triangle(place(a, {Vec3::Zero(), x.rotation}, true), v, dir, s, bound);
     };
     const Vec3 towards = (tri.v[0] + tri.v[1] + tri.v[2]) / 3 - p0.position;
