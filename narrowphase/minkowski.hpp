@@ -105,6 +105,13 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
 // the GJK work of the sphere and capsule pairs with hulls and boxes.
 GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Simplex& s);
 
+// epa_penetration's answer from its GJK already run: `g` and `s` are gjk_placed(pa, pb,
+// pb.position - pa.position) on the cores (a shape with no core radius is its own core, whether
+// placed with its radius or not). perf: a caller whose own GJK was that search (collide_general
+// on two shapes with no radius) does not run it twice.
+EpaResult epa_after_gjk(const PlacedShape& pa, const PlacedShape& pb, const GjkResult& g,
+                        const Simplex& s);
+
 // EPA on the placed shapes from GJK's terminating simplex (origin in or on it).
 EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& simplex);
 
