@@ -294,10 +294,17 @@ EpaResult epa_penetration(const Shape& a, const Transform& xa, const Shape& b,
   // not have to tessellate a sphere.
   const PlacedShape pa = place(a, xa, false);
   const PlacedShape pb = place(b, xb, false);
-  const Real radii = core_radius(a) + core_radius(b);
   Simplex s;
   const GjkResult g = gjk_placed(pa, pb, xb.position - xa.position, s);
-  const Real scale = std::max((g.point_a - xa.position).norm(), (g.point_b - xb.position).norm());
+  return epa_after_gjk(pa, pb, g, s);
+}
+
+EpaResult epa_after_gjk(const PlacedShape& pa, const PlacedShape& pb, const GjkResult& g,
+                        const Simplex& s) {
+  const Shape& a = *pa.shape;
+  const Shape& b = *pb.shape;
+  const Real radii = core_radius(a) + core_radius(b);
+  const Real scale = std::max((g.point_a - pa.position).norm(), (g.point_b - pb.position).norm());
   EpaResult r;
   if (!g.overlap && g.distance > 16 * kEpaEps * scale) {
     // Cores apart: the rounded shapes overlap by radii - distance along the core normal.

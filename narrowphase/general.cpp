@@ -26,8 +26,9 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
   // have closed that much). A pair nearer runs the whole search, as before.
   constexpr Real kEarlyReject = Real(0.03);
   Simplex simplex;
-  const GjkResult g = gjk_placed(place(a, xa, true), place(b, xb, true), Vec3::Zero(), simplex,
-                                 speculative_distance + kEarlyReject);
+  const PlacedShape placed_a = place(a, xa, true), placed_b = place(b, xb, true);
+  const GjkResult g =
+      gjk_placed(placed_a, placed_b, Vec3::Zero(), simplex, speculative_distance + kEarlyReject);
   if (g.beyond) {
     report_separation(separation, Separation::Kind::Distance, g.lower_bound);
     return false;
@@ -42,7 +43,12 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
     pa = g.point_a;
     pb = g.point_b;
   } else {
-    const EpaResult e = epa_penetration(a, xa, b, xb);
+    // perf: with no radius on either side the cores are the shapes, and the search above, not
+    // stopped early, was epa_penetration's own GJK bit for bit (the same start, b - a): its
+    // simplex goes straight to EPA.
+    const bool rounded = core_radius(a) > 0 || core_radius(b) > 0;
+    const EpaResult e =
+        rounded ? epa_penetration(a, xa, b, xb) : epa_after_gjk(placed_a, placed_b, g, simplex);
     n = e.normal;
     sep = -e.depth;
     pa = e.point_a;

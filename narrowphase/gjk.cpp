@@ -203,9 +203,31 @@ namespace {
 // support along d and B's along -d. `d` points from A towards B: v is the current closest point
 // of the simplex to the origin and GJK searches along -v, which for separated shapes is about
 // the direction from A to B (v ~ a - b), so d seeds the search.
-template <class Support>
-GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s,
-                  Real reject_beyond = std::numeric_limits<Real>::infinity()) {
+// Whether the last search's bound (every point c of the difference has v.c >= vw) already shows
+// the shapes farther apart than `reject_beyond`.
+struct RejectBeyond {
+  Real reject_beyond = std::numeric_limits<Real>::infinity();
+  bool operator()(Real vw, Real vv, const Vec3&) const {
+    return vw > 0 && vw * vw > reject_beyond * reject_beyond * vv;
+  }
+};
+
+// Whether the last search's bound shows the shapes staying apart over the motion `bound`
+// describes (SweepBound in minkowski.hpp): along n = -v / |v| the gap g = vw / |v| closes no
+// faster than delta.n + spin, so if g - reach exceeds that, the gap stays above `reach` over the
+// whole motion. Multiplied through by |v| > 0.
+struct SweepReject {
+  const SweepBound& bound;
+  bool operator()(Real vw, Real vv, const Vec3& v) const {
+    if (!(vw > 0)) return false;
+    const Real len = std::sqrt(vv);
+    const Real slack = vw - bound.reach * len;
+    return slack > 0 && slack > bound.spin * len - bound.delta.dot(v);
+  }
+};
+
+template <class Support, class Reject = RejectBeyond>
+GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reject = {}) {
   GjkResult result;
   if (!(d.squaredNorm() > 0) || !d.allFinite()) d = Vec3::UnitY();
   s.count = 1;
@@ -227,9 +249,9 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s,
     const SimplexVertex w = support(Vec3(-v));
     searched_vw = v.dot(w.w);
     searched_vv = vv;
-    // Every point of the difference is at least v.w / |v| from the origin: past reject_beyond
-    // the caller wants no distance.
-    if (searched_vw > 0 && searched_vw * searched_vw > reject_beyond * reject_beyond * vv) {
+    // Every point of the difference is at least v.w / |v| from the origin: past the caller's
+    // bound it wants no distance.
+    if (reject(searched_vw, vv, v)) {
       result.beyond = true;
       result.lower_bound = searched_vw / std::sqrt(vv);
       return result;
@@ -276,7 +298,16 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
                      Simplex& s, Real reject_beyond) {
   Vec3 d = initial_direction;
   if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
-  return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s, reject_beyond);
+  return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s,
+                 RejectBeyond{reject_beyond});
+}
+
+GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
+                     Simplex& s, const SweepBound& bound) {
+  Vec3 d = initial_direction;
+  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
+  return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s,
+                 SweepReject{bound});
 }
 
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
@@ -286,7 +317,17 @@ GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
     d = (triangle[0] + triangle[1] + triangle[2]) / 3 - a.position;
   }
   return run_gjk([&](const Vec3& x) { return support_minkowski_triangle(a, triangle, x); }, d, s,
-                 reject_beyond);
+                 RejectBeyond{reject_beyond});
+}
+
+GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
+                       const Vec3& initial_direction, Simplex& s, const SweepBound& bound) {
+  Vec3 d = initial_direction;
+  if (!(d.squaredNorm() > 0) || !d.allFinite()) {
+    d = (triangle[0] + triangle[1] + triangle[2]) / 3 - a.position;
+  }
+  return run_gjk([&](const Vec3& x) { return support_minkowski_triangle(a, triangle, x); }, d, s,
+                 SweepReject{bound});
 }
 
 GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Simplex& s) {

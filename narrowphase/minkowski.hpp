@@ -80,11 +80,37 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                      Simplex& out_simplex, Real reject_beyond);
 
+// What conservative advancement (toi.cpp) asks of a distance: whether the shapes stay farther
+// apart than `reach` while A moves by `delta` relative to B and any surface point turns by at most
+// `spin` (both over what remains of the interval). Along any axis n the gap closes no faster than
+// delta.n + spin, so a lower bound g on the gap along n with g - reach > delta.n + spin answers
+// yes; the advancement then finds no impact, whatever the distance.
+struct SweepBound {
+  Vec3 delta = Vec3::Zero();  // m, A's motion relative to B
+  Real spin = 0;              // m
+  Real reach = 0;             // m
+};
+
+// gjk_placed, stopping as soon as its lower bound along the search axis shows the shapes staying
+// apart over the motion `bound` describes (result.beyond, with that bound in result.lower_bound);
+// otherwise the same search, bit for bit. perf: conservative advancement needs the distance only
+// where it may stop; GJK's convergence on a rounded or curved shape takes many more supports than
+// its first bound that clears the motion.
+GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
+                     Simplex& out_simplex, const SweepBound& bound);
+
 // GJK between a point or a segment (`core`: one point, or the two ends) and the core of `b`, all
 // in B's principal frame, as are the result's points. perf: B's support then needs no rotation
 // and the segment's is a choice of end; rotating directions and points would otherwise be much of
 // the GJK work of the sphere and capsule pairs with hulls and boxes.
 GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Simplex& s);
+
+// epa_penetration's answer from its GJK already run: `g` and `s` are gjk_placed(pa, pb,
+// pb.position - pa.position) on the cores (a shape with no core radius is its own core, whether
+// placed with its radius or not). perf: a caller whose own GJK was that search (collide_general
+// on two shapes with no radius) does not run it twice.
+EpaResult epa_after_gjk(const PlacedShape& pa, const PlacedShape& pb, const GjkResult& g,
+                        const Simplex& s);
 
 // EPA on the placed shapes from GJK's terminating simplex (origin in or on it).
 EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& simplex);
@@ -96,6 +122,9 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
                        const Vec3& initial_direction, Simplex& s,
                        Real reject_beyond = std::numeric_limits<Real>::infinity());
+// gjk_triangle with gjk_placed's sweep bound.
+GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
+                       const Vec3& initial_direction, Simplex& s, const SweepBound& bound);
 EpaResult epa_triangle(const PlacedShape& a, const Vec3 (&triangle)[3], const Simplex& simplex);
 
 }  // namespace elan::detail

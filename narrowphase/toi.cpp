@@ -36,17 +36,25 @@ Transform compose(const Transform& outer, const Transform& inner) {
   return {outer.rotation * inner.position + outer.position, outer.rotation * inner.rotation};
 }
 
-// Conservative advancement from t = 0 on the distance at time t (distance(t, dir), dir the last
-// normal as GJK's warm start): `delta` is the relative linear motion over the unit interval,
-// `spin` the bound on the rotational speed of any surface point. Returns 1 if they do not meet
-// before `until` (at most 1): t only grows, so a caller taking the earliest of several impacts
-// stops each search at the earliest found so far, with the same minimum.
+// Conservative advancement from t = 0 on the distance at time t (distance(t, dir, bound), dir
+// the last normal as GJK's warm start): `delta` is the relative linear motion over the unit
+// interval, `spin` the bound on the rotational speed of any surface point. Returns 1 if they do
+// not meet before `until` (at most 1): t only grows, so a caller taking the earliest of several
+// impacts stops each search at the earliest found so far, with the same minimum.
+// The distance may stop early (result.beyond) when its lower bound shows the gap staying above
+// `bound.reach` over the rest of the interval, [t, until]: the stop below (distance <= target +
+// tolerance) is then never met, so the answer is 1 as the full search would find. `margin` is
+// added to the stop distance in that bound for the rounding of the distances (GJK's relative
+// tolerance and coordinates far from the origin).
 template <class Distance>
 Real advance(const Distance& distance, const Vec3& delta, Real spin, Real target, Real tolerance,
-             Vec3 dir, Real until = 1) {
+             Real margin, Vec3 dir, Real until = 1) {
   Real t = 0;
   for (int iter = 0; iter < kMaxIterations; ++iter) {
-    const GjkResult g = distance(t, dir);
+    const Real rest = until - t;
+    const SweepBound bound{rest * delta, rest * spin, target + tolerance + margin};
+    const GjkResult g = distance(t, dir, bound);
+    if (g.beyond) return 1;
     if (g.overlap || g.distance <= target + tolerance) return t;
     const Vec3 n = (g.point_b - g.point_a) / g.distance;
     // Along the fixed axis n the gap closes no faster than the relative velocity's component
@@ -71,11 +79,17 @@ Real convex_time_of_impact(const Shape& a, const Transform& xa0, const Transform
   // A point at distance <= bounding_radius from the centre moves at most |omega| r by rotation.
   const Real spin = rotation_angle(xa0.rotation, xa1.rotation) * a.bounding_radius +
                     rotation_angle(xb0.rotation, xb1.rotation) * b.bounding_radius;
-  const auto distance = [&](Real t, const Vec3& dir) {
+  const auto distance = [&](Real t, const Vec3& dir, const SweepBound& bound) {
     const Transform xa = pose_at(xa0, xa1, t), xb = pose_at(xb0, xb1, t);
-    return gjk_distance(a, xa, b, xb, true, &dir);
+    Simplex s;
+    return gjk_placed(place(a, xa, true), place(b, xb, true), dir, s, bound);
   };
-  return advance(distance, delta, spin, target, tolerance, Vec3(xb0.position - xa0.position));
+  // GJK's relative tolerance on the sizes and motion, and the rounding of world coordinates.
+  const Real margin =
+      Real(1e-4) * (a.bounding_radius + b.bounding_radius + target + delta.cwiseAbs().sum()) +
+      Real(1e-6) * (xa0.position.cwiseAbs().sum() + xb0.position.cwiseAbs().sum());
+  return advance(distance, delta, spin, target, tolerance, margin,
+                 Vec3(xb0.position - xa0.position));
 }
 
 Transform relative_to(const Transform& frame, const Transform& x) {
@@ -128,9 +142,13 @@ Real surface_time_of_impact(const Shape& a, const Transform& xa0, const Transfor
   // the target. The relative margin covers the rounding of the distances below (coordinates of a
   // few hundred metres round to about 1e-5 m), so that nothing the advancement would stop at is
   // passed over.
-  const Real clear = a.bounding_radius + target + tolerance +
-                     Real(1e-4) * (a.bounding_radius + target + delta.cwiseAbs().sum() +
-                                   p0.position.cwiseAbs().sum());
+  const Real margin = Real(1e-4) * (a.bounding_radius + target + delta.cwiseAbs().sum() +
+                                    p0.position.cwiseAbs().sum());
+  const Real clear = a.bounding_radius + target + tolerance + margin;
+  // perf: every triangle's advancement starts at t = 0, where A's pose and placement are the
+  // same for all: made once (the same computation, so the same bits).
+  const Transform start = pose_at(p0, p1, 0);
+  const PlacedShape placed_start = place(a, {Vec3::Zero(), start.rotation}, true);
   Real best = 1;
   const auto visit = [&](const MeshTriangle& tri) {
     // A one-sided triangle stops only what comes from its front.
@@ -152,14 +170,19 @@ Real surface_time_of_impact(const Shape& a, const Transform& xa0, const Transfor
       const Real b0 = -out.dot(from), b1 = out.dot(ahead) + b0;
       if (b0 > reach && b1 > reach) return;
     }
-    const auto distance = [&](Real t, const Vec3& dir) {
+    const auto distance = [&](Real t, const Vec3& dir, const SweepBound& bound) {
+      Simplex s;
+      if (t == 0) {
+        const Vec3 v[3] = {tri.v[0] - start.position, tri.v[1] - start.position,
+                           tri.v[2] - start.position};
+        return gjk_triangle(placed_start, v, dir, s, bound);
+      }
       const Transform x = pose_at(p0, p1, t);
       const Vec3 v[3] = {tri.v[0] - x.position, tri.v[1] - x.position, tri.v[2] - x.position};
-      Simplex s;
-      return gjk_triangle(place(a, {Vec3::Zero(), x.rotation}, true), v, dir, s);
+      return gjk_triangle(place(a, {Vec3::Zero(), x.rotation}, true), v, dir, s, bound);
     };
     const Vec3 towards = (tri.v[0] + tri.v[1] + tri.v[2]) / 3 - p0.position;
-    best = std::min(best, advance(distance, delta, spin, target, tolerance, towards, best));
+    best = std::min(best, advance(distance, delta, spin, target, tolerance, margin, towards, best));
   };
   if (b.type == ShapeType::Mesh) {
     for_each_triangle(*b.mesh, lo, hi, visit);

@@ -4,6 +4,7 @@
 #include "core/world/continuous.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -22,6 +23,8 @@ namespace {
 // during the step (Box2D v3's safety factor).
 constexpr Real kFastFraction = Real(0.5);
 constexpr std::size_t kPairBlock = 256;
+// At most this many static bodies are tested one by one rather than found through the tree.
+constexpr std::size_t kFewStatics = 16;
 
 // Half the thinnest side of the shape's box in its principal frame, m; a compound's thinnest
 // part's, which is what may pass through something in one step.
@@ -102,17 +105,23 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
           const Shape& os = shapes[bodies.shape[other]];
           // A half-space cannot be passed through: its contact exists wherever the body ends.
           if (os.type == ShapeType::Plane) continue;
+          const SolverBody& mp = st.packets[st.packet_of[mover]];
+          // perf: most pairs of a fast body are near misses of its grown bounding box, which the
+          // positions alone show: the end orientations (a product and a normalisation each) are
+          // made only for the rest. The end positions are end_pose's.
+          const Vec3 o_start = bodies.position(other), m_start = bodies.position(mover);
+          const Vec3 o_end =
+              other_packet != 0 ? Vec3(o_start + st.packets[other_packet].dp) : o_start;
+          const Vec3 m_end = m_start + mp.dp;
+          if (!spheres_meet(o_start - m_start, (o_end - o_start) - (m_end - m_start),
+                            ms.bounding_radius + os.bounding_radius, kContinuousTarget)) {
+            continue;
+          }
           const Transform o0 = start_pose(bodies, other);
           const Transform o1 =
               other_packet != 0 ? end_pose(bodies, other, st.packets[other_packet]) : o0;
           const Transform m0 = start_pose(bodies, mover);
-          const Transform m1 = end_pose(bodies, mover, st.packets[st.packet_of[mover]]);
-          // perf: most pairs of a fast body are near misses of its grown bounding box.
-          if (!spheres_meet(o0.position - m0.position,
-                            (o1.position - o0.position) - (m1.position - m0.position),
-                            ms.bounding_radius + os.bounding_radius, kContinuousTarget)) {
-            continue;
-          }
+          const Transform m1 = end_pose(bodies, mover, mp);
           const Real t = time_of_impact(ms, m0, m1, os, o0, o1, kContinuousTarget);
           // t = 0: already touching at the start, which the contact solver has in hand.
           if (t > 0 && t < 1) found.push_back({fast_a ? pa : pb, t});
@@ -139,6 +148,34 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
     if (sep != separated.end() && sep->key == key) return true;
     return std::binary_search(apart_keys.begin(), apart_keys.end(), key);
   };
+  // perf: a scene has few static bodies and many dynamic ones, all in the query tree; walking
+  // the tree for each fast body's path visits the dynamic leaves around it to find the few
+  // static ones. With at most kFewStatics static bodies in the tree, their leaves are tested
+  // directly: the same leaves (those whose box meets the path), so the same impacts, and the
+  // minimum does not depend on the order anyway.
+  std::array<uint32_t, kFewStatics> few_statics;
+  std::size_t static_count = 0;
+  bool few = true;
+  for (uint32_t i = 0; i < uint32_t(bodies.size()) && few; ++i) {
+    if (!bodies.is_static(i) || i >= statics.item_count() || !statics.contains(i)) continue;
+    if (static_count == kFewStatics) {
+      few = false;
+    } else {
+      few_statics[static_count++] = i;
+    }
+  }
+  const auto for_each_static = [&](const TreeBox& path, const auto& f) {
+    if (!few) {
+      statics.query(path, [&](uint32_t other) {
+        if (bodies.is_static(other)) f(other);
+        return true;
+      });
+      return;
+    }
+    for (std::size_t n = 0; n < static_count; ++n) {
+      if (statics.fat_box(few_statics[n]).overlaps(path)) f(few_statics[n]);
+    }
+  };
   for (std::size_t k = 1; k < count; ++k) {
     if (!fast[k]) continue;
     const uint32_t mover = st.masses[k].body;
@@ -152,14 +189,13 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
     shape_bounds(ms, m1.position, m1.rotation, lo1, hi1);
     const Vec3 grow = Vec3::Constant(kContinuousTarget);
     const TreeBox path{lo0.cwiseMin(lo1) - grow, hi0.cwiseMax(hi1) + grow};
-    statics.query(path, [&](uint32_t other) {
-      if (other == mover || !bodies.is_static(other)) return true;
+    for_each_static(path, [&](uint32_t other) {
+      if (other == mover) return;
       const Shape& os = shapes[bodies.shape[other]];
-      if (os.type == ShapeType::Plane || was_pair(make_pair_key(mover, other))) return true;
+      if (os.type == ShapeType::Plane || was_pair(make_pair_key(mover, other))) return;
       const Transform o0 = start_pose(bodies, other);
       const Real t = time_of_impact(ms, m0, m1, os, o0, o0, kContinuousTarget);
       if (t > 0 && t < 1) earliest[k] = std::min(earliest[k], t);
-      return true;
     });
   }
 

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "narrowphase/gjk.hpp"
+#include "narrowphase/minkowski.hpp"
 #include "narrowphase_oracle.hpp"
 #include "narrowphase_test_shapes.hpp"
 
@@ -224,6 +225,39 @@ TEST(Epa, CylinderAgainstCapsuleGivesTheLeastOverlap) {
   const double tol = 2e-3 * ref;
   EXPECT_NEAR(e.depth, ref, tol);
   EXPECT_NEAR(overlap_along(a, xa, b, xb, e.normal.cast<double>()), e.depth, tol);
+}
+
+// collide_general's path for two shapes with no radius: its own GJK (stopped early only past the
+// reject distance) handed to EPA gives epa_penetration's answer bit for bit, for overlapping,
+// touching and nearly touching pairs of boxes, cylinders and hulls.
+TEST(Epa, AfterTheCallersGjkMatchesItsOwnSearch) {
+  const Shape shapes[] = {box(Real(0.3), Real(0.2), Real(0.5)), cylinder(Real(0.35), Real(0.3)),
+                          test::round_hull(20, Real(0.4)),
+                          test::box_hull(Real(0.3), Real(0.3), Real(0.2))};
+  std::mt19937 rng(43);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int overlapping = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Shape& sa = shapes[trial % 4];
+    const Shape& sb = shapes[(trial / 4) % 4];
+    const Quat qa = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat qb = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Transform xa = at(Real(5) + u(rng), Real(0.5) * u(rng), 0, qa);
+    const Transform xb = at(Real(5) + u(rng), Real(0.5) * u(rng), Real(0.6) * u(rng), qb);
+    const PlacedShape pa = place(sa, xa, true), pb = place(sb, xb, true);
+    Simplex s;
+    const GjkResult g = gjk_placed(pa, pb, Vec3::Zero(), s, Real(0.05));
+    if (g.beyond || !g.overlap) continue;
+    ++overlapping;
+    const EpaResult own = epa_penetration(sa, xa, sb, xb);
+    const EpaResult after = epa_after_gjk(pa, pb, g, s);
+    ASSERT_EQ(after.ok, own.ok) << trial;
+    ASSERT_EQ(after.depth, own.depth) << trial;
+    ASSERT_EQ(after.normal, own.normal) << trial;
+    ASSERT_EQ(after.point_a, own.point_a) << trial;
+    ASSERT_EQ(after.point_b, own.point_b) << trial;
+  }
+  EXPECT_GT(overlapping, 500);
 }
 
 }  // namespace narrowphase_epa_test

@@ -262,5 +262,52 @@ TEST(Gjk, StopsEarlyOnlyPastTheRejectDistance) {
   EXPECT_GT(ran, 500);
 }
 
+// The sweep bound (conservative advancement's question): where GJK stops early, the shapes do stay
+// farther apart than the reach over the motion (sampled: B slides by -delta, no turn); elsewhere
+// the search is the plain one, bit for bit.
+TEST(Gjk, StopsEarlyOnlyWhereTheMotionStaysClear) {
+  const Shape shapes[] = {capsule(Real(0.2), Real(0.4)), box(Real(0.3), Real(0.2), Real(0.5)),
+                          cylinder(Real(0.3), Real(0.2)), test::round_hull(20, Real(0.4))};
+  std::mt19937 rng(37);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int stopped = 0, ran = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Shape& sa = shapes[trial % 4];
+    const Shape& sb = shapes[(trial / 4) % 4];
+    const Quat qa = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat qb = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Transform xb = at(Real(1.5) * u(rng), Real(1.5) * u(rng), Real(1.5) * u(rng), qb);
+    const PlacedShape a = place(sa, at(0, 0, 0, qa), true);
+    const PlacedShape b = place(sb, xb, true);
+    SweepBound bound;
+    bound.delta = Vec3(u(rng), u(rng), u(rng)) * Real(0.6);
+    bound.reach = Real(0.01) + Real(0.05) * (u(rng) + 1);
+    Simplex s0, s1;
+    const GjkResult full = gjk_placed(a, b, Vec3::Zero(), s0);
+    const GjkResult cut = gjk_placed(a, b, Vec3::Zero(), s1, bound);
+    if (cut.beyond) {
+      ++stopped;
+      ASSERT_GT(cut.lower_bound, bound.reach);
+      for (int k = 0; k <= 32; ++k) {
+        // A moves by delta relative to B: B's pose moves by -delta.
+        Transform moved = xb;
+        moved.position -= bound.delta * (Real(k) / 32);
+        const GjkResult g = gjk_distance(sa, at(0, 0, 0, qa), sb, moved);
+        ASSERT_FALSE(g.overlap) << trial << " " << k;
+        ASSERT_GT(g.distance, bound.reach * (1 - Real(1e-5))) << trial << " " << k;
+      }
+      continue;
+    }
+    ++ran;
+    ASSERT_EQ(cut.overlap, full.overlap);
+    ASSERT_EQ(cut.distance, full.distance);
+    ASSERT_EQ(cut.lower_bound, full.lower_bound);
+    ASSERT_EQ(cut.point_a, full.point_a);
+    ASSERT_EQ(cut.point_b, full.point_b);
+  }
+  EXPECT_GT(stopped, 500);
+  EXPECT_GT(ran, 500);
+}
+
 }  // namespace narrowphase_gjk_test
 }  // namespace elan::detail

@@ -152,5 +152,27 @@ TEST(Continuous, StaticBodyWithAManifoldIsLeftToTheSolveThoughInTheTree) {
   EXPECT_EQ(s.state.packets[1].dp, Vec3(2, 0, 0));
 }
 
+// A few static bodies are tested one by one, many through the tree: the same stop either way,
+// with dynamic leaves in the tree too (the world files every body there).
+TEST(Continuous, FewAndManyStaticBodiesGiveTheSameStop) {
+  const auto stop_with = [](int extra_walls) {
+    Scene s({Vec3(2, 0, 0)});
+    for (int k = 0; k < extra_walls; ++k) {
+      const uint32_t wall = uint32_t(s.bodies.push_back());
+      s.bodies.shape[wall] = 0;
+      s.bodies.motion[wall] = uint8_t(MotionType::Static);
+      // Beside the path (z from 3 m), and one more across it behind the first wall.
+      s.bodies.set_position(wall, k == 0 ? Vec3(Real(1.5), 0, 0) : Vec3(1, 0, Real(2 + k)));
+      s.state.packet_of.push_back(0);
+    }
+    for (uint32_t i = 0; i < s.bodies.size(); ++i) file_in_tree(s, i);
+    EXPECT_EQ(solve_continuous(s.bodies, s.shapes, {}, {}, s.touching, s.tree, s.state), 1u);
+    return s.state.packets[1].dp;
+  };
+  const Vec3 few = stop_with(3), many = stop_with(40);
+  EXPECT_EQ(few, many);
+  EXPECT_NEAR(few.x() + Real(0.05), Real(0.98) - kContinuousTarget, Real(0.25) * kContinuousTarget);
+}
+
 }  // namespace world_continuous_test
 }  // namespace elan::detail
