@@ -46,6 +46,7 @@ void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& o
   out.half_axes[0] = ax;
   out.half_axes[1] = ay;
   out.half_axes[2] = az;
+  out.half_extents = h;
   out.is_box = true;
 }
 
