@@ -79,8 +79,32 @@ Real min_projection(const Polyhedron& p, const Vec3& n) {
   return m;
 }
 
+// Faces of box `a` against box `b`, as query_faces. A box's faces come in opposite pairs,
+// normals[2k + 1] = -normals[2k], and b's least projection along -n is -(n.c) less the same
+// extents: negation is exact, so one set of products gives both faces' separations, the same bits
+// as min_projection's.
+FaceQuery query_box_faces(const Polyhedron& a, const Polyhedron& b) {
+  FaceQuery q;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& n = a.normals[2 * k];
+    const Real centre = n.dot(b.centre);
+    const Real extents = std::abs(n.dot(b.half_axes[0])) + std::abs(n.dot(b.half_axes[1])) +
+                         std::abs(n.dot(b.half_axes[2]));
+    const Real s[2] = {(centre - extents) - a.offsets[2 * k],
+                       (-centre - extents) - a.offsets[2 * k + 1]};
+    for (int side = 0; side < 2; ++side) {
+      if (s[side] > q.separation) {
+        q.separation = s[side];
+        q.face = 2 * k + side;
+      }
+    }
+  }
+  return q;
+}
+
 // Faces of `a` as axes: separation = how far b's deepest vertex is outside the face plane.
 FaceQuery query_faces(const Polyhedron& a, const Polyhedron& b) {
+  if (a.is_box && b.is_box) return query_box_faces(a, b);
   FaceQuery q;
   for (int f = 0; f < a.face_count; ++f) {
     const Real s = min_projection(b, a.normals[f]) - a.offsets[f];
