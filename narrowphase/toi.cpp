@@ -8,6 +8,7 @@
 
 #include "core/base/compound.hpp"
 #include "core/base/fixed_math.hpp"
+#include "core/base/fixed_slerp.hpp"
 #include "core/base/heightfield.hpp"
 #include "core/base/triangle_mesh.hpp"
 #include "narrowphase/collide.hpp"
@@ -19,10 +20,12 @@ namespace {
 
 constexpr int kMaxIterations = 64;
 
-Transform pose_at(const Transform& x0, const Transform& x1, Real t) {
+// The pose at t of the motion from x0 to x1: the position along the line, the rotation along
+// the arc (slerp, in the engine's own trigonometry: the same bits on every CPU).
+Transform pose_at(const Transform& x0, const Transform& x1, const SlerpArc& arc, Real t) {
   Transform x;
   x.position = x0.position + t * (x1.position - x0.position);
-  x.rotation = x0.rotation.slerp(t, x1.rotation);
+  x.rotation = slerp_at(arc, t);
   return x;
 }
 
@@ -79,8 +82,10 @@ Real convex_time_of_impact(const Shape& a, const Transform& xa0, const Transform
   // A point at distance <= bounding_radius from the centre moves at most |omega| r by rotation.
   const Real spin = rotation_angle(xa0.rotation, xa1.rotation) * a.bounding_radius +
                     rotation_angle(xb0.rotation, xb1.rotation) * b.bounding_radius;
+  const SlerpArc arc_a = make_slerp_arc(xa0.rotation, xa1.rotation);
+  const SlerpArc arc_b = make_slerp_arc(xb0.rotation, xb1.rotation);
   const auto distance = [&](Real t, const Vec3& dir, const SweepBound& bound) {
-    const Transform xa = pose_at(xa0, xa1, t), xb = pose_at(xb0, xb1, t);
+    const Transform xa = pose_at(xa0, xa1, arc_a, t), xb = pose_at(xb0, xb1, arc_b, t);
     Simplex s;
     return gjk_placed(place(a, xa, true), place(b, xb, true), dir, s, bound);
   };
@@ -147,7 +152,8 @@ Real surface_time_of_impact(const Shape& a, const Transform& xa0, const Transfor
   const Real clear = a.bounding_radius + target + tolerance + margin;
   // perf: every triangle's advancement starts at t = 0, where A's pose and placement are the
   // same for all: made once (the same computation, so the same bits).
-  const Transform start = pose_at(p0, p1, 0);
+  const SlerpArc arc = make_slerp_arc(p0.rotation, p1.rotation);
+  const Transform start = pose_at(p0, p1, arc, 0);
   const PlacedShape placed_start = place(a, {Vec3::Zero(), start.rotation}, true);
   Real best = 1;
   const auto visit = [&](const MeshTriangle& tri) {
@@ -177,7 +183,7 @@ Real surface_time_of_impact(const Shape& a, const Transform& xa0, const Transfor
                            tri.v[2] - start.position};
         return gjk_triangle(placed_start, v, dir, s, bound);
       }
-      const Transform x = pose_at(p0, p1, t);
+      const Transform x = pose_at(p0, p1, arc, t);
       const Vec3 v[3] = {tri.v[0] - x.position, tri.v[1] - x.position, tri.v[2] - x.position};
       return gjk_triangle(place(a, {Vec3::Zero(), x.rotation}, true), v, dir, s, bound);
     };

@@ -11,6 +11,7 @@
 #include "broadphase/bounds.hpp"
 #include "core/base/compound.hpp"
 #include "core/base/fixed_math.hpp"
+#include "core/base/fixed_slerp.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
 #include "narrowphase/collide.hpp"
@@ -208,7 +209,7 @@ std::size_t solve_continuous(const BodyStore& bodies, std::span<const Shape> sha
     const Quat q1 = (p.dq * q0).normalized();
     // The pose time_of_impact tested: position along the line, rotation slerped.
     p.dp *= t;
-    p.dq = (q0.slerp(t, q1) * q0.conjugate()).normalized();
+    p.dq = (fixed_slerp(q0, t, q1) * q0.conjugate()).normalized();
     ++moved;
   }
   return moved;

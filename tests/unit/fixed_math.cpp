@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
 // The engine's own sin, cos, atan2 and acos (core/base/fixed_math.hpp) against long double
 // references, within the bounds its comment states, and the C library's signs at the edges.
+// fixed_slerp (core/base/fixed_slerp.hpp) against Eigen's slerp in double.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include "core/base/fixed_math.hpp"
+#include "core/base/fixed_slerp.hpp"
 
 namespace elan::detail {
 namespace fixed_math_test {
@@ -83,6 +86,36 @@ TEST(FixedMath, AcosWithinItsBoundAndClampedOutsideOne) {
   EXPECT_NEAR(fixed_acos(-1.0), M_PI, kAngleBound);
   EXPECT_EQ(fixed_acos(1.5), 0.0);
   EXPECT_TRUE(std::isnan(fixed_acos(std::nan(""))));
+}
+
+// fixed_slerp against Eigen's slerp in double (the C library's trig, good to an ulp of double):
+// the float result within a few float epsilons, the rotation at t = 0 and t = 1 its ends' (the
+// shorter arc: q1 or -q1), and near-parallel pairs on the straight-line case without NaN.
+TEST(FixedMath, SlerpAgreesWithEigensInDoubleAndTakesTheShorterArc) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto draw = [&] { return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(); };
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Quaterniond a = draw();
+    // Every fourth pair nearly parallel (down to 1e-7 rad apart), the rest anywhere.
+    const Eigen::Quaterniond b =
+        i % 4 == 0 ? (a * Eigen::Quaterniond(1, 1e-7 * g(rng), 1e-7 * g(rng), 0).normalized())
+                   : draw();
+    const double t = i % 10 == 0 ? double(i % 20 == 0) : unit(rng);
+    const Quat qa = a.cast<Real>(), qb = b.cast<Real>();
+    const Quat got = fixed_slerp(qa, Real(t), qb);
+    const Eigen::Quaterniond want = qa.cast<double>().slerp(t, qb.cast<double>());
+    // The same rotation: |dot| = 1 up to float rounding; and the same sign (shorter arc from a).
+    EXPECT_NEAR(got.cast<double>().dot(want), 1.0, 4e-6) << i << " t " << t;
+    EXPECT_NEAR(double(got.norm()), 1.0, 4e-6) << i;
+    if (t == 0) {
+      EXPECT_NEAR(got.cast<double>().dot(qa.cast<double>()), 1.0, 4e-6) << i;
+    }
+    if (t == 1) {
+      EXPECT_NEAR(std::abs(got.cast<double>().dot(qb.cast<double>())), 1.0, 4e-6) << i;
+    }
+  }
 }
 
 }  // namespace fixed_math_test
