@@ -5,6 +5,7 @@
 #include "core/scene/ragdoll.hpp"
 
 #include <array>
+#include <cmath>
 #include <string>
 
 namespace elan::detail::scene_file {
@@ -107,8 +108,10 @@ void expand_ragdoll(const RagdollDef& r, const Vec3& origin, std::vector<SceneBo
     return (o + q * (s * Eigen::Vector3d(x, y, z))).cast<Real>();
   };
   // A capsule's axis is its local Y: a quarter turn about z lays it along x.
-  const Eigen::Quaterniond along_x(
-      Eigen::AngleAxisd(-0.5 * 3.14159265358979323846, Eigen::Vector3d::UnitZ()));
+  // (cos(-pi/4), 0, 0, sin(-pi/4)): exactly sqrt(1/2) each, without the C library's sin and cos,
+  // whose last bit depends on the CPU (determinism, rule 7).
+  const double half = std::sqrt(0.5);
+  const Eigen::Quaterniond along_x(half, 0, 0, -half);
   const int first = int(bodies.size());
   const std::size_t parts = ragdoll_bodies(r);
   for (std::size_t i = 0; i < parts; ++i) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/base/fixed_math.hpp"
 #include "core/base/range_checks.hpp"
 #include "core/world/recorder_hooks.hpp"
 #include "core/world/sensors.hpp"
@@ -202,9 +203,15 @@ void World::move_kinematic(BodyId id, const Transform& target, Real dt) {
   const Quat q1 = (q_target * shape.frame_rotation).normalized();
   Quat dq = q1 * s.bodies.orientation(i).conjugate();
   if (dq.w() < 0) dq.coeffs() = -dq.coeffs();  // the shorter arc
-  const Eigen::AngleAxis<Real> aa(dq.normalized());
+  // angle = 2 atan2(|v|, w) of the unit dq = (w, v), axis v / |v|, as Eigen's AngleAxis reads a
+  // quaternion, but with the engine's own atan2 (determinism, rule 7: the C library's is not the
+  // same on every CPU).
+  const Quat u = dq.normalized();
+  const Real n = u.vec().norm();
+  const Real angle = n > 0 ? Real(2 * detail::fixed_atan2(double(n), double(u.w()))) : Real(0);
+  const Vec3 axis = n > 0 ? Vec3(u.vec() / n) : Vec3::UnitX();
   s.bodies.set_linear_velocity(i, (com_target - s.bodies.position(i)) / dt);
-  s.bodies.set_angular_velocity(i, aa.axis() * (aa.angle() / dt));
+  s.bodies.set_angular_velocity(i, axis * (angle / dt));
 }
 
 void World::wake(BodyId id) {

@@ -40,7 +40,7 @@ constexpr bool kCompareConstants = true;
 const std::map<std::string, uint64_t>& golden() {
   static const std::map<std::string, uint64_t> table = {
       {"chains", 0xa7d3290f4bb549ebull},         {"joint_grid", 0x8a30cbea3997a9f2ull},
-      {"joints_demo", 0x709a60d5cf2c92fdull},    {"ragdolls", 0x0d653e3cbb05541eull},
+      {"joints_demo", 0x709a60d5cf2c92fdull},    {"ragdolls", 0x8da93fcb69d50711ull},
       {"jolt_pyramid", 0xab344d7ada962341ull},   {"many_pyramids", 0xe3fb7ffc9f7b0a61ull},
       {"pile10k", 0x796ec9eaa4ab5018ull},        {"pile1k", 0x0ad6b76142c14ee6ull},
       {"pile4k", 0x39280fd49ba86935ull},         {"pyramid10", 0x3043830915c9b8b9ull},
