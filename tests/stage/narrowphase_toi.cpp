@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/base/fixed_math.hpp"
+#include "core/base/fixed_slerp.hpp"
 #include "core/base/heightfield.hpp"
 #include "narrowphase/collide.hpp"
 #include "narrowphase/gjk.hpp"
@@ -80,7 +81,7 @@ TEST(TimeOfImpact, RotationIsBoundedWithoutOvershoot) {
   const Real t = time_of_impact(ball, xs, xs, bar, xb0, xb1, target);
   ASSERT_LT(t, 1);
   Transform xb;
-  xb.rotation = xb0.rotation.slerp(t, xb1.rotation);
+  xb.rotation = fixed_slerp(xb0.rotation, t, xb1.rotation);
   const GjkResult g = gjk_distance(ball, xs, bar, xb);
   EXPECT_GE(g.distance, target - Real(1e-5));
   EXPECT_LE(g.distance, target + allowance(target, bar.bounding_radius) + Real(1e-5));
@@ -107,7 +108,7 @@ Real reference_time_of_impact(const Shape& a, const Transform& xa0, const Transf
   const auto pose = [](const Transform& x0, const Transform& x1, Real t) {
     Transform x;
     x.position = x0.position + t * (x1.position - x0.position);
-    x.rotation = x0.rotation.slerp(t, x1.rotation);
+    x.rotation = fixed_slerp(x0.rotation, t, x1.rotation);
     return x;
   };
   Vec3 dir = xb0.position - xa0.position;
@@ -219,7 +220,7 @@ TEST(TimeOfImpact, SurfaceImpactIsTheEarliestOverItsTriangles) {
     const auto nearest = [&](Real time) {
       Transform x;
       x.position = x0.position + time * d;
-      x.rotation = x0.rotation.slerp(time, x1.rotation);
+      x.rotation = fixed_slerp(x0.rotation, time, x1.rotation);
       Real best = std::numeric_limits<Real>::max();
       for (uint32_t k = 0; k < 2 * (kColumns - 1) * (kColumns - 1); ++k) {
         const MeshTriangle tri = field->corners(k);
