@@ -269,10 +269,12 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
   c.twist_mass = inverse_or_zero(k_twist);
   if (!ctx.loaded_lanes.empty()) {
     // A row is loaded when its soft spring would give more than kDirectGive under the impulse it
-    // carried last step, lambda gamma / m_eff > kDirectGive (direct_solve.hpp), or is pressed
-    // into a static or kinematic body deeper than a landing overshoots (kDirectDepth): two
-    // dynamic bodies pressed that deep have met in an impact or been spawned overlapping, and
-    // what their rows carry is the push-out, not a load (a load shows in the give),
+    // carried last step, lambda gamma / m_eff > kDirectGive (direct_solve.hpp), or its face is
+    // sinking (kDirectDepth): pressed into a static or kinematic body deeper than a landing
+    // overshoots, and its patch centre still closing, slower than an impact but by more than
+    // kDirectGive a step. Two dynamic bodies pressed that deep have met in an impact or been
+    // spawned overlapping, and what their rows carry is the push-out, not a load (a load shows
+    // in the give),
     const auto fixed_b = mb.inv_mass == zero;
     const Wide give = fixed_b ? splat(ctx.static_give) : splat(ctx.contact_give);
     const Wide limit = splat(kDirectGive);
@@ -282,14 +284,21 @@ void prepare_bundle(const ContactSolverContext& ctx, const BodyStore& bodies,
     // contacts of round shapes roll and spin, and their rows are left to the passes.
     const auto face = point_count > splat(Real(2));
     Wide warm = zero;
+    Wide approach = zero;  // the points' relative normal velocities, summed (unused: zero)
     auto resting = point_count > zero;
     for (int k = 0; k < points; ++k) {
       const WideNormalRow& p = row_of(c, rows, k);
       loaded = loaded | (give * p.normal_impulse > limit * p.normal_mass);
       deep = deep | ((p.separation < splat(-kDirectDepth)) & (p.normal_mass > zero) & fixed_b);
       warm = warm + p.normal_impulse;
+      approach = approach + bounce.relative_velocity[k];
       resting = resting & (bounce.relative_velocity[k] > splat(-kDirectRestSpeed));
     }
+    // The relative normal velocity is linear in the point, so the points' mean is the patch
+    // centre's: it closes (negative) faster than sink_speed while no point comes in as fast as
+    // an impact. A face deep after an impact is being pushed out (opening), one deep in an
+    // impact comes in fast: neither is a load (kDirectDepth).
+    deep = deep & resting & (inv_count * approach < splat(-ctx.sink_speed));
     // or placed: a face of a body the API has just placed (kPlaced), met slowly, is a support
     // about to take its load with nothing to warm start from. Gauss-Seidel would carry a tower's
     // weight up from the ground over many steps, and the tower sink meanwhile by the soft give of

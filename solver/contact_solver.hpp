@@ -74,10 +74,13 @@ struct ContactSolverContext {
   Real restitution_threshold = 1;  // m/s: slower approaches do not bounce
   // Per bundle, written by prepare_bundle: the lanes whose rows carry a load their soft spring
   // would give under by more than kDirectGive (direct_solve.hpp), a bit a lane, and above them
-  // those pressed into a static body deeper than kDirectDepth (DirectState). Empty: not
+  // those sinking into a static body (kDirectDepth, DirectState). Empty: not
   // wanted. The give per impulse of each softness (give_per_impulse), s/kg.
   std::span<uint32_t> loaded_lanes;
   Real contact_give = 0, static_give = 0;
+  // m/s: a deep face whose patch centre closes faster than this is sinking (kDirectDepth):
+  // kDirectGive a step.
+  Real sink_speed = 0;
   // Some body carries kPlaced: its new face supports are loaded rows, and the direct solve's
   // active set starts with the rows closing at no speed (direct_solve.cpp). Else neither is
   // looked for, at no cost.

@@ -379,7 +379,7 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     const uint64_t root = ds.items[2 * ds.order[k]] >> 32;
     std::size_t end = k;
     uint32_t row_count = 0;
-    // One manifold, not pressed deep into a static surface (kDirectDepth).
+    // One manifold, not sinking into a static surface (kDirectDepth).
     bool lone = false;
     uint32_t manifolds = 0;
     bool joint = false, deep = false;
@@ -412,8 +412,8 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     // weight of its bodies and of the unloaded rows around them (a table on a table or on the
     // ground). Such a row is past kDirectGive mostly for a step or two after an impact, and an
     // active set that chases a bouncing body seldom settles. A mass ratio has a second loaded
-    // row (the light body's support), a tower many. A face pressed deep into a static surface
-    // (a body sinking into a thin mesh) is solved alone all the same.
+    // row (the light body's support), a tower many. A face sinking into a static surface
+    // (kDirectDepth: deep, and still closing) is solved alone all the same.
     // So is a short stack of even masses (kDirectShortStack, kDirectEvenMass): no light body
     // under a heavy one and no long chain, so the passes carry its load within a step or two,
     // and its rows give what kDirectGive allows a few bodies' weight. The active set of such a

@@ -61,21 +61,28 @@ inline constexpr Real kDirectJointGive = Real(0.001);  // m
 // A face contact of a body just placed (kPlaced), with no warm impulse, is solved directly if its
 // bodies approach slower than this (prepare_bundle): a resting support, not an impact; about a
 // step of gravity at 60 Hz and half the restitution threshold.
-// Depth is a criterion only well past a landing's overshoot (kDirectDepth): the direct solve is
-// for resting load, not impacts. A body landing at
-// speed v presses in by the overshoot of its soft row, about v / omega (0.5 m/s: 1.7 mm at
-// 46 Hz), whatever it weighs, so a depth threshold (a single body at rest already sits
-// g / omega^2 deep, 0.1 mm at 46 Hz) takes every landing body's rows. They settle in the passes
-// within a few steps, while in the direct solve the active set chases the bouncing, tumbling
-// body and often does not settle, its work thrown away. A tower placed at rest, which sinks
-// while Gauss-Seidel carries its weight up, is taken by the placed rule on its first step, and
-// by its warm impulses (lambda gamma / m_eff > kDirectGive) from then on.
+// Depth alone is no criterion: the direct solve is for resting load, not impacts. A body landing
+// at speed v presses in by the overshoot of its soft row, about v / omega (0.5 m/s: 1.7 mm at
+// 46 Hz; 14 m/s: 4.8 cm), whatever it weighs, so a depth threshold (a single body at rest already
+// sits g / omega^2 deep, 0.1 mm at 46 Hz) takes every landing body's rows. They settle in the
+// passes within a few steps, while in the direct solve the active set chases the bouncing,
+// tumbling body and often does not settle, its work thrown away. A tower placed at rest, which
+// sinks while Gauss-Seidel carries its weight up, is taken by the placed rule on its first step,
+// and by its warm impulses (lambda gamma / m_eff > kDirectGive) from then on.
 inline constexpr Real kDirectRestSpeed = Real(0.5);  // m/s
-// Rows pressed into a static or kinematic body deeper than this are solved directly too
-// (prepare_bundle), even a lone manifold: a body sinking into a surface under a load its rows do
-// not carry yet. Three times the overshoot v / omega of a landing at kDirectRestSpeed. Two
-// dynamic bodies that deep have met in an impact (a table's leg through another's top) or were
-// spawned overlapping: the push-out, not a load.
+// A face pressed into a static or kinematic body deeper than this and sinking is solved directly
+// too (prepare_bundle), even a lone manifold: a body sinking into a surface under a load its rows
+// do not carry yet. Sinking: its patch centre still closes, faster than kDirectGive a step,
+//   v_c = (1 / n) sum_k v_k < -kDirectGive / dt   (ContactSolverContext::sink_speed),
+// v_k = n . (v_B(p_k) - v_A(p_k)) the points' relative normal velocities at the step's start
+// (linear in the point, so their mean is the centre's), and no point closes faster than
+// kDirectRestSpeed. The relax pass leaves rows that carry their load at v_n = 0, so a face that
+// still closes by more than a loaded row may give within a step is one the passes did not hold.
+// A landing's deep face is not sinking: in the step it strikes, it closes faster than
+// kDirectRestSpeed (an impact), and in the steps after, its rows push it out (v_c > 0) or hold it
+// (v_c about 0): the passes settle it. Two dynamic bodies that deep have met in an impact (a
+// table's leg through another's top) or were spawned overlapping: the push-out, not a load.
+// Three times the overshoot v / omega of a landing at kDirectRestSpeed.
 inline constexpr Real kDirectDepth = Real(0.005);  // m
 // A system of contacts only, none deep, of at most this many manifolds whose bodies' masses are
 // within kDirectEvenMass of each other is left to Gauss-Seidel (build_direct_systems): a column
@@ -170,8 +177,8 @@ inline constexpr uint32_t kLaneBits = (uint32_t(1) << kLanes) - 1;
 
 struct DirectState {
   // Per bundle (prepare_bundle): the lanes whose rows are loaded, a bit a lane (bits
-  // [0, kLanes)), and of those the faces pressed into a static or kinematic body deeper than
-  // kDirectDepth (bits [kLanes, 2 kLanes)).
+  // [0, kLanes)), and of those the faces sinking into a static or kinematic body (kDirectDepth)
+  // (bits [kLanes, 2 kLanes)).
   std::vector<uint32_t> loaded_lanes;
   // Per block of prepare_joints' loop: some row in it is loaded (JointRow kJointLoaded).
   std::vector<uint8_t> loaded_joint_blocks;
@@ -209,11 +216,11 @@ struct DirectState {
 
 // Serial, before the substeps: the loaded rows of islands (islands.hpp: `island_root` per body,
 // `island_size` per root) of at most kDirectMaxBodies bodies, one system per set of them linked
-// through their bodies, but for a set of one manifold that is not deep (left to the passes:
-// one contact's give is bounded by its bodies' weight; direct_solve.cpp) and a short stack of
-// even masses (kDirectShortStack). Reads
-// ds.loaded_lanes, ds.loaded_joint_blocks (block size `joint_grain`), the bundles' lanes and point
-// counts, the joint rows' packets and flags. Returns whether any system is to be solved.
+// through their bodies, but for a set of one manifold that is not sinking (kDirectDepth; left to
+// the passes: one contact's give is bounded by its bodies' weight; direct_solve.cpp) and a short
+// stack of even masses (kDirectShortStack). Reads ds.loaded_lanes, ds.loaded_joint_blocks (block
+// size `joint_grain`), the bundles' lanes and point counts, the joint rows' packets and flags.
+// Returns whether any system is to be solved.
 bool build_direct_systems(const ContactSolverContext& ctx, std::span<const ManifoldHead> contacts,
                           std::span<const JointRow> joints, std::size_t joint_grain,
                           std::span<const uint32_t> island_root,

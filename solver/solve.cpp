@@ -56,6 +56,7 @@ ContactSolverContext make_solver_context(const SolveSettings& settings, SolverSt
   ctx.loaded_lanes = state.direct.loaded_lanes;
   ctx.contact_give = give_per_impulse(ctx.contact_softness);
   ctx.static_give = give_per_impulse(ctx.static_softness);
+  ctx.sink_speed = kDirectGive / settings.dt;
   ctx.bodies_placed = settings.bodies_placed;
   ctx.bodies_separating = settings.bodies_separating;
   ctx.max_push_velocity = settings.max_push_velocity;
