@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -222,20 +223,29 @@ TEST(Gjk, DegenerateInputsStayFiniteAndTerminate) {
   EXPECT_LE(g.iterations, 64);
 }
 
+// The early-stop tests' shapes, every kind GJK meets with a core (round and flat), paired in
+// turn, and a random turn of each (w biased positive: away from the double cover's far side).
+std::array<Shape, 4> stop_test_shapes() {
+  return {capsule(Real(0.2), Real(0.4)), box(Real(0.3), Real(0.2), Real(0.5)),
+          cylinder(Real(0.3), Real(0.2)), test::round_hull(20, Real(0.4))};
+}
+
+Quat random_turn(std::mt19937& rng, std::uniform_real_distribution<float>& u) {
+  return Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+}
+
 // GJK between two shapes told to stop past a distance: when it stops early its lower bound is past
 // that distance and the search run to the end finds the shapes at least that far apart (to GJK's
 // relative tolerance, 1e-5); when it does not, it is the search run to the end, bit for bit.
 TEST(Gjk, StopsEarlyOnlyPastTheRejectDistance) {
-  const Shape shapes[] = {capsule(Real(0.2), Real(0.4)), box(Real(0.3), Real(0.2), Real(0.5)),
-                          cylinder(Real(0.3), Real(0.2)), test::round_hull(20, Real(0.4))};
+  const std::array<Shape, 4> shapes = stop_test_shapes();
   std::mt19937 rng(31);
   std::uniform_real_distribution<float> u(-1, 1);
   int stopped = 0, ran = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const Shape& sa = shapes[trial % 4];
     const Shape& sb = shapes[(trial / 4) % 4];
-    const Quat qa = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
-    const Quat qb = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat qa = random_turn(rng, u), qb = random_turn(rng, u);
     const PlacedShape a = place(sa, at(0, 0, 0, qa), true);
     const PlacedShape b =
         place(sb, at(Real(1.2) * u(rng), Real(1.2) * u(rng), Real(1.2) * u(rng), qb), true);
@@ -266,16 +276,14 @@ TEST(Gjk, StopsEarlyOnlyPastTheRejectDistance) {
 // farther apart than the reach over the motion (sampled: B slides by -delta, no turn); elsewhere
 // the search is the plain one, bit for bit.
 TEST(Gjk, StopsEarlyOnlyWhereTheMotionStaysClear) {
-  const Shape shapes[] = {capsule(Real(0.2), Real(0.4)), box(Real(0.3), Real(0.2), Real(0.5)),
-                          cylinder(Real(0.3), Real(0.2)), test::round_hull(20, Real(0.4))};
+  const std::array<Shape, 4> shapes = stop_test_shapes();
   std::mt19937 rng(37);
   std::uniform_real_distribution<float> u(-1, 1);
   int stopped = 0, ran = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const Shape& sa = shapes[trial % 4];
     const Shape& sb = shapes[(trial / 4) % 4];
-    const Quat qa = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
-    const Quat qb = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat qa = random_turn(rng, u), qb = random_turn(rng, u);
     const Transform xb = at(Real(1.5) * u(rng), Real(1.5) * u(rng), Real(1.5) * u(rng), qb);
     const PlacedShape a = place(sa, at(0, 0, 0, qa), true);
     const PlacedShape b = place(sb, xb, true);
