@@ -240,8 +240,8 @@ TEST(Epa, AfterTheCallersGjkMatchesItsOwnSearch) {
   for (int trial = 0; trial < 3000; ++trial) {
     const Shape& sa = shapes[trial % 4];
     const Shape& sb = shapes[(trial / 4) % 4];
-    const Quat qa = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
-    const Quat qb = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat qa = test::random_turn(rng, u);
+    const Quat qb = test::random_turn(rng, u);
     const Transform xa = at(Real(5) + u(rng), Real(0.5) * u(rng), 0, qa);
     const Transform xb = at(Real(5) + u(rng), Real(0.5) * u(rng), Real(0.6) * u(rng), qb);
     const PlacedShape pa = place(sa, xa, true), pb = place(sb, xb, true);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
@@ -40,6 +41,12 @@ inline Shape sphere(Real radius) {
   d.type = ShapeType::Sphere;
   d.radius = radius;
   return make_shape(d);
+}
+
+// A random rotation for the randomised tests: a normalised quaternion of uniform components with
+// w biased positive (away from the double cover's far side).
+inline Quat random_turn(std::mt19937& rng, std::uniform_real_distribution<float>& u) {
+  return Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
 }
 
 // The hull of a box's eight corners: must collide exactly like the box.

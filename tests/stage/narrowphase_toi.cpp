@@ -17,6 +17,7 @@
 #include "narrowphase/collide.hpp"
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/minkowski.hpp"
+#include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
 namespace narrowphase_toi_test {
@@ -133,23 +134,11 @@ TEST(TimeOfImpact, ConvexMatchesTheFullAdvancement) {
   std::vector<Shape> shapes;
   shapes.push_back(make(ShapeType::Sphere, Real(0.3)));
   shapes.push_back(make(ShapeType::Box, 0, Vec3(Real(0.35), Real(0.2), Real(0.4))));
-  shapes.push_back([] {
-    ShapeDef d;
-    d.type = ShapeType::Capsule;
-    d.radius = Real(0.25);
-    d.half_height = Real(0.3);
-    return make_shape(d);
-  }());
-  shapes.push_back([] {
-    ShapeDef d;
-    d.type = ShapeType::Cylinder;
-    d.radius = Real(0.35);
-    d.half_height = Real(0.3);
-    return make_shape(d);
-  }());
+  shapes.push_back(test::capsule(Real(0.25), Real(0.3)));
+  shapes.push_back(test::cylinder(Real(0.35), Real(0.3)));
   std::mt19937 rng(41);
   std::uniform_real_distribution<float> u(-1, 1);
-  const auto turn = [&] { return Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized(); };
+  const auto turn = [&] { return test::random_turn(rng, u); };
   int hits = 0, misses = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     const Shape& sa = shapes[std::size_t(trial) % shapes.size()];
@@ -205,7 +194,7 @@ TEST(TimeOfImpact, SurfaceImpactIsTheEarliestOverItsTriangles) {
   int hits = 0, misses = 0;
   for (int trial = 0; trial < 240; ++trial) {
     const Shape& s = shapes[trial % 4];
-    const Quat q0 = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat q0 = test::random_turn(rng, u);
     const Quat q1 = (Quat(Eigen::AngleAxis<Real>(Real(0.8) * u(rng),
                                                  Vec3(u(rng), u(rng), u(rng)).normalized())) *
                      q0)

@@ -300,7 +300,7 @@ TEST(TriangleContact, FiniteOnRandomAndDegenerateInput) {
     const Shape& s = shapes[trial % 6];
     Vec3 p(u(rng), Real(0.5) * u(rng), u(rng));
     if (trial % 7 == 0) p = (t.v[0] + t.v[1] + t.v[2]) / 3;  // centred on the plane
-    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat q = test::random_turn(rng, u);
     TriangleContact c;
     if (!collide_triangle(s, at(p.x(), p.y(), p.z(), q), t, kSpec, c)) continue;
     ++touching;
@@ -330,7 +330,7 @@ TEST(TriangleContact, GjkStopsEarlyOnlyPastTheRejectDistance) {
     Vec3 v[3];
     for (int k = 0; k < 3; ++k) v[k] = Vec3(u(rng), Real(0.2) * u(rng), u(rng));
     const Shape& s = shapes[trial % 4];
-    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat q = test::random_turn(rng, u);
     const PlacedShape a = place(s, at(u(rng), Real(0.6) * u(rng), u(rng), q), false);
     const Real reject = Real(0.05) + Real(0.1) * (u(rng) + 1);
     Simplex s0, s1;
@@ -367,7 +367,7 @@ TEST(TriangleContact, GjkFromTheClosestPointAgreesInFewerIterations) {
     MeshTriangle t;
     for (int k = 0; k < 3; ++k) t.v[k] = Vec3(u(rng), Real(0.2) * u(rng), u(rng));
     const Shape& s = shapes[trial % 4];
-    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat q = test::random_turn(rng, u);
     const TriangleQuery query = make_triangle_query(
         s, at(Real(1.5) * u(rng), Real(0.2) + Real(0.4) * u(rng), Real(1.5) * u(rng), q),
         Real(0.5));
@@ -404,7 +404,7 @@ TEST(TriangleContact, HeightfieldQueryMatchesWholeTriangles) {
   int contacts = 0, rejected = 0;
   for (int trial = 0; trial < 600; ++trial) {
     const Shape& s = shapes[trial % 6];
-    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat q = test::random_turn(rng, u);
     // Over the field's middle, from well clear of it to half sunk.
     const Transform xa =
         at(2 + Real(1.2) * u(rng), Real(0.35) + Real(0.3) * u(rng), 2 + Real(1.2) * u(rng), q);
@@ -474,7 +474,7 @@ TEST(TriangleContact, ReachRejectsOnlyTrianglesWithoutAContact) {
   int dropped = 0, kept = 0;
   for (int trial = 0; trial < 1500; ++trial) {
     const Shape& s = shapes[1 + trial % 5];
-    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat q = test::random_turn(rng, u);
     const Transform xa =
         at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng), q);
     TriangleQuery query = make_triangle_query(s, xa, kSpec);
@@ -514,7 +514,7 @@ TEST(TriangleContact, ClearOfBoxOnlyWhenItsTrianglesGiveNothing) {
   int clear = 0, not_clear = 0;
   for (int trial = 0; trial < 1200; ++trial) {
     const Shape& s = shapes[trial % 6];
-    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+    const Quat q = test::random_turn(rng, u);
     const Transform xa =
         at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng), q);
     TriangleQuery query = make_triangle_query(s, xa, kSpec);
