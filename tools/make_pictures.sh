@@ -15,7 +15,7 @@ command -v convert >/dev/null || { echo "make_pictures: ImageMagick's convert is
 # Without a display, everything runs in one Xvfb server (Mesa's software renderer).
 if [ -z "${DISPLAY:-}" ]; then
   command -v xvfb-run >/dev/null || { echo "make_pictures: no display and no xvfb-run (apt-get install xvfb xauth)" >&2; exit 2; }
-  exec xvfb-run -a -s "-screen 0 1280x1024x24" "$0" "$@"
+  exec xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$0" "$@"
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

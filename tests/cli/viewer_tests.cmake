@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 # Tests of `elan view`, when the viewer is built. The picture tests need an X display: without
 # one (DISPLAY unset) they are skipped, with the reason; tools/test.sh runs ctest under
-# `xvfb-run -a` so that they run on Mesa's software renderer.
+# `xvfb-run -a` so that they run on Mesa's software renderer, with Xvfb's `-noreset` (a server
+# that resets when its last client leaves refuses the next test's connection for a moment).
 if(TARGET elan_viewer)
   add_executable(test_cli_viewer ${CMAKE_CURRENT_LIST_DIR}/viewer_test.cpp)
   target_link_libraries(test_cli_viewer PRIVATE elan elan_options nlohmann_json::nlohmann_json
