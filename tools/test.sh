@@ -68,8 +68,8 @@ ctest --test-dir build/test-native -j"$jobs" --output-on-failure --timeout 300 -
 # - the tests that repeat a whole run at other thread counts and broadphases to compare hashes:
 #   the ThreadSanitizer build below runs them, and the code they reach here is run once by the
 #   golden scenes and the stage tests;
-# - three long settling runs (a 30x30 joint grid, a 500-body pile, a 20-row pyramid) whose
-#   stages smaller physics tests run;
+# - four long settling runs (a 30x30 joint grid, a 500-body pile, a mixed pile, a 20-row pyramid)
+#   whose stages smaller physics tests run;
 # - the warm pyramid's allocation count (260 steps of jolt_pyramid, 40 s here): the count is the
 #   Release build's to check, ThreadSanitizer runs it too, and pyramid10 and tower20 reach its
 #   stages;
@@ -78,6 +78,12 @@ ctest --test-dir build/test-native -j"$jobs" --output-on-failure --timeout 300 -
 # - the step buffers' accounting over 120 steps of pile4k (35 s here), which counts bytes, and
 #   whose stages pile1k runs; and the time of impact's oracle over 240 paths (25 s here), whose
 #   code the geometry scenes run;
+# - more tests whose check is that two runs give the same hashes (at other thread counts or
+#   broadphases, run twice in one process, rolled back and run again, loaded at 1 and 2 threads):
+#   the ThreadSanitizer build and the Release build run them, and the code they reach is run here
+#   by the snapshot, rollback and soak tests that stay; with them the tumbler scene (kinematic
+#   bodies, which the API tests move) and the sweep's 20,000-box match (the moving scene's match
+#   runs the same code);
 # - two narrowphase tolerances that the random hulls drawn under clang miss by a few 1e-6 (the
 #   argument order of the draws differs between compilers; not a defect of the engine);
 # - the public-header check, which reads gcc's include output.
@@ -89,6 +95,11 @@ asan_skip+='|GeometryDeterminism.HashEqualEveryStep|GeometryWorld.SameHashesForA
 asan_skip+='|JointSettling.JointGridHangsFromItsPins|Pile.Pile1kSettlesInItsContainer|Stacking.Pyramid20Stands'
 asan_skip+='|StepAllocations.NoneOnceAPyramidIsWarm|GoldenHash.*"(ragdolls|convex_vs_mesh)"'
 asan_skip+='|MemoryUse.StepBuffersAreGivenBackWithinTheStep|TimeOfImpact.SurfaceImpactIsTheEarliest'
+asan_skip+='|Determinism.SameHashesWhenRunTwiceInProcess|Determinism.OneAndTwoThreadsSideBySide'
+asan_skip+='|Rollback.RollingBackAndRunningAgainGivesTheSameHashes|JointDeterminism.SameHashesForAnyThread'
+asan_skip+='|Snapshot.LoadedWorldContinuesBitIdenticallyAtOneAndTwoThreads|CrowdDeterminism.SameHash'
+asan_skip+='|GoldenHash.*"tumbler"|SweepAndPrune.MatchesBruteForceOnTwentyThousandBoxes'
+asan_skip+='|Pile.MixedPileSettlesInItsContainer'
 echo "== clang build with ASan + UBSan (and the fuzz targets), and tests"
 cmake -S . -B build/test-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
       -DELAN_FUZZ=ON -DELAN_FUZZ_TRACE_CMP=OFF \
@@ -131,10 +142,17 @@ fi
 #   race can show, and the ASan build above checks the same constants in a clang build; the
 #   determinism tests run scenes at 1-4 threads and both broadphases here;
 # - the step buffers' accounting and the time of impact's oracle, which run no threads;
+# - the snapshot and rollback format tests (sizes, refused states, resealed bytes, settings),
+#   whose threads only step the world they save, as the restore tests that stay do; pile1k run
+#   twice in one process, and the sweep's 20,000-box match, whose threaded code the moving
+#   scene's match and the determinism tests run;
 # - the same clang-only skips as above.
 tsan_skip='GoldenHash|Gjk.MatchesExactDistanceOnRandomHulls'
 tsan_skip+='|CollidePairs.CarriedManifoldsAgreeWithTheExactTest|Unit.PublicHeadersIncludeNoTbbOrJson'
 tsan_skip+='|MemoryUse.StepBuffersAreGivenBackWithinTheStep|TimeOfImpact.SurfaceImpactIsTheEarliest'
+tsan_skip+='|Rollback.(SizeIsEightyOne|AnotherWorldsState|CorruptOrTruncated)|SnapshotSurfaces.Resealed'
+tsan_skip+='|Snapshot.(RestoresSettingsStepCountAndShapes|SavingALoadedWorldGivesTheSameBytes)'
+tsan_skip+='|Determinism.SameHashesWhenRunTwiceInProcess|SweepAndPrune.MatchesBruteForceOnTwentyThousandBoxes'
 echo "== ThreadSanitizer build of the threaded tests (unit, stage, determinism), and tests"
 # Only the areas whose tests run threads (docs/sanitizers.md); no tools, benchmarks or fuzz
 # drivers. halt_on_error: the first report fails its test.
