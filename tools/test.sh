@@ -29,15 +29,15 @@ fi
 # The first build is the one users get from a plain Release configure: portable, with the SIMD
 # path chosen at run time for this CPU. It runs every test, under a virtual X server so that the
 # viewer's picture tests have a display (they skip without one), and the Python tests. Its files
-# are compiled four at a time as one unit, as in the builds below (a third less compile time):
-# with no contraction into FMA, how the code is inlined changes no bit, and the golden hashes,
-# made by a build of one file per unit, check that here.
+# are compiled four at a time as one unit, as in the builds below, which shares the parsing of
+# Eigen and TBB. With no contraction into FMA, how the code is inlined changes no bit, and the
+# golden hashes, made by a build of one file per unit, check that here.
 echo "== Release build (portable) and tests"
 cmake -S . -B build/test-release -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=4
 cmake --build build/test-release -j"$jobs"
 # -noreset: by default Xvfb resets when its last client leaves, and a viewer test that connects
-# during the reset gets no display (74 of 3,000 quick reconnects failed here without it, none with).
+# during the reset gets no display.
 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
   ctest --test-dir build/test-release -j"$jobs" --output-on-failure --timeout 300
 

@@ -12,8 +12,7 @@ namespace elan::detail {
 // The room a buffer that must hold n grows to: a quarter past n, and at least kGrowFloor past it.
 // A count that creeps up step by step (a settling pile's pairs) would otherwise reallocate at
 // every new high, and doubling would leave up to half of it unused for good. The floor is for
-// small counts, whose quarter is a few entries that a scene's ordinary wander passes (60 bodies
-// on a mesh: their apart pairs' cache went from its high by more than a quarter after step 300).
+// small counts, whose quarter is a few entries that a scene's ordinary wander passes.
 inline constexpr std::size_t kGrowFloor = 64;
 inline std::size_t grown_room(std::size_t n) {
   return n + std::max(n / 4, kGrowFloor);

@@ -178,17 +178,10 @@ TEST(TimeOfImpact, SurfaceImpactIsTheEarliestOverItsTriangles) {
   surface.local_max = Vec3(4, field->max_height, 4);
   surface.bounding_radius = Real(3);
   surface.heightfield = field;
-  const auto round = [](ShapeType type, Real radius, Real half_height) {
-    ShapeDef d;
-    d.type = type;
-    d.radius = radius;
-    d.half_height = half_height;
-    return make_shape(d);
-  };
   const Shape shapes[] = {make(ShapeType::Sphere, Real(0.2)),
                           make(ShapeType::Box, 0, Vec3(Real(0.3), Real(0.1), Real(0.2))),
-                          round(ShapeType::Capsule, Real(0.1), Real(0.3)),
-                          round(ShapeType::Cylinder, Real(0.25), Real(0.1))};
+                          test::capsule(Real(0.1), Real(0.3)),
+                          test::cylinder(Real(0.25), Real(0.1))};
   const Real target = Real(0.01);
   const Transform still = at(0, 0, 0);
   int hits = 0, misses = 0;
