@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "narrowphase/any_perpendicular.hpp"
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/minkowski.hpp"
 
@@ -37,14 +38,6 @@ struct Polytope {
   Face face[kMaxFaces];
   int face_count = 0;
 };
-
-Vec3 any_perpendicular(const Vec3& t) {
-  const Vec3 a = t.cwiseAbs();
-  const Vec3 axis = a.x() <= a.y() && a.x() <= a.z() ? Vec3::UnitX()
-                    : a.y() <= a.z()                 ? Vec3::UnitY()
-                                                     : Vec3::UnitZ();
-  return t.cross(axis).normalized();
-}
 
 // Adds face (i, j, k) with its normal turned away from `inner` (a point inside the polytope).
 void set_face(Polytope& p, int slot, int i, int j, int k, const Vec3* inner) {

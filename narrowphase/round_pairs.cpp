@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "narrowphase/any_perpendicular.hpp"
 #include "narrowphase/manifold_reduce.hpp"
 #include "narrowphase/minkowski.hpp"
 #include "narrowphase/polyhedron.hpp"
@@ -17,14 +18,6 @@ namespace {
 constexpr Real kParallelSegmentsSine = Real(0.01);
 // perf: stack buffer of plane-contact candidates; beyond it the shallowest is replaced.
 constexpr int kMaxPlaneCandidates = 64;
-
-Vec3 any_perpendicular(const Vec3& t) {
-  const Vec3 a = t.cwiseAbs();
-  const Vec3 axis = a.x() <= a.y() && a.x() <= a.z() ? Vec3::UnitX()
-                    : a.y() <= a.z()                 ? Vec3::UnitY()
-                                                     : Vec3::UnitZ();
-  return t.cross(axis).normalized();
-}
 
 // Unit d, or `fallback` when d is too short to carry a direction (coincident features).
 Vec3 direction_or(const Vec3& d, Real scale, const Vec3& fallback) {

@@ -29,12 +29,12 @@ fi
 # The first build is the one users get from a plain Release configure: portable, with the SIMD
 # path chosen at run time for this CPU. It runs every test, under a virtual X server so that the
 # viewer's picture tests have a display (they skip without one), and the Python tests. Its files
-# are compiled four at a time as one unit, as in the builds below, which shares the parsing of
-# Eigen and TBB. With no contraction into FMA, how the code is inlined changes no bit, and the
+# are compiled eight at a time as one unit, as in the builds below, which shares the parsing of
+# the headers (Eigen, TBB, GoogleTest). With no contraction into FMA, how the code is inlined changes no bit, and the
 # golden hashes, made by a build of one file per unit, check that here.
 echo "== Release build (portable) and tests"
 cmake -S . -B build/test-release -DCMAKE_BUILD_TYPE=Release \
-      -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=4
+      -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8
 cmake --build build/test-release -j"$jobs"
 # -noreset: by default Xvfb resets when its last client leaves, and a viewer test that connects
 # during the reset gets no display.
@@ -43,12 +43,13 @@ xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
 
 # The same source built for this machine (-march=native) must give the same bits: only the engine
 # and the golden-hash tests are built, and each scene's hash is checked against the same constant
-# as in the portable build above. Its files are compiled four at a time as one unit (half the
-# build's time): with no contraction into FMA, how the code is inlined changes no bit.
+# as in the portable build above (one run a scene: the portable build checks that other thread
+# counts and broadphases agree). Its files are compiled eight at a time as one unit: with no
+# contraction into FMA, how the code is inlined changes no bit.
 echo "== Native build (-march=native): the golden hashes"
 cmake -S . -B build/test-native -DCMAKE_BUILD_TYPE=Release -DELAN_NATIVE=ON \
       -DELAN_BUILD_TOOLS=OFF -DELAN_BUILD_BENCH=OFF -DELAN_TEST_AREAS=determinism \
-      -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=4
+      -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8
 cmake --build build/test-native -j"$jobs" --target test_determinism
 ctest --test-dir build/test-native -j"$jobs" --output-on-failure --timeout 300 -R "GoldenHash"
 
@@ -57,8 +58,8 @@ ctest --test-dir build/test-native -j"$jobs" --output-on-failure --timeout 300 -
 # edge coverage (a counter per branch, cheap) but not its comparison tracing (a callback on every
 # comparison, which more than doubled the suite's time); the longer runs of docs/fuzzing.md have
 # both. -O1 keeps the sanitized physics tests fast enough; -g1 (line tables) is all a sanitizer's
-# stack trace reads. The engine's files are compiled four at a time as one unit, which shares the
-# parsing of Eigen and TBB. No viewer or benchmarks here: the viewer's picture tests would skip (no
+# stack trace reads. The files are compiled eight at a time as one unit, which shares the
+# parsing of the headers. No viewer or benchmarks here: the viewer's picture tests would skip (no
 # display, and the system's OpenGL driver is not instrumented); its command-line errors, which
 # open no window, are still tested through elan.
 # Skipped here, each run by the Release build above:
@@ -104,7 +105,7 @@ echo "== clang build with ASan + UBSan (and the fuzz targets), and tests"
 cmake -S . -B build/test-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
       -DELAN_FUZZ=ON -DELAN_FUZZ_TRACE_CMP=OFF \
       -DELAN_BUILD_BENCH=OFF -DELAN_BUILD_VIEWER=OFF -DELAN_BUILD_PYTHON=OFF \
-      -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=4
+      -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8
 cmake --build build/test-asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   env -u DISPLAY -u WAYLAND_DISPLAY ctest --test-dir build/test-asan -j"$jobs" --output-on-failure \
@@ -159,7 +160,7 @@ echo "== ThreadSanitizer build of the threaded tests (unit, stage, determinism),
 cmake -S . -B build/test-tsan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DELAN_SANITIZE_THREAD=ON \
       -DELAN_BUILD_BENCH=OFF -DELAN_BUILD_TOOLS=OFF -DELAN_BUILD_PYTHON=OFF \
       -DELAN_TEST_AREAS="unit;stage;determinism" \
-      -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=4
+      -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8
 cmake --build build/test-tsan -j"$jobs"
 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
   ctest --test-dir build/test-tsan -j"$jobs" --output-on-failure --timeout 900 \

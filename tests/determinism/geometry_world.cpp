@@ -78,9 +78,10 @@ TEST(GeometryWorld, SameHashesForAnyThreadCountAndBroadphase) {
   EXPECT_GT(reference_world.last_step().contacts, 200u) << "the bodies landed and touch";
   for (BroadphaseType broadphase : {BroadphaseType::SweepAndPrune, BroadphaseType::AllPairs}) {
     for (int threads = 1; threads <= 4; ++threads) {
-      // The sanitized runs check 1 and 2 threads (the code under 3 and 4 is the same, with other
-      // block boundaries); the optimised build checks all four.
-      if (test::kSanitized && threads > 2) continue;
+      // The sanitized runs check 2 threads (the code under 3 and 4 is the same, with other block
+      // boundaries, and one thread runs no task a sanitizer could catch racing); the optimised
+      // build checks all four.
+      if (test::kSanitized && threads != 2) continue;
       SCOPED_TRACE(testing::Message() << threads << " threads, broadphase " << int(broadphase));
       World world = geometry_world(threads, broadphase);
       EXPECT_EQ(run(world, kSteps), reference);

@@ -124,7 +124,9 @@ TEST(JointDeterminism, SameHashesForAnyThreadCountAndBroadphase) {
   EXPECT_TRUE(test::all_finite(reference_world));
   for (BroadphaseType broadphase : {BroadphaseType::SweepAndPrune, BroadphaseType::AllPairs}) {
     for (int threads = 1; threads <= 4; ++threads) {
-      if (test::kSanitized && threads == 3) continue;  // the sanitized run checks 1, 2 and 4
+      // The sanitized run checks 2 and 4 threads (one thread runs no task a sanitizer could
+      // catch racing; 3 runs the code of 2 and 4 with other block boundaries).
+      if (test::kSanitized && (threads == 1 || threads == 3)) continue;
       SCOPED_TRACE(testing::Message() << threads << " threads, broadphase " << int(broadphase));
       World world = joint_world(threads, broadphase);
       EXPECT_EQ(run(world, kSteps), reference);

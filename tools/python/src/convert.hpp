@@ -37,6 +37,10 @@ inline BodyId body_id(uint64_t v) {
 inline JointId joint_id(uint64_t v) {
   return JointId{uint32_t(v), uint32_t(v >> 32)};
 }
+/// Engine byte buffers (snapshots, rollback states, recordings) as Python bytes.
+inline pybind11::bytes to_bytes(const std::vector<uint8_t>& v) {
+  return pybind11::bytes(reinterpret_cast<const char*>(v.data()), v.size());
+}
 inline int64_t to_array_int(BodyId id) {
   return id.is_null() ? -1 : int64_t(to_int(id));
 }

@@ -8,19 +8,13 @@
 #include <span>
 #include <string>
 
+#include "convert.hpp"
 #include "elan/recorder.hpp"
 #include "errors.hpp"
 #include "options.hpp"
 #include "py_world.hpp"
 
 namespace elan::py {
-namespace {
-
-pybind11::bytes to_bytes(const std::vector<uint8_t>& v) {
-  return pybind11::bytes(reinterpret_cast<const char*>(v.data()), v.size());
-}
-
-}  // namespace
 
 void bind_recording(pybind11::module_& m, pybind11::class_<PyWorld>& c) {
   using pybind11::arg;

@@ -17,10 +17,6 @@
 namespace elan::py {
 namespace {
 
-pybind11::bytes to_bytes(const std::vector<uint8_t>& v) {
-  return pybind11::bytes(reinterpret_cast<const char*>(v.data()), v.size());
-}
-
 std::span<const uint8_t> view_of(const pybind11::bytes& b) {
   char* data = nullptr;
   pybind11::ssize_t size = 0;
