@@ -95,8 +95,8 @@ MemoryUse memory_use(const WorldState& w) {
           heap_bytes(a.pair_scratch) + heap_bytes(a.shape_destroyed) + heap_bytes(a.body_ids) +
           heap_bytes(a.shape_user_data) + heap_bytes(a.shape_defs) + heap_bytes(a.body_extra) +
           heap_bytes(a.sensor_overlaps) + heap_bytes(a.sensor_begin_events) +
-          heap_bytes(a.sensor_end_events) + heap_bytes(a.hit_events) + bounds_bytes(w.query.boxes) +
-          w.query.tree.heap_bytes() + heap_bytes(w.query.planes);
+          heap_bytes(a.sensor_end_events) + heap_bytes(a.hit_events) + w.query.tree.heap_bytes() +
+          heap_bytes(w.query.planes) + heap_bytes(w.query.pending);
   // A derived definition's own arrays (meshes, heightfields: their size again).
   for (const auto& d : a.shape_defs) {
     if (!d) continue;

@@ -44,11 +44,12 @@ inline Vec3 checked_direction(const Vec3& origin, const Vec3& direction, Real ma
 template <class F>
 void for_each_candidate(const WorldState& s, const Vec3& lo, const Vec3& hi,
                         const QueryFilter& filter, F&& f) {
-  s.query.tree.query({lo, hi}, [&](uint32_t i) {
+  const QueryTree& q = fresh_query_tree(s);
+  q.tree.query({lo, hi}, [&](uint32_t i) {
     if (passes(s, filter, i)) f(i);
     return true;
   });
-  for (const uint32_t p : s.query.planes) {
+  for (const uint32_t p : q.planes) {
     if (passes(s, filter, p)) f(p);
   }
 }

@@ -4,14 +4,11 @@
 
 #include <algorithm>
 
-#include "core/base/parallel.hpp"
 #include "core/world/world_state.hpp"
 
 namespace elan::detail {
 
 namespace {
-
-constexpr std::size_t kQueryGrain = 256;
 
 // Compacts the tree (DynamicTree::compact) once the inserts since the last compaction reach half
 // its nodes: O(nodes) every nodes / 2 inserts, O(1) amortised per insert, and a tree of more than
@@ -45,11 +42,39 @@ void place(QueryTree& q, uint32_t i, bool plane, const Vec3& lo, const Vec3& hi,
   q.tree.update_moving(i, {lo, hi}, kQueryFatMargin, displacement);
 }
 
+// Refits the leaves query_tree_after_step left pending, in index order.
+void refit_pending(const WorldState& s, QueryTree& q) {
+  const BodyStore& b = s.bodies;
+  const std::size_t n = std::min(q.pending.size(), b.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!q.pending[i]) continue;
+    q.pending[i] = 0;
+    Vec3 lo, hi;
+    shape_bounds(s.shapes[b.shape[i]], b.position(i), b.orientation(i), lo, hi);
+    place(q, uint32_t(i), false, lo, hi, b.linear_velocity(i) * q.pending_dt);
+  }
+  maybe_compact(q);
+}
+
 }  // namespace
+
+const QueryTree& fresh_query_tree(const WorldState& s) {
+  QueryTree& q = s.query;
+  if (q.stale.load(std::memory_order_acquire)) {
+    const std::lock_guard<std::mutex> lock(q.refit_lock);
+    if (q.stale.load(std::memory_order_relaxed)) {
+      refit_pending(s, q);
+      q.stale.store(false, std::memory_order_release);
+    }
+  }
+  return q;
+}
 
 void query_tree_update(WorldState& s, uint32_t index) {
   QueryTree& q = s.query;
   if (q.tree.item_count() < s.bodies.size()) q.tree.resize_items(s.bodies.size());
+  // Placed now from its pose: a box the step left pending for it is out of date.
+  if (index < q.pending.size()) q.pending[index] = 0;
   const Shape& shape = s.shapes[s.bodies.shape[index]];
   q.max_radius = std::max(q.max_radius, shape.bounding_radius);
   Vec3 lo, hi;
@@ -64,6 +89,11 @@ void query_tree_remove(WorldState& s, uint32_t index) {
   const uint32_t last = uint32_t(s.bodies.size() - 1);
   q.tree.remove(index);
   drop_plane(q.planes, index);
+  // The last body's pending mark moves with it.
+  if (last < q.pending.size()) {
+    q.pending[index] = q.pending[last];
+    q.pending.resize(last);
+  }
   if (index != last) {
     q.tree.rename(last, index);
     const auto it = std::lower_bound(q.planes.begin(), q.planes.end(), last);
@@ -84,6 +114,7 @@ void query_tree_refit_all(WorldState& s) {
   // perf: a rollback restores poses a few steps back, most inside their leaves: a containment
   // test each, not a rebuild.
   for (uint32_t i = 0; i < n; ++i) query_tree_update(s, i);
+  q.stale.store(false, std::memory_order_relaxed);  // every pending box was dropped above
 }
 
 void query_tree_after_step(WorldState& s, Real dt) {
@@ -99,29 +130,15 @@ void query_tree_after_step(WorldState& s, Real dt) {
   const auto moved = [&](std::size_t i) {
     return MotionType(b.motion[i]) != MotionType::Static && (b.flags[i] & (kAwake | kFrozen));
   };
-  q.boxes.resize(n);
-  // determinism: fixed blocks, each body writes its own slots (rules 1, 2); the tree is then
-  // refitted serially in index order, so its shape is the same for any thread count.
-  for_blocks(n, kQueryGrain, [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (std::size_t i = begin; i < end; ++i) {
-      if (!moved(i)) continue;
-      Vec3 lo, hi;
-      shape_bounds(s.shapes[b.shape[i]], b.position(i), b.orientation(i), lo, hi);
-      q.boxes.min_x[i] = lo.x();
-      q.boxes.min_y[i] = lo.y();
-      q.boxes.min_z[i] = lo.z();
-      q.boxes.max_x[i] = hi.x();
-      q.boxes.max_y[i] = hi.y();
-      q.boxes.max_z[i] = hi.z();
-    }
-  });
+  q.pending.resize(n);
+  // Each body writes its own mark; the leaves are refitted later serially in index order
+  // (refit_pending), so the tree's shape is the same for any thread count. A body pending from
+  // an earlier step keeps its mark.
   for (std::size_t i = 0; i < n; ++i) {
-    if (!moved(i)) continue;
-    const Vec3 lo(q.boxes.min_x[i], q.boxes.min_y[i], q.boxes.min_z[i]);
-    const Vec3 hi(q.boxes.max_x[i], q.boxes.max_y[i], q.boxes.max_z[i]);
-    place(q, uint32_t(i), false, lo, hi, b.linear_velocity(i) * dt);
+    if (moved(i)) q.pending[i] = 1;
   }
-  maybe_compact(q);
+  q.pending_dt = dt;
+  q.stale.store(true, std::memory_order_relaxed);  // the step's caller publishes the world
 }
 
 }  // namespace elan::detail

@@ -24,13 +24,14 @@ constexpr std::size_t kRayGrain = 32;
 template <class F>
 void walk_ray(const WorldState& s, const Vec3& o, const Vec3& d, Real max_t,
               const QueryFilter& filter, F&& f) {
-  s.query.tree.ray(o, d, max_t, [&](uint32_t i, Real limit) {
+  const QueryTree& q = fresh_query_tree(s);
+  q.tree.ray(o, d, max_t, [&](uint32_t i, Real limit) {
     ShapeRayHit hit;
     if (!passes(s, filter, i)) return limit;
     if (!ray_shape(body_shape(s, i), body_pose(s, i), o, d, limit, hit)) return limit;
     return f(i, hit, limit);
   });
-  for (const uint32_t p : s.query.planes) {
+  for (const uint32_t p : q.planes) {
     if (max_t < 0) return;
     ShapeRayHit hit;
     if (!passes(s, filter, p)) continue;

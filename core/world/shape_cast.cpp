@@ -61,7 +61,8 @@ void first_cast_hit(const WorldState& s, const Shape& shape, const Transform& x,
       best_c = c;
     }
   };
-  for (const uint32_t p : s.query.planes) consider(p);
+  const QueryTree& q = fresh_query_tree(s);
+  for (const uint32_t p : q.planes) consider(p);
   // The cast shape's box, its centre moving along the translation (fraction t in [0, 1]) against
   // the leaves grown by its half extents. The advancement reports a body at a fraction where the
   // two are still up to 1e-4 of the larger bounding radius apart (toi.cpp): grown by that too, a
@@ -69,9 +70,9 @@ void first_cast_hit(const WorldState& s, const Shape& shape, const Transform& x,
   // the best fraction so far drops no body that could beat it.
   Vec3 lo, hi;
   shape_bounds(shape, x.position, x.rotation, lo, hi);
-  const Real slack = Real(1e-4) * std::max(shape.bounding_radius, s.query.max_radius);
+  const Real slack = Real(1e-4) * std::max(shape.bounding_radius, q.max_radius);
   const Vec3 grow = (hi - lo) / 2 + Vec3::Constant(slack);
-  s.query.tree.sweep((lo + hi) / 2, translation, grow, 1, [&](uint32_t i, Real limit) {
+  q.tree.sweep((lo + hi) / 2, translation, grow, 1, [&](uint32_t i, Real limit) {
     consider(i);
     return best == UINT32_MAX ? limit : best_c.fraction;
   });

@@ -135,6 +135,8 @@ uint32_t run_step(WorldState& w, Real dt) {
   compute_contact_events(w, bodies);
   const auto t5 = clock::now();
   const ApartCandidates candidates = w.contacts.continuous_candidates();
+  // It reads only the query tree's static leaves, which are always current (a static body moves
+  // only through the API, whose hooks refit its leaf at once): no refit of the pending leaves.
   solve_continuous(bodies, w.shapes, candidates.separated, candidates.keys, w.contacts.heads(),
                    w.query.tree, w.solver, dt);
   const auto t6 = clock::now();

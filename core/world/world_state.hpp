@@ -101,8 +101,9 @@ struct WorldState {
   // The solver kernels of def.simd's path, chosen when the world is made (never null).
   const SolverKernels* kernels = nullptr;
   ApiState api;
-  // Every body's box for the scene queries, kept in step by the step's last stage and the API.
-  QueryTree query;
+  // Every body's box for the scene queries, kept in step by the API, and by the first query after
+  // a step (fresh_query_tree): mutable, because that refit happens inside const queries.
+  mutable QueryTree query;
   StepStats stats;
   uint32_t reported_status = 0;  // flags already reported once
   uint64_t step_count = 0;

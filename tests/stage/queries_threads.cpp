@@ -4,6 +4,7 @@
 // builds the threaded areas, not physics) runs it.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <mutex>
 #include <random>
 #include <thread>
@@ -56,6 +57,45 @@ TEST(QueryThreads, EightThreadsGetTheAnswersOfOne) {
   std::vector<std::vector<Real>> many(8);
   std::vector<std::thread> threads;
   for (int t = 0; t < 8; ++t) threads.emplace_back([&, t] { answer(many[t]); });
+  for (std::thread& t : threads) t.join();
+  for (int t = 0; t < 8; ++t) EXPECT_EQ(many[t], one) << "thread " << t;
+}
+
+// The first queries after steps refit the leaves of the bodies the steps moved (query_tree.hpp):
+// eight threads start querying at once right after the steps, so they race to that refit, which
+// one of them does under the tree's lock while the others wait. Each gets what one thread got from
+// a twin world stepped alike.
+TEST(QueryThreads, EightThreadsRacingToTheFirstQueryAfterStepsGetTheAnswersOfOne) {
+  World alone = random_world(13, 400, 2);
+  World shared = random_world(13, 400, 2);
+  for (int n = 0; n < 20; ++n) {
+    alone.step(Real(1) / 60);
+    shared.step(Real(1) / 60);
+  }
+  std::mt19937 rng(14);
+  std::vector<RandomRay> rays(200);
+  for (RandomRay& r : rays) r = random_ray(rng);
+  const auto answer = [&](const World& w, std::vector<Real>& out) {
+    std::vector<BodyId> over;
+    for (const RandomRay& r : rays) {
+      const auto h = w.cast_ray(r.origin, r.dir, 40);
+      out.push_back(h ? h->distance + Real(h->body.slot) : -1);
+      w.overlap_shape(ShapeId{1}, {r.origin, Quat::Identity()}, over);
+      out.push_back(Real(over.size()));
+    }
+  };
+  std::vector<Real> one;
+  answer(alone, one);
+  std::vector<std::vector<Real>> many(8);
+  std::atomic<int> ready{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 8; ++t) {
+    threads.emplace_back([&, t] {
+      ready.fetch_add(1);
+      while (ready.load() < 8) std::this_thread::yield();
+      answer(shared, many[t]);
+    });
+  }
   for (std::thread& t : threads) t.join();
   for (int t = 0; t < 8; ++t) EXPECT_EQ(many[t], one) << "thread " << t;
 }

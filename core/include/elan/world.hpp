@@ -230,9 +230,10 @@ class World {
   /// Installs (or, with an empty function, removes) the pair filter; see PairFilter.
   void set_pair_filter(PairFilter filter);
 
-  // ---- Queries (issue 39). All const in fact: they read the world and its query tree (kept in
-  // step at the end of each step and by every change between steps) and change nothing, so any
-  // number of threads may query at once between steps. Filters: see QueryFilter.
+  // ---- Queries (issue 39). All const: they read the world and its query tree, kept current by
+  // every change between steps and, for the bodies a step moved, by the first query after the
+  // step (under a lock: one thread refits, the others wait), so any number of threads may query
+  // at once between steps. Answers never depend on when that refit ran. Filters: see QueryFilter.
 
   /// Closest body the ray from `origin` (m, world) along `direction` (any non-zero length)
   /// enters within `max_distance` (m); ties go to the lower dense index.
