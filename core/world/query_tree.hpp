@@ -32,8 +32,8 @@ struct QueryTree {
   // The bodies a step moved whose leaves are not yet refitted (1 each), and the last step's dt (a
   // leaf is stretched by velocity * dt). Their boxes are computed at the refit, from the poses
   // then: a pose changes between steps only through the API, which refits the leaf at once.
-  // perf: refitting the leaves of falling bodies was a quarter of a rain of bodies' steps, and
-  // most worlds are stepped many times for each query, or never queried.
+  // perf: a falling body leaves its leaf every few steps, each time a serial re-insert, and most
+  // worlds are stepped many times for each query, or never queried.
   std::vector<uint8_t> pending;
   Real pending_dt = 0;
   // Set by a step, cleared by the refit of the pending leaves (release: a query that reads it
