@@ -138,6 +138,18 @@ bool DynamicTree::update(uint32_t item, const TreeBox& box, Real margin) {
   return true;
 }
 
+bool DynamicTree::set_exact(uint32_t item, const TreeBox& fat) {
+  const uint32_t leaf = leaf_of_[item];
+  if (leaf == kNull) {
+    insert(item, fat);
+    return true;
+  }
+  const TreeBox& now = nodes_[leaf].box;
+  if (now.lo == fat.lo && now.hi == fat.hi) return false;
+  reinsert(leaf, fat);
+  return true;
+}
+
 // Keeps the node and moves it: removed from its place, re-inserted with the new box.
 void DynamicTree::reinsert(uint32_t leaf, const TreeBox& fat) {
   ++inserts_since_compact_;

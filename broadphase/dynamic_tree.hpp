@@ -90,6 +90,10 @@ class DynamicTree {
   // A leaf that still contains `box` but reaches more than kShrinkMargins margins and the stretch
   // past the leaf it would now get (a body that moved fast and has stopped) is re-inserted tight.
   bool update_moving(uint32_t item, const TreeBox& box, Real margin, const Vec3& displacement);
+  // Gives item the leaf box `fat` exactly: kept if its leaf has it, else re-inserted. A leaf so
+  // set is a function of `fat` alone, not of the item's earlier boxes. Returns true when the leaf
+  // changed.
+  bool set_exact(uint32_t item, const TreeBox& fat);
   static constexpr Real kPredictSteps = 4;
   static constexpr Real kShrinkMargins = 4;
 

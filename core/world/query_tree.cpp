@@ -13,8 +13,8 @@ namespace {
 // Compacts the tree (DynamicTree::compact) once the inserts since the last compaction reach half
 // its nodes: O(nodes) every nodes / 2 inserts, O(1) amortised per insert, and a tree of more than
 // a few thousand nodes (past the caches' reach, where the layout matters) walked in memory order.
-// determinism: the trigger counts inserts, a function of the world's history alone; the
-// compaction changes no query's answer or order.
+// determinism: the trigger counts inserts, a function of the world's history and of when it was
+// queried; the compaction changes no leaf's box, no query's answer and no walk's order.
 void maybe_compact(QueryTree& q) {
   const std::size_t nodes = q.tree.node_count();
   if (nodes >= 4096 && q.tree.inserts_since_compact() * 2 >= nodes) q.tree.compact();
@@ -26,8 +26,12 @@ void drop_plane(std::vector<uint32_t>& planes, uint32_t index) {
 }
 
 // Files body i by its exact box: a plane to the plane list, a finite box to the tree, a
-// non-finite one (a quarantined body) nowhere.
-void place(QueryTree& q, uint32_t i, bool plane, const Vec3& lo, const Vec3& hi,
+// non-finite one (a quarantined body) nowhere. A static body's leaf is its box grown by the
+// margin, exactly: determinism: the continuous stage picks its static candidates by their leaves
+// during the step, and a leaf kept from the body's moving days (update_moving keeps any leaf
+// that still holds the box) would depend on when the world was last queried, which refits the
+// moving leaves (fresh_query_tree).
+void place(QueryTree& q, uint32_t i, bool plane, bool is_static, const Vec3& lo, const Vec3& hi,
            const Vec3& displacement = Vec3::Zero()) {
   if (plane) {
     q.tree.remove(i);
@@ -37,6 +41,11 @@ void place(QueryTree& q, uint32_t i, bool plane, const Vec3& lo, const Vec3& hi,
   }
   if (!lo.allFinite() || !hi.allFinite()) {
     q.tree.remove(i);
+    return;
+  }
+  if (is_static) {
+    const Vec3 m = Vec3::Constant(kQueryFatMargin);
+    q.tree.set_exact(i, {lo - m, hi + m});
     return;
   }
   q.tree.update_moving(i, {lo, hi}, kQueryFatMargin, displacement);
@@ -51,7 +60,7 @@ void refit_pending(const WorldState& s, QueryTree& q) {
     q.pending[i] = 0;
     Vec3 lo, hi;
     shape_bounds(s.shapes[b.shape[i]], b.position(i), b.orientation(i), lo, hi);
-    place(q, uint32_t(i), false, lo, hi, b.linear_velocity(i) * q.pending_dt);
+    place(q, uint32_t(i), false, b.is_static(i), lo, hi, b.linear_velocity(i) * q.pending_dt);
   }
   maybe_compact(q);
 }
@@ -73,14 +82,14 @@ const QueryTree& fresh_query_tree(const WorldState& s) {
 void query_tree_update(WorldState& s, uint32_t index) {
   QueryTree& q = s.query;
   if (q.tree.item_count() < s.bodies.size()) q.tree.resize_items(s.bodies.size());
-  // Placed now from its pose: a box the step left pending for it is out of date.
+  // Placed now from its pose: no refit is left pending for it.
   if (index < q.pending.size()) q.pending[index] = 0;
   const Shape& shape = s.shapes[s.bodies.shape[index]];
   q.max_radius = std::max(q.max_radius, shape.bounding_radius);
   Vec3 lo, hi;
   shape_bounds(shape, s.bodies.position(index), s.bodies.orientation(index), lo, hi);
   if (shape.type != ShapeType::Plane) drop_plane(q.planes, index);
-  place(q, index, shape.type == ShapeType::Plane, lo, hi);
+  place(q, index, shape.type == ShapeType::Plane, s.bodies.is_static(index), lo, hi);
   maybe_compact(q);
 }
 
@@ -89,10 +98,12 @@ void query_tree_remove(WorldState& s, uint32_t index) {
   const uint32_t last = uint32_t(s.bodies.size() - 1);
   q.tree.remove(index);
   drop_plane(q.planes, index);
-  // The last body's pending mark moves with it.
+  // The last body's pending mark moves with it; one made since the last step has none.
   if (last < q.pending.size()) {
     q.pending[index] = q.pending[last];
     q.pending.resize(last);
+  } else if (index < q.pending.size()) {
+    q.pending[index] = 0;
   }
   if (index != last) {
     q.tree.rename(last, index);

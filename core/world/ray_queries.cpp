@@ -141,6 +141,9 @@ void World::cast_rays(std::span<const Ray> rays, std::span<RayHit> hits,
                          }
                        });
   };
+  // The refit of the leaves the last step moved, here and once, not by the first block while the
+  // others wait on the tree's lock (and a pool shared with another world's step idles).
+  detail::fresh_query_tree(s);
   // The world's pool: arena.execute may be called from any thread, and the workers only read.
   tbb::task_arena& arena = s.def.thread_pool ? detail::arena_of(*s.def.thread_pool) : *s.arena;
   hand_off.spawn(run);

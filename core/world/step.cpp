@@ -135,8 +135,9 @@ uint32_t run_step(WorldState& w, Real dt) {
   compute_contact_events(w, bodies);
   const auto t5 = clock::now();
   const ApartCandidates candidates = w.contacts.continuous_candidates();
-  // It reads only the query tree's static leaves, which are always current (a static body moves
-  // only through the API, whose hooks refit its leaf at once): no refit of the pending leaves.
+  // It reads only the query tree's static leaves, each its body's box grown by the margin, set by
+  // the API's hooks (query_tree.cpp, place): no refit of the pending leaves, which are never
+  // static, and the same candidates whenever the world was last queried.
   solve_continuous(bodies, w.shapes, candidates.separated, candidates.keys, w.contacts.heads(),
                    w.query.tree, w.solver, dt);
   const auto t6 = clock::now();

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "core/world/world_access.hpp"
 #include "elan/world.hpp"
 
 namespace elan {
@@ -91,6 +92,40 @@ TEST(QueryRefit, ABodyMovedByTheApiAfterAStepIsFoundWhereItWasPut) {
   std::vector<BodyId> below;
   w.overlap_box(Vec3(1.5, -100, -1), Vec3(2.5, 30, 1), below);
   EXPECT_TRUE(below.empty()) << "body 1 is found where the step left it";
+}
+
+// determinism: the continuous stage picks a fast body's static candidates by their leaves during
+// the step, so a static body's leaf must not depend on when the world was queried. Two twin worlds
+// step a falling sphere alike, one queried after every step (its leaf refitted each time) and one
+// never; made static, the sphere has the same leaf in both: its box grown by the margin.
+TEST(QueryRefit, ABodyMadeStaticGetsTheSameLeafWhetherOrNotTheWorldWasQueried) {
+  std::vector<BodyId> queried_ids, plain_ids;
+  World queried = falling_row(1, queried_ids);
+  World plain = falling_row(1, plain_ids);
+  std::vector<BodyId> out;
+  // 15 steps: 2.5 m/s, so the queried world's leaf, stretched by four steps' fall (16 cm), is
+  // within the slack that update_moving keeps a leaf in; the plain world's leaf, made at rest,
+  // no longer holds the sphere 28 cm lower.
+  for (int n = 0; n < 15; ++n) {
+    queried.step(Real(1) / 60);
+    plain.step(Real(1) / 60);
+    queried.overlap_point(Vec3::Zero(), out);  // any query refits the moved leaves
+  }
+  queried.set_motion_type(queried_ids[0], MotionType::Static);
+  plain.set_motion_type(plain_ids[0], MotionType::Static);
+  ASSERT_EQ(queried.position(queried_ids[0]), plain.position(plain_ids[0]));
+  const auto leaf = [](const World& w, BodyId id) {
+    const detail::WorldState& s = detail::state_of(w);
+    return s.query.tree.fat_box(uint32_t(detail::index_of(s, id)));
+  };
+  const detail::TreeBox a = leaf(queried, queried_ids[0]);
+  const detail::TreeBox b = leaf(plain, plain_ids[0]);
+  EXPECT_EQ(a.lo, b.lo);
+  EXPECT_EQ(a.hi, b.hi);
+  const Vec3 c = plain.position(plain_ids[0]);
+  const Vec3 reach = Vec3::Constant(kRadius + detail::kQueryFatMargin);
+  EXPECT_TRUE((b.lo - (c - reach)).cwiseAbs().maxCoeff() < kTol) << "leaf " << b.lo.transpose();
+  EXPECT_TRUE((b.hi - (c + reach)).cwiseAbs().maxCoeff() < kTol) << "leaf " << b.hi.transpose();
 }
 
 }  // namespace queries_refit_test

@@ -233,14 +233,17 @@ class World {
   // ---- Queries (issue 39). All const: they read the world and its query tree, kept current by
   // every change between steps and, for the bodies a step moved, by the first query after the
   // step (under a lock: one thread refits, the others wait), so any number of threads may query
-  // at once between steps. Answers never depend on when that refit ran. Filters: see QueryFilter.
+  // at once between steps. The tree's shape depends on when the world was queried; no answer does
+  // but cast_ray_any's choice among several hits, and the bodies a filter's `accept` is asked
+  // about may differ too. Nothing a step computes depends on it. Filters: see QueryFilter.
 
   /// Closest body the ray from `origin` (m, world) along `direction` (any non-zero length)
   /// enters within `max_distance` (m); ties go to the lower dense index.
   std::optional<RayHit> cast_ray(const Vec3& origin, const Vec3& direction, Real max_distance,
                                  const QueryFilter& filter = {}) const;
-  /// Some body the ray enters within max_distance (the first the tree walk finds; deterministic),
-  /// cheaper than the closest: for line-of-sight tests.
+  /// Some body the ray enters within max_distance (the first the tree walk finds: the same for
+  /// the same calls, but which of several hits may change with the steps after which the world
+  /// was queried), cheaper than the closest: for line-of-sight tests.
   std::optional<RayHit> cast_ray_any(const Vec3& origin, const Vec3& direction, Real max_distance,
                                      const QueryFilter& filter = {}) const;
   /// Every body the ray enters within max_distance, into `out` (cleared), sorted by distance
