@@ -14,20 +14,27 @@
 #include "core/base/parallel.hpp"
 
 int main() {
-  long shared = 0;  // the racy datum: every block adds to it without a lock
+  long shared = 0;  // the racy datum: both blocks add to it without a lock
   std::atomic<int> entered{0};
+  std::atomic<bool> written{false};
+  // Relaxed: no ordering for TSan to see. Gives up after five seconds (a one-core run; a loaded
+  // machine may start the second thread late).
+  const auto wait_for = [](const auto& done) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (!done() && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+  };
   tbb::task_arena arena(2);
   arena.execute([&] {
-    elan::detail::for_blocks(2, 1, [&](std::size_t, std::size_t, std::size_t) {
-      // Wait (relaxed: no ordering for TSan to see) until both blocks run at once, on two
-      // threads, so that the race is there to find; give up after a second on a one-core run.
+    elan::detail::for_blocks(2, 1, [&](std::size_t, std::size_t, std::size_t block) {
+      // Both blocks run at once, on two threads, so that the race is there to find ...
       entered.fetch_add(1, std::memory_order_relaxed);
-      const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-      while (entered.load(std::memory_order_relaxed) < 2 &&
-             std::chrono::steady_clock::now() < until) {
-        std::this_thread::yield();
-      }
+      wait_for([&] { return entered.load(std::memory_order_relaxed) == 2; });
+      // ... and block 1 writes after block 0 has, not at the same instant: TSan's own record of
+      // an access is not atomic with it, so two writes at one instant can both go unreported
+      // (the canary once failed that way, with the increment lost).
+      if (block == 1) wait_for([&] { return written.load(std::memory_order_relaxed); });
       shared += 1;
+      if (block == 0) written.store(true, std::memory_order_relaxed);
     });
   });
   std::printf("shared = %ld\n", shared);
