@@ -30,8 +30,8 @@ fi
 # path chosen at run time for this CPU. It runs every test, under a virtual X server so that the
 # viewer's picture tests have a display (they skip without one), and the Python tests. Its files
 # are compiled eight at a time as one unit, as in the builds below, which shares the parsing of
-# the headers (Eigen, TBB, GoogleTest). With no contraction into FMA, how the code is inlined changes no bit, and the
-# golden hashes, made by a build of one file per unit, check that here.
+# the headers (Eigen, TBB, GoogleTest). With no contraction into FMA, how the code is inlined
+# changes no bit, and the golden hashes, made by a build of one file per unit, check that here.
 echo "== Release build (portable) and tests"
 cmake -S . -B build/test-release -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8
@@ -63,21 +63,21 @@ ctest --test-dir build/test-native -j"$jobs" --output-on-failure --timeout 300 -
 # display, and the system's OpenGL driver is not instrumented); its command-line errors, which
 # open no window, are still tested through elan.
 # Skipped here, each run by the Release build above:
-# - the four largest golden-hash scenes (a minute each under the sanitizers; smaller scenes cover
-#   the same stages), and the native build checks their constants too; the three pyramids, whose
-#   stages pyramid10 and tower20 run;
+# - the four largest golden-hash scenes (the longest runs under the sanitizers; smaller scenes
+#   cover the same stages), and the native build checks their constants too; the three
+#   pyramids, whose stages pyramid10 and tower20 run;
 # - the tests that repeat a whole run at other thread counts and broadphases to compare hashes:
 #   the ThreadSanitizer build below runs them, and the code they reach here is run once by the
 #   golden scenes and the stage tests;
 # - four long settling runs (a 30x30 joint grid, a 500-body pile, a mixed pile, a 20-row pyramid)
 #   whose stages smaller physics tests run;
-# - the warm pyramid's allocation count (260 steps of jolt_pyramid, 40 s here): the count is the
+# - the warm pyramid's allocation count (260 steps of jolt_pyramid): the count is the
 #   Release build's to check, ThreadSanitizer runs it too, and pyramid10 and tower20 reach its
 #   stages;
-# - two more golden-hash scenes, ragdolls and convex_vs_mesh (30-40 s each here): chains and the
+# - two more golden-hash scenes, ragdolls and convex_vs_mesh (long under ASan): chains and the
 #   ragdoll heap run the same joints, geometry_demo and the geometry tests the same surfaces;
-# - the step buffers' accounting over 120 steps of pile4k (35 s here), which counts bytes, and
-#   whose stages pile1k runs; and the time of impact's oracle over 240 paths (25 s here), whose
+# - the step buffers' accounting over 120 steps of pile4k, which counts bytes, and
+#   whose stages pile1k runs; and the time of impact's oracle over 240 paths, whose
 #   code the geometry scenes run;
 # - more tests whose check is that two runs give the same hashes (at other thread counts or
 #   broadphases, run twice in one process, rolled back and run again, loaded at 1 and 2 threads):

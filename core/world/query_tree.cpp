@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Upkeep of the query tree: per-body refits between steps, the end-of-step pass, rebuilds.
+// Upkeep of the query tree: per-body refits between steps, the step's marks and the refit of
+// the first query after it, rebuilds.
 #include "core/world/query_tree.hpp"
 
 #include <algorithm>
@@ -125,7 +126,7 @@ void query_tree_refit_all(WorldState& s) {
   // perf: a rollback restores poses a few steps back, most inside their leaves: a containment
   // test each, not a rebuild.
   for (uint32_t i = 0; i < n; ++i) query_tree_update(s, i);
-  q.stale.store(false, std::memory_order_relaxed);  // every pending box was dropped above
+  q.stale.store(false, std::memory_order_relaxed);  // every mark was cleared above
 }
 
 void query_tree_after_step(WorldState& s, Real dt) {
@@ -142,9 +143,9 @@ void query_tree_after_step(WorldState& s, Real dt) {
     return MotionType(b.motion[i]) != MotionType::Static && (b.flags[i] & (kAwake | kFrozen));
   };
   q.pending.resize(n);
-  // Each body writes its own mark; the leaves are refitted later serially in index order
-  // (refit_pending), so the tree's shape is the same for any thread count. A body pending from
-  // an earlier step keeps its mark.
+  // A pass over one byte a body, serial: the boxes and leaves are the refit's (refit_pending,
+  // serially in index order, so the tree's shape is the same for any thread count). A body
+  // pending from an earlier step keeps its mark.
   for (std::size_t i = 0; i < n; ++i) {
     if (moved(i)) q.pending[i] = 1;
   }

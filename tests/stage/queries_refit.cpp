@@ -8,6 +8,7 @@
 
 #include "core/world/world_access.hpp"
 #include "elan/world.hpp"
+#include "physics/physics_util.hpp"
 
 namespace elan {
 namespace queries_refit_test {
@@ -15,20 +16,17 @@ namespace queries_refit_test {
 constexpr Real kRadius = Real(0.25);
 constexpr Real kTol = Real(1e-4);  // m: a ray-sphere hit rounds to about 1e-6 at these sizes
 
-// A row of spheres 2 m apart falling from rest (no ground): after `steps` steps each has fallen
-// g t^2 / 2 or so, metres past its leaf's 5 cm margin.
-World falling_row(int count, std::vector<BodyId>& ids) {
-  World w;
-  ShapeDef sphere;
-  sphere.radius = kRadius;
-  const ShapeId shape = w.create_shape(sphere);
+// Adds a row of spheres 2 m apart at rest 20 m up (no ground): after t seconds of steps each has
+// fallen about g t^2 / 2, soon past its leaf's 5 cm margin.
+std::vector<BodyId> add_falling_row(World& w, int count) {
+  BodyDef b;
+  b.shape = w.create_shape(test::sphere_shape(kRadius));
+  std::vector<BodyId> ids;
   for (int k = 0; k < count; ++k) {
-    BodyDef b;
-    b.shape = shape;
     b.position = Vec3(Real(2 * k), 20, 0);
     ids.push_back(w.create_body(b));
   }
-  return w;
+  return ids;
 }
 
 // A ray straight down from 1 m above the body's centre hits it first, 1 m - r away.
@@ -44,8 +42,8 @@ void expect_found_from_above(const World& w, BodyId id) {
 }
 
 TEST(QueryRefit, FallingBodiesAreFoundWhereTheyAreAfterStepsWithoutAQuery) {
-  std::vector<BodyId> ids;
-  World w = falling_row(20, ids);
+  World w;
+  const std::vector<BodyId> ids = add_falling_row(w, 20);
   for (int n = 0; n < 60; ++n) w.step(Real(1) / 60);
   // Fallen about g/2 = 4.9 m (the solver's damping aside): far outside the leaves they had.
   EXPECT_LT(w.position(ids[0]).y(), 16);
@@ -59,33 +57,20 @@ TEST(QueryRefit, FallingBodiesAreFoundWhereTheyAreAfterStepsWithoutAQuery) {
 // the steps, not yet refitted) must go with it. The destroyed body is static (never marked), so
 // without that the last body's leaf would stay where it was created.
 TEST(QueryRefit, TheLastBodyKeepsItsMarkWhenItTakesADestroyedBodysIndex) {
-  std::vector<BodyId> ids;
   World w;
-  ShapeDef box;
-  box.type = ShapeType::Box;
-  BodyDef ground;
-  ground.motion = MotionType::Static;
-  ground.shape = w.create_shape(box);
-  ground.position = Vec3(-50, 0, 0);
-  const BodyId fixed = w.create_body(ground);
-  ShapeDef sphere;
-  sphere.radius = kRadius;
-  BodyDef b;
-  b.shape = w.create_shape(sphere);
-  for (int k = 0; k < 3; ++k) {
-    b.position = Vec3(Real(2 * k), 20, 0);
-    ids.push_back(w.create_body(b));
-  }
+  const BodyId fixed = test::add_body(w, test::box_shape(Vec3::Constant(Real(0.5))),
+                                      test::at(Vec3(-50, 0, 0), MotionType::Static));
+  const std::vector<BodyId> ids = add_falling_row(w, 3);
   for (int n = 0; n < 60; ++n) w.step(Real(1) / 60);
   w.destroy_body(fixed);
   for (const BodyId id : ids) expect_found_from_above(w, id);
 }
 
-// A body moved by the API after the steps is placed at once, at its new pose; the refit that
-// follows at the next query must not put it back where the step left it.
+// A body moved by the API after the steps (its leaf placed at once, its mark cleared) is found at
+// its new pose and nowhere along its fall; the others, refitted at the query, at theirs.
 TEST(QueryRefit, ABodyMovedByTheApiAfterAStepIsFoundWhereItWasPut) {
-  std::vector<BodyId> ids;
-  World w = falling_row(4, ids);
+  World w;
+  const std::vector<BodyId> ids = add_falling_row(w, 4);
   for (int n = 0; n < 60; ++n) w.step(Real(1) / 60);
   w.set_position(ids[1], Vec3(2, 40, 0));
   for (const BodyId id : ids) expect_found_from_above(w, id);
@@ -99,9 +84,9 @@ TEST(QueryRefit, ABodyMovedByTheApiAfterAStepIsFoundWhereItWasPut) {
 // step a falling sphere alike, one queried after every step (its leaf refitted each time) and one
 // never; made static, the sphere has the same leaf in both: its box grown by the margin.
 TEST(QueryRefit, ABodyMadeStaticGetsTheSameLeafWhetherOrNotTheWorldWasQueried) {
-  std::vector<BodyId> queried_ids, plain_ids;
-  World queried = falling_row(1, queried_ids);
-  World plain = falling_row(1, plain_ids);
+  World queried, plain;
+  const std::vector<BodyId> queried_ids = add_falling_row(queried, 1);
+  const std::vector<BodyId> plain_ids = add_falling_row(plain, 1);
   std::vector<BodyId> out;
   // 15 steps: 2.5 m/s, so the queried world's leaf, stretched by four steps' fall (16 cm), is
   // within the slack that update_moving keeps a leaf in; the plain world's leaf, made at rest,
