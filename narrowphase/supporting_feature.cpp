@@ -10,6 +10,30 @@
 #include "core/base/fixed_math.hpp"
 
 namespace elan::detail {
+namespace {
+
+// The cap polygon's corners on the unit circle, at angles 2 pi k / kCapSides. perf: made once
+// (the same values each call would give), not eight series per cap feature.
+struct CapCorners {
+  Real cos[kCapSides];
+  Real sin[kCapSides];
+};
+
+const CapCorners& cap_corners() {
+  static const CapCorners corners = [] {
+    CapCorners c;
+    for (int k = 0; k < kCapSides; ++k) {
+      const Real t = Real(2 * M_PI) * Real(k) / Real(kCapSides);
+      const FixedSinCos sc = fixed_sin_cos(t);
+      c.cos[k] = Real(sc.cos);
+      c.sin[k] = Real(sc.sin);
+    }
+    return c;
+  }();
+  return corners;
+}
+
+}  // namespace
 
 void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const Vec3& origin,
                         Feature& f) {
@@ -58,10 +82,9 @@ void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const
       const Real radial = std::sqrt(dl.x() * dl.x() + dl.z() * dl.z());
       if (std::abs(dl.y()) >= radial) {
         const Real y = dl.y() >= 0 ? s.half_height : -s.half_height;
+        const CapCorners& cap = cap_corners();
         for (int k = 0; k < kCapSides; ++k) {
-          const Real t = Real(2 * M_PI) * Real(k) / Real(kCapSides);
-          const FixedSinCos sc = fixed_sin_cos(t);
-          put(k, Vec3(s.radius * Real(sc.cos), y, -s.radius * Real(sc.sin)));
+          put(k, Vec3(s.radius * cap.cos[k], y, -s.radius * cap.sin[k]));
         }
         f.count = kCapSides;
         f.id = dl.y() >= 0 ? 0u : 1u;
