@@ -133,6 +133,7 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
       // contact needs them.
       const HeightField& field = *q.heightfield;
       query.field = &field;
+      query.down = support_world(query.full, Vec3(0, -1, 0));
       // perf: a cell's two triangles lie in its box (x and z between its samples, y between its
       // least and greatest height): a cell the piece is clear of by more than any triangle's
       // speculative distance can be (the base plus the whole motion) holds no contact, found for

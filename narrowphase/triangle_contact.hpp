@@ -56,6 +56,10 @@ struct TriangleQuery {
   // Set: the triangles are this heightfield's, given without their active edges (corners()),
   // which are derived only where a contact needs them. Null: each triangle's own are read.
   const HeightField* field = nullptr;
+  // A point of A (surface frame, from A's centre) that clear_of_box first measures its gap to:
+  // the composite walk sets A's support along -y (a heightfield faces up, so under A the gap's
+  // direction is about -y); A's centre (zero) serves too, more loosely.
+  Vec3 down = Vec3::Zero();
 };
 TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real speculative_distance);
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "core/base/heightfield.hpp"
@@ -605,6 +606,163 @@ TEST(TriangleContact, ClearOfBoxKeepsACellAThinPieceReachesUnder) {
   EXPECT_GT(under, 100);  // pieces do reach 20 cm under the plane
   EXPECT_GT(clear, 1000);
   EXPECT_GT(not_clear, 1000);
+}
+
+// Ericson's closest point of a triangle to the origin (Real-Time Collision Detection 5.1.5), as
+// triangle_contact.cpp computes it: the same operations, so the same bits.
+Vec3 closest_point_reference(const Vec3 (&v)[3]) {
+  const Vec3 &a = v[0], &b = v[1], &c = v[2];
+  const Vec3 ab = b - a, ac = c - a, ap = -a;
+  const Real d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = -b;
+  const Real d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const Real vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vec3 cp = -c;
+  const Real d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const Real vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const Real va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  const Real denom = Real(1) / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// reach_triangle as it was before its shortcuts, every test made with A's own support: the
+// oracle the shortcuts must agree with, bit for bit.
+bool reach_with_supports(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r) {
+  Vec3(&v)[3] = r.v;
+  for (int k = 0; k < 3; ++k) v[k] = t.v[k] - q.position;
+  Vec3 geometric = (v[1] - v[0]).cross(v[2] - v[0]);
+  const Real area2 = geometric.norm();
+  if (!(area2 > 0)) return false;
+  geometric /= area2;
+  const Real centre_height = -geometric.dot(v[0]);
+  if (!t.two_sided && centre_height < 0) return false;
+  r.geometric = geometric;
+  r.face = centre_height >= 0 ? geometric : Vec3(-geometric);
+  r.speculative = q.speculative + std::max(Real(0), -r.face.dot(q.motion));
+  if (q.shape->type == ShapeType::Sphere) {
+    const Real margin = Real(1e-4) * (q.shape->radius + r.speculative + v[0].cwiseAbs().sum());
+    return !(std::abs(centre_height) - q.shape->radius > r.speculative + margin);
+  }
+  const Real lateral =
+      q.shape->bounding_radius + r.speculative +
+      Real(1e-4) * (q.shape->bounding_radius + r.speculative + v[0].cwiseAbs().sum());
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = v[(k + 1) % 3] - v[k];
+    const Real beyond = -e.cross(geometric).dot(v[k]);
+    if (beyond > 0 && beyond * beyond > lateral * lateral * e.squaredNorm()) return false;
+  }
+  r.lowest = support_world(q.full, -r.face);
+  r.plane_gap = r.face.dot(r.lowest - v[0]);
+  if (r.plane_gap > r.speculative) return false;
+  r.closest = closest_point_reference(v);
+  const Real dist2 = r.closest.squaredNorm();
+  if (dist2 > 0) {
+    const Real dist = std::sqrt(dist2);
+    const Vec3 u = r.closest / dist;
+    const Real gap = dist - u.dot(support_world(q.full, u));
+    const Real margin =
+        Real(1e-4) * (q.shape->bounding_radius + r.speculative + v[0].cwiseAbs().sum() +
+                      (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
+    if (gap > r.speculative + margin) return false;
+  }
+  return true;
+}
+
+// clear_of_box as it was before its shortcut: the oracle, with A's own support.
+bool clear_with_support(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real speculative,
+                        std::span<const MeshTriangle> in_box) {
+  const Vec3 c = q.position.cwiseMax(lo).cwiseMin(hi) - q.position;
+  const Real dist2 = c.squaredNorm();
+  if (!(dist2 > 0)) return false;
+  const Real dist = std::sqrt(dist2);
+  const Vec3 u = c / dist;
+  for (const MeshTriangle& t : in_box) {
+    const Vec3 geometric = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
+    const Vec3 face = geometric.dot(q.position - t.v[0]) >= 0 ? geometric : Vec3(-geometric);
+    if (!(u.dot(face) <= 0)) return false;
+  }
+  const Real margin = Real(1e-4) * (q.shape->bounding_radius + speculative +
+                                    q.position.cwiseAbs().sum() + 2 * (hi - lo).cwiseAbs().sum());
+  return dist - u.dot(support_world(q.full, u)) > speculative + margin;
+}
+
+void expect_same_reach(const TriangleReach& a, const TriangleReach& b, bool sphere) {
+  for (int k = 0; k < 3; ++k) ASSERT_EQ(a.v[k], b.v[k]);
+  ASSERT_EQ(a.geometric, b.geometric);
+  ASSERT_EQ(a.face, b.face);
+  ASSERT_EQ(a.speculative, b.speculative);
+  if (sphere) return;
+  ASSERT_EQ(a.lowest, b.lowest);
+  ASSERT_EQ(a.plane_gap, b.plane_gap);
+  ASSERT_EQ(a.closest, b.closest);
+}
+
+// perf shortcuts against their oracles: reach_triangle keeps a triangle on the gap to A's lowest
+// point, and clear_of_box keeps a cell on the gap to A's point q.down, before (or instead of) the
+// support along the gap's direction. Both must decide as the support alone does, and a kept
+// triangle's reach must be the same bits. Every shape, resting on, sunk into, hovering over and
+// falling onto a bumpy field (one-sided triangles) and random two-sided triangles.
+TEST(TriangleContact, ShortcutsDecideAsTheSupportDoes) {
+  constexpr uint32_t kColumns = 9;
+  std::mt19937 rng(43);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const HeightField field = bumpy_field(kColumns, rng);
+  const std::array<Shape, 6> shapes = every_shape();
+  int kept = 0, rejected = 0, clear = 0, not_clear = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const Shape& s = shapes[trial % 6];
+    const Quat q = test::random_turn(rng, u);
+    const Transform xa =
+        at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.3) * u(rng), 2 + Real(1.2) * u(rng), q);
+    TriangleQuery query = make_triangle_query(s, xa, kSpec);
+    if (trial % 3 == 0) query.motion = Vec3(Real(0.05) * u(rng), Real(-0.2), Real(0.05) * u(rng));
+    query.field = &field;
+    query.down = support_world(query.full, Vec3(0, -1, 0));
+    const Real cell_speculative = kSpec + query.motion.norm();
+    for (uint32_t cell = 0; cell < (kColumns - 1) * (kColumns - 1); ++cell) {
+      const uint32_t i = cell % (kColumns - 1), j = cell / (kColumns - 1);
+      const Real h[4] = {field.height(i, j), field.height(i + 1, j), field.height(i, j + 1),
+                         field.height(i + 1, j + 1)};
+      const Vec3 lo(Real(i) * field.spacing_x, std::min({h[0], h[1], h[2], h[3]}),
+                    Real(j) * field.spacing_z);
+      const Vec3 hi(Real(i + 1) * field.spacing_x, std::max({h[0], h[1], h[2], h[3]}),
+                    Real(j + 1) * field.spacing_z);
+      const MeshTriangle pair[2] = {field.corners(2 * cell), field.corners(2 * cell + 1)};
+      const bool want_clear = clear_with_support(query, lo, hi, cell_speculative, pair);
+      ASSERT_EQ(clear_of_box(query, lo, hi, cell_speculative, pair), want_clear)
+          << "trial " << trial << " cell " << cell;
+      ++(want_clear ? clear : not_clear);
+      for (const MeshTriangle& t : pair) {
+        TriangleReach want, got;
+        const bool keep = reach_with_supports(query, t, want);
+        ASSERT_EQ(reach_triangle(query, t, got), keep) << "trial " << trial << " cell " << cell;
+        ++(keep ? kept : rejected);
+        if (keep) expect_same_reach(got, want, s.type == ShapeType::Sphere);
+      }
+    }
+    // Random two-sided triangles around A, as a mesh gives them.
+    for (int k = 0; k < 20; ++k) {
+      MeshTriangle t;
+      for (Vec3& p : t.v) p = xa.position + Vec3(u(rng), Real(0.6) * u(rng), u(rng));
+      TriangleReach want, got;
+      const bool keep = reach_with_supports(query, t, want);
+      ASSERT_EQ(reach_triangle(query, t, got), keep) << "trial " << trial << " triangle " << k;
+      ++(keep ? kept : rejected);
+      if (keep) expect_same_reach(got, want, s.type == ShapeType::Sphere);
+    }
+  }
+  EXPECT_GT(kept, 5000);
+  EXPECT_GT(rejected, 5000);
+  EXPECT_GT(clear, 5000);
+  EXPECT_GT(not_clear, 5000);
 }
 
 }  // namespace narrowphase_triangle_contact_test
