@@ -92,38 +92,26 @@ uint32_t region_of(const Vec3 (&v)[3], const Vec3& p) {
   return kRegionFace;
 }
 
-// A triangle's active edges, read on first use: a heightfield's triangles come without them
-// (TriangleQuery::field), and most contacts are decided before they are needed; then each edge
-// only as it is asked for (a contact on an edge reads that edge, one at a vertex its two).
-struct LazyEdges {
-  const MeshTriangle& t;
-  const HeightField* field;
-  uint8_t known = 0;           // bit k: edge k's flag is derived
-  uint8_t active = 0;          // bit k: edge k is active (where known)
-  Vec3 normal = Vec3::Zero();  // t.normal(), once an edge of a heightfield's triangle is derived
-
-  LazyEdges(const MeshTriangle& tri, const HeightField* f) : t(tri), field(f) {
-    if (field == nullptr) known = 7, active = t.active_edges;
-  }
-  bool is_active(uint32_t k) {
-    if (((known >> k) & 1u) == 0) {
-      if (known == 0) normal = t.normal();
-      if (field->edge_active(t, normal, int(k))) active |= uint8_t(1u << k);
-      known |= uint8_t(1u << k);
-    }
-    return ((active >> k) & 1u) != 0;
-  }
-  // Whether no edge is active: derived up to the first active one.
-  bool none() { return !is_active(0) && !is_active(1) && !is_active(2); }
-};
-
 // Whether the normal found at the triangle's feature `region` stands: the feature is an active
 // edge, or a vertex with an active edge whose normal leans out past none of its inactive edges.
 // `out_normal`: from the triangle towards A; `face`: the face normal toward A's side.
+// A triangle's active edges, read on first use: a heightfield's triangles come without them
+// (TriangleQuery::field), and most contacts are decided before they are needed.
+struct LazyEdges {
+  const MeshTriangle& t;
+  const HeightField* field;
+  int value = -1;
+  uint8_t get() {
+    if (value < 0) value = field != nullptr ? field->active_edges_of(t) : t.active_edges;
+    return uint8_t(value);
+  }
+};
+
 bool keeps_normal(uint32_t region, LazyEdges& lazy, const Vec3 (&v)[3], const Vec3& face,
                   const Vec3& out_normal) {
   if (region == kRegionFace || out_normal.dot(face) < -kLeanTolerance) return false;
-  const auto active = [&](uint32_t k) { return lazy.is_active(k); };
+  const uint8_t active_edges = lazy.get();
+  const auto active = [&](uint32_t k) { return ((active_edges >> k) & 1u) != 0; };
   if (region >= kRegionEdge) return active(region - kRegionEdge);
   const uint32_t k = region - kRegionVertex;
   const uint32_t edges[2] = {k, (k + 2) % 3};  // the edges leaving and reaching vertex k
@@ -246,12 +234,14 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   if (dist2 > 0) {
     const Real dist = std::sqrt(dist2);
     const Vec3 u = closest / dist;
-    // A's support along u reaches at least as far as any point of A, its lowest among them: a
-    // gap to that point within the speculative distance keeps the triangle without the support
-    // (the support's gap is no larger, to its rounding, which the margin below far exceeds).
-    // perf: under a resting body u is near -face, and the lowest point is the support's.
-    if (dist - u.dot(r.lowest) <= r.speculative) return true;
-    const Real gap = dist - u.dot(support_world(q.full, u));
+    // A's support along u reaches at least as far as any point of A (its lowest, the last
+    // support taken): a gap to such a point within the speculative distance keeps the triangle
+    // without the support (the support's gap is no larger, to its rounding, which the margin
+    // below far exceeds). perf: under a resting body u is near -face, where the lowest point is
+    // the support, and beside it near the last triangle's direction.
+    if (dist - std::max(u.dot(r.lowest), u.dot(q.recent)) <= r.speculative) return true;
+    q.recent = support_world(q.full, u);
+    const Real gap = dist - u.dot(q.recent);
     const Real margin =
         Real(1e-4) * (q.shape->bounding_radius + r.speculative + v[0].cwiseAbs().sum() +
                       (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
@@ -276,10 +266,11 @@ bool clear_of_box(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real s
   if (!(dist2 > 0)) return false;
   const Real dist = std::sqrt(dist2);
   const Vec3 u = c / dist;
-  // A's support along u reaches at least as far as its point q.down: a gap to that point within
-  // the speculative distance keeps the box without the support (the support's gap is no larger,
-  // to its rounding, which the margin below far exceeds). perf: the cells under A.
-  if (dist - u.dot(q.down) <= speculative) return false;
+  // A's support along u reaches at least as far as any point of A (q.down, q.recent): a gap to
+  // such a point within the speculative distance keeps the box without the support (the
+  // support's gap is no larger, to its rounding, which the margin below far exceeds). perf: the
+  // cells under A.
+  if (dist - std::max(u.dot(q.down), u.dot(q.recent)) <= speculative) return false;
   for (const MeshTriangle& t : in_box) {
     const Vec3 geometric = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
     const Vec3 face = geometric.dot(q.position - t.v[0]) >= 0 ? geometric : Vec3(-geometric);
@@ -287,7 +278,8 @@ bool clear_of_box(const TriangleQuery& q, const Vec3& lo, const Vec3& hi, Real s
   }
   const Real margin = Real(1e-4) * (q.shape->bounding_radius + speculative +
                                     q.position.cwiseAbs().sum() + 2 * (hi - lo).cwiseAbs().sum());
-  return dist - u.dot(support_world(q.full, u)) > speculative + margin;
+  q.recent = support_world(q.full, u);
+  return dist - u.dot(q.recent) > speculative + margin;
 }
 
 bool collide_triangle(const Shape& a, const Transform& xa, const MeshTriangle& t,
@@ -330,7 +322,7 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
   uint32_t foot_region = kRegionFace;
   closest_on_triangle(from_foot, foot_region);
   const bool foot_on_face = foot_region == kRegionFace;
-  const bool done = (plane_gap_of_a >= 0 && foot_on_face) || edges.none();
+  const bool done = (plane_gap_of_a >= 0 && foot_on_face) || edges.get() == 0;
   // Whether the contact takes the face's normal: then it is the face's contact, made only of A's
   // points over the face (see below).
   bool face_normal = done;

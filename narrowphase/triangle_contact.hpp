@@ -60,6 +60,10 @@ struct TriangleQuery {
   // the composite walk sets A's support along -y (a heightfield faces up, so under A the gap's
   // direction is about -y); A's centre (zero) serves too, more loosely.
   Vec3 down = Vec3::Zero();
+  // Scratch: the support reach_triangle or clear_of_box last took along a gap's direction (A's
+  // centre before any), a point of A that the next gap is first measured to as well. perf: the
+  // walk meets neighbouring triangles one after another, their gaps about along one direction.
+  mutable Vec3 recent = Vec3::Zero();
 };
 TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real speculative_distance);
 

@@ -93,46 +93,39 @@ MeshTriangle HeightField::corners(uint32_t t) const {
   return m;
 }
 
-bool HeightField::edge_active(const MeshTriangle& m, const Vec3& n1, int k) const {
+uint8_t HeightField::active_edges_of(const MeshTriangle& m) const {
   const uint32_t t = m.index;
   const uint32_t c = t / 2, cells_x = columns - 1;
   const uint32_t i = c % cells_x, j = c / cells_x;
-  // The neighbour of edge k (other: the cell's other triangle; the rest in adjacent cells) as its
-  // far corner, which with the edge spans the neighbour's plane; none on the grid's border.
-  Vec3 far;
+  // The neighbour of each edge (other: the cell's other triangle; the rest in adjacent cells) as
+  // its far corner, which with the edge spans the neighbour's plane.
+  std::array<Vec3, 3> far;
+  std::array<bool, 3> border{};
   if ((t & 1) == 0) {
-    if (k == 0) {
-      far = point(i, j + 1);  // diagonal: the upper triangle
-    } else if (k == 1) {
-      if (i + 2 >= columns) return true;  // side x = i + 1: the upper triangle of cell (i + 1, j)
-      far = point(i + 2, j + 1);
-    } else {
-      if (j == 0) return true;  // side z = j: the upper triangle of cell (i, j - 1)
-      far = point(i, j - 1);
-    }
+    far[0] = point(i, j + 1);      // diagonal: the upper triangle
+    border[1] = i + 2 >= columns;  // side x = i + 1: the upper triangle of cell (i + 1, j)
+    if (!border[1]) far[1] = point(i + 2, j + 1);
+    border[2] = j == 0;  // side z = j: the upper triangle of cell (i, j - 1)
+    if (!border[2]) far[2] = point(i, j - 1);
   } else {
-    if (k == 0) {
-      if (i == 0) return true;  // side x = i: the lower triangle of cell (i - 1, j)
-      far = point(i - 1, j);
-    } else if (k == 1) {
-      if (j + 2 >= rows) return true;  // side z = j + 1: the lower triangle of cell (i, j + 1)
-      far = point(i + 1, j + 2);
-    } else {
-      far = point(i + 1, j);  // diagonal: the lower triangle
-    }
+    border[0] = i == 0;  // side x = i: the lower triangle of cell (i - 1, j)
+    if (!border[0]) far[0] = point(i - 1, j);
+    border[1] = j + 2 >= rows;  // side z = j + 1: the lower triangle of cell (i, j + 1)
+    if (!border[1]) far[1] = point(i + 1, j + 2);
+    far[2] = point(i + 1, j);  // diagonal: the lower triangle
   }
-  // The neighbour walks the edge the other way: (v[k + 1], v[k], far) is counter-clockwise.
-  const Vec3& a = m.v[k];
-  const Vec3& b = m.v[(k + 1) % 3];
-  const Vec3 n2 = (a - b).cross(far - b).normalized();
-  return edge_is_active(n1, n2, b - a);
-}
-
-uint8_t HeightField::active_edges_of(const MeshTriangle& m) const {
   const Vec3 n1 = m.normal();
   uint8_t active = 0;
   for (int k = 0; k < 3; ++k) {
-    if (edge_active(m, n1, k)) active |= uint8_t(1u << k);
+    if (border[k]) {
+      active |= uint8_t(1u << k);
+      continue;
+    }
+    // The neighbour walks the edge the other way: (v[k + 1], v[k], far) is counter-clockwise.
+    const Vec3& a = m.v[k];
+    const Vec3& b = m.v[(k + 1) % 3];
+    const Vec3 n2 = (a - b).cross(far[k] - b).normalized();
+    if (edge_is_active(n1, n2, b - a)) active |= uint8_t(1u << k);
   }
   return active;
 }

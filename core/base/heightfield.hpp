@@ -35,9 +35,6 @@ struct HeightField {
   // neighbour; a query that rejects most triangles on their corners derives them only for the rest.
   MeshTriangle corners(uint32_t t) const;
   uint8_t active_edges_of(const MeshTriangle& m) const;
-  // Whether edge k of such a triangle is active, `n1` its m.normal(): active_edges_of's bit k.
-  // perf: a contact that needs one or two of the edges derives only those.
-  bool edge_active(const MeshTriangle& m, const Vec3& n1, int k) const;
 };
 
 // Checks and builds. Throws elan::Error: "shape.heights" (fewer than 2 x 2, a row of another
