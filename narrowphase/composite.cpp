@@ -143,8 +143,8 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
         const Vec3 box_lo = Vec3(Real(i) * field.spacing_x, low, Real(j) * field.spacing_z);
         const Vec3 box_hi =
             Vec3(Real(i + 1) * field.spacing_x, high, Real(j + 1) * field.spacing_z);
-        const uint32_t cell = j * (field.columns - 1) + i;
-        const MeshTriangle pair[2] = {field.corners(2 * cell), field.corners(2 * cell + 1)};
+        MeshTriangle pair[2];
+        field.cell_corners(i, j, pair);
         if (clear_of_box(query, box_lo, box_hi, cell_speculative, pair)) return;
         for (const MeshTriangle& t : pair) {
           if (reach_triangle(query, t, reach)) contact(t);

@@ -93,6 +93,18 @@ MeshTriangle HeightField::corners(uint32_t t) const {
   return m;
 }
 
+void HeightField::cell_corners(uint32_t i, uint32_t j, MeshTriangle (&pair)[2]) const {
+  const uint32_t c = j * (columns - 1) + i;
+  const Vec3 p00 = point(i, j), p10 = point(i + 1, j);
+  const Vec3 p01 = point(i, j + 1), p11 = point(i + 1, j + 1);
+  pair[0].index = 2 * c;
+  pair[0].two_sided = false;
+  pair[0].v[0] = p00, pair[0].v[1] = p11, pair[0].v[2] = p10;
+  pair[1].index = 2 * c + 1;
+  pair[1].two_sided = false;
+  pair[1].v[0] = p00, pair[1].v[1] = p01, pair[1].v[2] = p11;
+}
+
 uint8_t HeightField::active_edges_of(const MeshTriangle& m) const {
   const uint32_t t = m.index;
   const uint32_t c = t / 2, cells_x = columns - 1;

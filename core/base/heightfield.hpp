@@ -34,6 +34,9 @@ struct HeightField {
   // of such a triangle: triangle(t) is the two together. perf: the edges cost a normal per
   // neighbour; a query that rejects most triangles on their corners derives them only for the rest.
   MeshTriangle corners(uint32_t t) const;
+  // corners(2 c) and corners(2 c + 1) of cell (i, j), c = j (columns - 1) + i. perf: a walk over
+  // cells reads the four samples once for both, and needs no division to find the cell.
+  void cell_corners(uint32_t i, uint32_t j, MeshTriangle (&pair)[2]) const;
   uint8_t active_edges_of(const MeshTriangle& m) const;
 };
 

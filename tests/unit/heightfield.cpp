@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The heightfield: the triangle layout the header fixes, normals up, active edges of flat and
-// bumpy grids, validation, the ray's cell walk against brute force, bytes a sample.
+// The heightfield: the triangle layout the header fixes (a cell's pair read at once too), normals
+// up, active edges of flat and bumpy grids, validation, the ray's cell walk against brute force,
+// bytes a sample.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -40,6 +41,25 @@ TEST(HeightField, TriangleLayoutAndNormalsUp) {
   EXPECT_FALSE(lower.two_sided);
   EXPECT_EQ(f.point(3, 2), Vec3(1.5f, f.height(3, 2), 4));
   for (uint32_t t = 0; t < 2 * 4 * 3; ++t) EXPECT_GT(f.triangle(t).normal().y(), 0) << t;
+}
+
+// A cell's two triangles read together are its triangles read one by one, bit for bit.
+TEST(HeightField, CellCornersAreTheCornersOfTheCellsTriangles) {
+  const HeightField f = bumpy(7, 6, 0.3f, 0.7f);
+  for (uint32_t j = 0; j + 1 < f.rows; ++j) {
+    for (uint32_t i = 0; i + 1 < f.columns; ++i) {
+      MeshTriangle pair[2];
+      f.cell_corners(i, j, pair);
+      const uint32_t c = j * (f.columns - 1) + i;
+      for (uint32_t k = 0; k < 2; ++k) {
+        const MeshTriangle want = f.corners(2 * c + k);
+        EXPECT_EQ(pair[k].index, want.index);
+        EXPECT_EQ(pair[k].two_sided, want.two_sided);
+        EXPECT_EQ(pair[k].active_edges, want.active_edges);
+        for (int v = 0; v < 3; ++v) EXPECT_EQ(pair[k].v[v], want.v[v]) << i << " " << j;
+      }
+    }
+  }
 }
 
 TEST(HeightField, FlatGridInteriorEdgesInactiveBorderActive) {
