@@ -49,11 +49,19 @@ template <class F>
 void for_each_triangle(const TriangleMesh& mesh, const Vec3& lo, const Vec3& hi, F&& f) {
   bvh_query(mesh.tree, lo, hi, [&](uint32_t first, uint32_t count) {
     for (uint32_t t = first; t < first + count; ++t) {
-      const MeshTriangle tri = mesh.triangle(t);
-      Vec3 tlo = tri.v[0].cwiseMin(tri.v[1]).cwiseMin(tri.v[2]);
-      Vec3 thi = tri.v[0].cwiseMax(tri.v[1]).cwiseMax(tri.v[2]);
-      if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) continue;
-      f(tri);
+      // The triangle's box misses [lo, hi] when all three corners lie beyond one of its faces.
+      // perf: tested on the corners in place, axis by axis, stopping at the first that misses;
+      // only a triangle that meets the box is copied out.
+      const std::array<uint32_t, 3>& corner = mesh.triangles[t];
+      const Vec3 &a = mesh.vertices[corner[0]], &b = mesh.vertices[corner[1]],
+                 &c = mesh.vertices[corner[2]];
+      bool misses = false;
+      for (int k = 0; k < 3 && !misses; ++k) {
+        misses = (a[k] > hi[k] && b[k] > hi[k] && c[k] > hi[k]) ||
+                 (a[k] < lo[k] && b[k] < lo[k] && c[k] < lo[k]);
+      }
+      if (misses) continue;
+      f(mesh.triangle(t));
     }
   });
 }
