@@ -154,19 +154,18 @@ else
 fi
 
 # Under TSan (about 10x slower than a native run), skipped:
-# - not built: the unit and stage test files that run no threads (ELAN_SINGLE_THREADED_TESTS in
-#   tests/CMakeLists.txt), which the two builds above run;
-# - the golden-hash scenes: sanitized, each runs once at one thread (physics_util.hpp), where no
-#   race can show, and the ASan build above checks the same constants in a clang build; the
-#   determinism tests run scenes at 1-4 threads and both broadphases here;
+# - not built (tests/CMakeLists.txt): the unit and stage test files that run no threads
+#   (ELAN_SINGLE_THREADED_TESTS), which the two builds above run; and the golden-hash scenes:
+#   sanitized, each runs once at one thread (physics_util.hpp), where no race can show, and the
+#   ASan build above checks the same constants in a clang build; the determinism tests run scenes
+#   at 1-4 threads and both broadphases here;
 # - the step buffers' accounting, which runs no threads;
 # - the snapshot and rollback format tests (sizes, refused states, resealed bytes, settings),
 #   whose threads only step the world they save, as the restore tests that stay do; pile1k run
 #   twice in one process, and the sweep's 20,000-box match, whose threaded code the moving
 #   scene's match and the determinism tests run;
 # - the same clang-only skips as above.
-tsan_skip='GoldenHash'
-tsan_skip+='|CollidePairs.CarriedManifoldsAgreeWithTheExactTest|Unit.PublicHeadersIncludeNoTbbOrJson'
+tsan_skip='CollidePairs.CarriedManifoldsAgreeWithTheExactTest|Unit.PublicHeadersIncludeNoTbbOrJson'
 tsan_skip+='|MemoryUse.StepBuffersAreGivenBackWithinTheStep'
 tsan_skip+='|Rollback.(SizeIsEightyOne|AnotherWorldsState|CorruptOrTruncated)|SnapshotSurfaces.Resealed'
 tsan_skip+='|Snapshot.(RestoresSettingsStepCountAndShapes|SavingALoadedWorldGivesTheSameBytes)'
