@@ -286,6 +286,17 @@ HeightField bumpy_field(uint32_t columns, std::mt19937& rng) {
 // Random shapes and poses about random triangles (slivers, shapes centred on the plane, touching
 // exactly): the result is always finite, its normal unit, at most four points, each within the
 // speculative distance.
+// Heightfield cell (i, j)'s box: x and z between its samples, y between its least and greatest
+// height (the composite walk's box for the cell).
+void cell_box(const HeightField& field, uint32_t i, uint32_t j, Vec3& lo, Vec3& hi) {
+  const Real h[4] = {field.height(i, j), field.height(i + 1, j), field.height(i, j + 1),
+                     field.height(i + 1, j + 1)};
+  lo = Vec3(Real(i) * field.spacing_x, std::min({h[0], h[1], h[2], h[3]}),
+            Real(j) * field.spacing_z);
+  hi = Vec3(Real(i + 1) * field.spacing_x, std::max({h[0], h[1], h[2], h[3]}),
+            Real(j + 1) * field.spacing_z);
+}
+
 TEST(TriangleContact, FiniteOnRandomAndDegenerateInput) {
   const std::array<Shape, 6> shapes = every_shape();
   std::mt19937 rng(7);
@@ -524,12 +535,8 @@ TEST(TriangleContact, ClearOfBoxOnlyWhenItsTrianglesGiveNothing) {
     const Real cell_speculative = kSpec + query.motion.norm();
     for (uint32_t j = 0; j + 1 < kColumns; ++j) {
       for (uint32_t i = 0; i + 1 < kColumns; ++i) {
-        const Real h[4] = {field.height(i, j), field.height(i + 1, j), field.height(i, j + 1),
-                           field.height(i + 1, j + 1)};
-        const Vec3 lo(Real(i) * field.spacing_x, std::min({h[0], h[1], h[2], h[3]}),
-                      Real(j) * field.spacing_z);
-        const Vec3 hi(Real(i + 1) * field.spacing_x, std::max({h[0], h[1], h[2], h[3]}),
-                      Real(j + 1) * field.spacing_z);
+        Vec3 lo, hi;
+        cell_box(field, i, j, lo, hi);
         const bool inside =
             (xa.position.array() >= lo.array()).all() && (xa.position.array() <= hi.array()).all();
         const uint32_t cell = j * (kColumns - 1) + i;
@@ -729,12 +736,8 @@ TEST(TriangleContact, ShortcutsDecideAsTheSupportDoes) {
     const Real cell_speculative = kSpec + query.motion.norm();
     for (uint32_t cell = 0; cell < (kColumns - 1) * (kColumns - 1); ++cell) {
       const uint32_t i = cell % (kColumns - 1), j = cell / (kColumns - 1);
-      const Real h[4] = {field.height(i, j), field.height(i + 1, j), field.height(i, j + 1),
-                         field.height(i + 1, j + 1)};
-      const Vec3 lo(Real(i) * field.spacing_x, std::min({h[0], h[1], h[2], h[3]}),
-                    Real(j) * field.spacing_z);
-      const Vec3 hi(Real(i + 1) * field.spacing_x, std::max({h[0], h[1], h[2], h[3]}),
-                    Real(j + 1) * field.spacing_z);
+      Vec3 lo, hi;
+      cell_box(field, i, j, lo, hi);
       const MeshTriangle pair[2] = {field.corners(2 * cell), field.corners(2 * cell + 1)};
       const bool want_clear = clear_with_support(query, lo, hi, cell_speculative, pair);
       ASSERT_EQ(clear_of_box(query, lo, hi, cell_speculative, pair), want_clear)
