@@ -13,6 +13,7 @@
 
 #include "core/base/heightfield.hpp"
 #include "narrowphase/minkowski.hpp"
+#include "narrowphase/shape_point.hpp"
 #include "narrowphase/triangle_contact.hpp"
 #include "narrowphase_test_shapes.hpp"
 
@@ -615,31 +616,6 @@ TEST(TriangleContact, ClearOfBoxKeepsACellAThinPieceReachesUnder) {
   EXPECT_GT(not_clear, 1000);
 }
 
-// Ericson's closest point of a triangle to the origin (Real-Time Collision Detection 5.1.5), as
-// triangle_contact.cpp computes it: the same operations, so the same bits.
-Vec3 closest_point_reference(const Vec3 (&v)[3]) {
-  const Vec3 &a = v[0], &b = v[1], &c = v[2];
-  const Vec3 ab = b - a, ac = c - a, ap = -a;
-  const Real d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = -b;
-  const Real d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const Real vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-  const Vec3 cp = -c;
-  const Real d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const Real vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-  const Real va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  }
-  const Real denom = Real(1) / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 // reach_triangle as it was before its shortcuts, every test made with A's own support: the
 // oracle the shortcuts must agree with, bit for bit.
 bool reach_with_supports(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r) {
@@ -669,7 +645,9 @@ bool reach_with_supports(const TriangleQuery& q, const MeshTriangle& t, Triangle
   r.lowest = support_world(q.full, -r.face);
   r.plane_gap = r.face.dot(r.lowest - v[0]);
   if (r.plane_gap > r.speculative) return false;
-  r.closest = closest_point_reference(v);
+  // The same operations as triangle_contact.cpp's closest point (Ericson 5.1.5), with the query
+  // point at the origin: the same bits, but for the sign of a zero.
+  r.closest = closest_on_triangle(Vec3::Zero(), v[0], v[1], v[2]);
   const Real dist2 = r.closest.squaredNorm();
   if (dist2 > 0) {
     const Real dist = std::sqrt(dist2);
