@@ -24,13 +24,19 @@ void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& o
   out.edge_count = 12;
   const Vec3 ax = r.col(0) * h.x(), ay = r.col(1) * h.y(), az = r.col(2) * h.z();
   // Vertex i is ((centre +- ax) +- ay) +- az, summed in that order; perf: the partial sums are
-  // shared (2, then 4, then 8 additions instead of 24).
-  const Vec3 x[2] = {centre - ax, centre + ax};
-  const Vec3 xy[4] = {x[0] - ay, x[1] - ay, x[0] + ay, x[1] + ay};
-  for (int i = 0; i < 4; ++i) {
-    out.vertices[i] = xy[i] - az;
-    out.vertices[i + 4] = xy[i] + az;
-  }
+  // shared (2, then 4, then 8 additions instead of 24), in named values rather than arrays: GCC
+  // stored an array's sums one float at a time and read them back 16 bytes at once, a failed
+  // store-to-load forwarding that cost more than the rest of the function.
+  const Vec3 x0 = centre - ax, x1 = centre + ax;
+  const Vec3 xy0 = x0 - ay, xy1 = x1 - ay, xy2 = x0 + ay, xy3 = x1 + ay;
+  out.vertices[0] = xy0 - az;
+  out.vertices[1] = xy1 - az;
+  out.vertices[2] = xy2 - az;
+  out.vertices[3] = xy3 - az;
+  out.vertices[4] = xy0 + az;
+  out.vertices[5] = xy1 + az;
+  out.vertices[6] = xy2 + az;
+  out.vertices[7] = xy3 + az;
   for (int k = 0; k < 3; ++k) {
     const Vec3 n = r.col(k);
     const Real d = n.dot(centre);
