@@ -175,18 +175,8 @@ Real core_radius(const Shape& s) {
   return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ? s.radius : Real(0);
 }
 
-Vec3 core_support(const Shape& s, const Vec3& d) {
-  switch (s.type) {
-    case ShapeType::Sphere:
-      return Vec3::Zero();
-    case ShapeType::Capsule:
-      return Vec3(0, d.y() >= 0 ? s.half_height : -s.half_height, 0);
-    default:
-      return support(s, d);
-  }
-}
-
-Vec3 support_world(const PlacedShape& p, const Vec3& d) {
+Xyz support_world_xyz(const PlacedShape& p, Real dx, Real dy, Real dz) {
+  const Vec3 d(dx, dy, dz);
   const Shape& s = *p.shape;
   Vec3 out = p.rotation * core_support(s, p.rotation.transpose() * d) + p.position;
   // A rounded shape is its core swept by a sphere: the sphere's support adds r d/|d|.
@@ -194,7 +184,7 @@ Vec3 support_world(const PlacedShape& p, const Vec3& d) {
     const Real len = d.norm();
     if (len > 0) out += d * (s.radius / len);
   }
-  return out;
+  return {out.x(), out.y(), out.z()};
 }
 
 namespace {

@@ -29,10 +29,25 @@ Real core_radius(const Shape& s);
 
 // Support of the shape's core in its principal frame: a sphere's centre, a capsule's segment, any
 // other shape itself.
-Vec3 core_support(const Shape& s, const Vec3& d);
+inline Vec3 core_support(const Shape& s, const Vec3& d) {
+  switch (s.type) {
+    case ShapeType::Sphere:
+      return Vec3::Zero();
+    case ShapeType::Capsule:
+      return Vec3(0, d.y() >= 0 ? s.half_height : -s.half_height, 0);
+    default:
+      return support(s, d);
+  }
+}
+
+// support_world's body, with the direction and the result in registers (Xyz, shape.hpp).
+Xyz support_world_xyz(const PlacedShape& p, Real dx, Real dy, Real dz);
 
 // World support point of the placed shape in world direction d (need not be unit).
-Vec3 support_world(const PlacedShape& p, const Vec3& d);
+inline Vec3 support_world(const PlacedShape& p, const Vec3& d) {
+  const Xyz s = support_world_xyz(p, d.x(), d.y(), d.z());
+  return Vec3(s.x, s.y, s.z);
+}
 
 struct SimplexVertex {
   Vec3 w;  // a - b: point of the Minkowski difference

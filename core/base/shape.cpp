@@ -410,7 +410,9 @@ Shape make_shape(const ShapeDef& def) {
   return s;
 }
 
-Vec3 support(const Shape& shape, const Vec3& d) {
+namespace {
+
+Vec3 support_of(const Shape& shape, const Vec3& d) {
   switch (shape.type) {
     case ShapeType::Sphere:
       return shape.radius * direction_or(d, Vec3::UnitY());
@@ -454,6 +456,13 @@ Vec3 support(const Shape& shape, const Vec3& d) {
       // A half-space has no support in most directions; its point nearest the origin stands in.
       return shape.plane_normal * shape.plane_offset;
   }
+}
+
+}  // namespace
+
+Xyz support_xyz(const Shape& shape, Real dx, Real dy, Real dz) {
+  const Vec3 s = support_of(shape, Vec3(dx, dy, dz));
+  return {s.x(), s.y(), s.z()};
 }
 
 }  // namespace elan::detail

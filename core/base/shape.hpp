@@ -55,8 +55,22 @@ inline bool is_convex(const Shape& s) {
   return s.type <= ShapeType::ConvexHull;
 }
 
+// A point or direction as three numbers. perf: a trivially copyable type of three floats travels
+// in registers (two), an Eigen vector by hidden reference through memory, where GCC stored it one
+// float at a time and read it back eight bytes at once: a failed store-to-load forwarding on
+// every support GJK takes. The support functions pass their directions and results this way.
+struct Xyz {
+  Real x, y, z;
+};
+
+// support's body, with the direction and the result in registers.
+Xyz support_xyz(const Shape& shape, Real dx, Real dy, Real dz);
+
 // Support point of the shape (principal frame) in direction d (need not be unit). Planes, meshes,
 // heightfields and compounds have no support and are handled by their own routines.
-Vec3 support(const Shape& shape, const Vec3& d);
+inline Vec3 support(const Shape& shape, const Vec3& d) {
+  const Xyz s = support_xyz(shape, d.x(), d.y(), d.z());
+  return Vec3(s.x, s.y, s.z);
+}
 
 }  // namespace elan::detail
