@@ -173,8 +173,10 @@ TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real spec
 
 bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r) {
   // Working frame: the surface's axes, origin at A's centre, so coordinates stay small.
-  Vec3(&v)[3] = r.v;
-  for (int k = 0; k < 3; ++k) v[k] = t.v[k] - q.position;
+  // perf: the corners are worked on as locals and only written to r: read back from r, GCC loaded
+  // two floats at once that it had just stored one at a time (a failed store forwarding).
+  const Vec3 v[3] = {t.v[0] - q.position, t.v[1] - q.position, t.v[2] - q.position};
+  for (int k = 0; k < 3; ++k) r.v[k] = v[k];
   Vec3 geometric = (v[1] - v[0]).cross(v[2] - v[0]);
   const Real area2 = geometric.norm();
   if (!(area2 > 0)) return false;
