@@ -36,21 +36,24 @@ struct SubSimplex {
   Vec3 v = Vec3::Zero();
 };
 
-void set_vertex(SubSimplex& r, const Vec3* w, int i) {
+// The solvers read the simplex's vertices in place (`v[i].w`). perf: copied into an array of
+// Vec3 first, GCC moved them eight bytes at a time, so every other one straddled two stores and
+// its load waited for both (a failed store forwarding).
+void set_vertex(SubSimplex& r, const SimplexVertex* v, int i) {
   r.count = 1;
   r.index[0] = i;
   r.lambda[0] = 1;
-  r.v = w[i];
+  r.v = v[i].w;
 }
 
 // Segment: barycentric weights from the 1D coordinates along the axis of largest extent, which
 // keeps the signs of the weights exact enough to pick the right Voronoi region (Montanari S1D).
-void solve_segment(const Vec3* w, int i0, int i1, SubSimplex& r) {
-  const Vec3& s1 = w[i0];
-  const Vec3& s2 = w[i1];
+void solve_segment(const SimplexVertex* v, int i0, int i1, SubSimplex& r) {
+  const Vec3& s1 = v[i0].w;
+  const Vec3& s2 = v[i1].w;
   const Vec3 t = s2 - s1;
   const Real tt = t.squaredNorm();
-  if (!(tt > 0)) return set_vertex(r, w, i0);
+  if (!(tt > 0)) return set_vertex(r, v, i0);
   const Vec3 p0 = s1 - t * (s1.dot(t) / tt);
   const int k = largest_axis(t);
   const Real mu = s1[k] - s2[k];
@@ -65,16 +68,16 @@ void solve_segment(const Vec3* w, int i0, int i1, SubSimplex& r) {
     r.v = r.lambda[0] * s1 + r.lambda[1] * s2;
     return;
   }
-  set_vertex(r, w, same_sign(mu, c2) ? i1 : i0);
+  set_vertex(r, v, same_sign(mu, c2) ? i1 : i0);
 }
 
 // Triangle: project the origin on the plane, then signed areas in the coordinate plane where the
 // triangle's projection is largest (Montanari S2D). Regions outside an edge recurse to that edge;
 // a degenerate triangle tries all three edges.
-void solve_triangle(const Vec3* w, int i0, int i1, int i2, SubSimplex& r) {
-  const Vec3& s1 = w[i0];
-  const Vec3& s2 = w[i1];
-  const Vec3& s3 = w[i2];
+void solve_triangle(const SimplexVertex* v, int i0, int i1, int i2, SubSimplex& r) {
+  const Vec3& s1 = v[i0].w;
+  const Vec3& s2 = v[i1].w;
+  const Vec3& s3 = v[i2].w;
   const Vec3 n = (s2 - s1).cross(s3 - s1);
   const Real nn = n.squaredNorm();
   Real c[3] = {0, 0, 0};
@@ -108,7 +111,7 @@ void solve_triangle(const Vec3* w, int i0, int i1, int i2, SubSimplex& r) {
   for (int j = 0; j < 3; ++j) {
     if (nn > 0 && same_sign(mu, c[j])) continue;
     SubSimplex e;
-    solve_segment(w, ids[(j + 1) % 3], ids[(j + 2) % 3], e);
+    solve_segment(v, ids[(j + 1) % 3], ids[(j + 2) % 3], e);
     const Real d = e.v.squaredNorm();
     if (d < best) best = d, r = e;
   }
@@ -117,8 +120,8 @@ void solve_triangle(const Vec3* w, int i0, int i1, int i2, SubSimplex& r) {
 // Tetrahedron: signed volumes with the origin replacing each vertex give the barycentric weights
 // (Montanari S3D). All of one sign: origin inside. Otherwise the closest point lies on a face
 // whose weight has the wrong sign; a flat tetrahedron tries all four faces.
-void solve_tetrahedron(const Vec3* w, SubSimplex& r) {
-  const Vec3 &s1 = w[0], &s2 = w[1], &s3 = w[2], &s4 = w[3];
+void solve_tetrahedron(const SimplexVertex* v, SubSimplex& r) {
+  const Vec3 &s1 = v[0].w, &s2 = v[1].w, &s3 = v[2].w, &s4 = v[3].w;
   const Real c[4] = {s2.dot(s3.cross(s4)), -s1.dot((s3 - s1).cross(s4 - s1)),
                      (s2 - s1).dot((-s1).cross(s4 - s1)), (s2 - s1).dot((s3 - s1).cross(-s1))};
   const Real mu = c[0] + c[1] + c[2] + c[3];
@@ -132,15 +135,14 @@ void solve_tetrahedron(const Vec3* w, SubSimplex& r) {
   for (int j = 0; j < 4; ++j) {
     if (same_sign(mu, c[j])) continue;
     SubSimplex f;
-    solve_triangle(w, (j + 1) % 4, (j + 2) % 4, (j + 3) % 4, f);
+    solve_triangle(v, (j + 1) % 4, (j + 2) % 4, (j + 3) % 4, f);
     const Real d = f.v.squaredNorm();
     if (d < best) best = d, r = f;
   }
 }
 
 SubSimplex solve_simplex(const Simplex& s) {
-  Vec3 w[4];
-  for (int i = 0; i < s.count; ++i) w[i] = s.v[i].w;
+  const SimplexVertex* w = s.v;
   SubSimplex r;
   switch (s.count) {
     case 1:
