@@ -11,6 +11,7 @@
 #include "core/base/deep_overlap.hpp"
 #include "core/base/pair_key.hpp"
 #include "core/base/parallel.hpp"
+#include "core/base/rotate.hpp"
 #include "narrowphase/collide.hpp"
 #include "narrowphase/composite.hpp"
 #include "narrowphase/deep_contact.hpp"
@@ -92,19 +93,19 @@ bool rolls(const Shape& s) {
   if (std::abs(rel_now.dot(cache.exact_rotation.unpack())) < kCacheCosHalfAngle) return false;
   const Quat turn_a = xa.rotation * cache.orientation_a.conjugate();  // since the last update
   const Quat turn_b = xb.rotation * cache.orientation_b.conjugate();
-  const Vec3 normal_in_a = cache.orientation_a.conjugate() * old.normal;
+  const Vec3 normal_in_a = rotate(cache.orientation_a.conjugate(), old.normal);
   const Vec3 centres = xb.position - xa.position;
   m = old;  // key, bodies, impulses for the warm start
-  m.normal = (xa.rotation * normal_in_a).normalized();
+  m.normal = rotate(xa.rotation, normal_in_a).normalized();
   carry_tangent_impulse(old.normal, old.tangent_impulse, m.normal, m.tangent_impulse);
   for (int k = 0; k < m.point_count; ++k) {
     ContactPoint& p = m.points[k];
     const ContactPoint& q = old.points[k];
-    const Vec3 on_a = turn_a * q.anchor_a;  // the material points, from each centre now
-    const Vec3 on_b = turn_b * cache.anchor_b(q);
+    const Vec3 on_a = rotate(turn_a, q.anchor_a);  // the material points, from each centre now
+    const Vec3 on_b = rotate(turn_b, cache.anchor_b(q));
     // Seen from A, the two material points' gap along A's normal changed by as much as their
     // separation vector did; it was zero: they were one point.
-    const Vec3 gap_now = relative + xa.rotation.conjugate() * (on_b - on_a);
+    const Vec3 gap_now = relative + rotate(xa.rotation.conjugate(), on_b - on_a);
     p.separation = q.separation + normal_in_a.dot(gap_now);
     // Both arms reach one world point, midway between the material points: once the bodies
     // have slid or turned they part (a 1 m cube turned 0.5 degree moves its corner 4 mm), and
@@ -143,7 +144,7 @@ Real closing(const SeparatedPair& s, const Vec3& p, const Quat& q, const Shape& 
   const Real chord = 2 * (q * q0.conjugate()).vec().norm() + PackedRotation::kError;
   const Real in_a = (p - p0).norm() + step + chord * b.bounding_radius;
   if (s.kind() == Separation::Kind::FaceOfA) return in_a;
-  const Real in_b = (q.conjugate() * p - q0.conjugate() * p0).norm() + step +
+  const Real in_b = (rotate(q.conjugate(), p) - rotate(q0.conjugate(), p0)).norm() + step +
                     PackedRotation::kError * (p0.norm() + step) + chord * a.bounding_radius;
   return s.kind() == Separation::Kind::FaceOfB ? in_b : std::min(in_a, in_b);
 }
@@ -224,7 +225,7 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       const Shape& shape_b = shapes[bodies.shape[b]];
       const Transform xa{bodies.position(a), bodies.orientation(a)};
       const Transform xb{bodies.position(b), bodies.orientation(b)};
-      const Vec3 relative = xa.rotation.conjugate() * (xb.position - xa.position);
+      const Vec3 relative = rotate(xa.rotation.conjugate(), xb.position - xa.position);
       // Last step's manifold of the pair, whole, if A and B are as they were.
       const bool has_old = last.head != nullptr && last.head->body_a == a;
       assert(last.head == nullptr || (last.head->point_count > 1) == (last.tail != nullptr));

@@ -12,6 +12,7 @@
 
 #include "core/base/packed_rotation.hpp"
 #include "core/base/pair_key.hpp"
+#include "core/base/rotate.hpp"
 #include "elan/math.hpp"
 
 namespace elan::detail {
@@ -196,7 +197,7 @@ struct PairCache {
   // B's arm of a point (world, from B's centre of mass) at the poses of the last update. The
   // solver, which runs at those poses, takes B's centre from the body store instead.
   Vec3 anchor_b(const ContactPoint& p) const {
-    return p.anchor_a - orientation_a * relative_position;
+    return p.anchor_a - rotate(orientation_a, relative_position);
   }
 };
 static_assert(sizeof(Real) != 4 || sizeof(PairCache) == 72, "PairCache: 72 bytes in float");
