@@ -142,20 +142,19 @@ void solve_tetrahedron(const SimplexVertex* v, SubSimplex& r) {
 }
 
 SubSimplex solve_simplex(const Simplex& s) {
-  const SimplexVertex* w = s.v;
   SubSimplex r;
   switch (s.count) {
     case 1:
-      set_vertex(r, w, 0);
+      set_vertex(r, s.v, 0);
       break;
     case 2:
-      solve_segment(w, 0, 1, r);
+      solve_segment(s.v, 0, 1, r);
       break;
     case 3:
-      solve_triangle(w, 0, 1, 2, r);
+      solve_triangle(s.v, 0, 1, 2, r);
       break;
     default:
-      solve_tetrahedron(w, r);
+      solve_tetrahedron(s.v, r);
       break;
   }
   return r;
