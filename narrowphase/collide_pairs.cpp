@@ -79,13 +79,14 @@ bool rolls(const Shape& s) {
          s.type == ShapeType::Cylinder || has_round_part(s);
 }
 
-// `relative`: B's centre of mass minus A's, in A's frame, now.
+// `relative`: B's centre of mass minus A's, in A's frame, now. `m`: last step's manifold.
 // On success `m` is the manifold carried along and `cache` holds the poses of now.
 // perf: inline in the pair loop (the path of most of a resting pile's pairs), where its
-// rotations share the loop's.
-[[gnu::always_inline]] inline bool reuse_manifold(const Manifold& old, PairCache& cache,
+// rotations share the loop's; and in place: a copy of the manifold just loaded read it back in
+// wider pieces than it was written (a failed store forwarding).
+[[gnu::always_inline]] inline bool reuse_manifold(Manifold& m, PairCache& cache,
                                                   const Transform& xa, const Transform& xb,
-                                                  const Vec3& relative, Manifold& m) {
+                                                  const Vec3& relative) {
   if ((relative - cache.exact_position).squaredNorm() > kCacheDistance * kCacheDistance) {
     return false;
   }
@@ -93,20 +94,20 @@ bool rolls(const Shape& s) {
   if (std::abs(rel_now.dot(cache.exact_rotation.unpack())) < kCacheCosHalfAngle) return false;
   const Quat turn_a = xa.rotation * cache.orientation_a.conjugate();  // since the last update
   const Quat turn_b = xb.rotation * cache.orientation_b.conjugate();
-  const Vec3 normal_in_a = rotate(cache.orientation_a.conjugate(), old.normal);
+  const Vec3 old_normal = m.normal;
+  const Vec3 normal_in_a = rotate(cache.orientation_a.conjugate(), old_normal);
   const Vec3 centres = xb.position - xa.position;
-  m = old;  // key, bodies, impulses for the warm start
+  // The key, the bodies and the impulses stay, for the warm start.
   m.normal = rotate(xa.rotation, normal_in_a).normalized();
-  carry_tangent_impulse(old.normal, old.tangent_impulse, m.normal, m.tangent_impulse);
+  carry_tangent_impulse(old_normal, m.tangent_impulse, m.normal, m.tangent_impulse);
   for (int k = 0; k < m.point_count; ++k) {
     ContactPoint& p = m.points[k];
-    const ContactPoint& q = old.points[k];
-    const Vec3 on_a = rotate(turn_a, q.anchor_a);  // the material points, from each centre now
-    const Vec3 on_b = rotate(turn_b, cache.anchor_b(q));
+    const Vec3 on_a = rotate(turn_a, p.anchor_a);  // the material points, from each centre now
+    const Vec3 on_b = rotate(turn_b, cache.anchor_b(p));
     // Seen from A, the two material points' gap along A's normal changed by as much as their
     // separation vector did; it was zero: they were one point.
     const Vec3 gap_now = relative + rotate(xa.rotation.conjugate(), on_b - on_a);
-    p.separation = q.separation + normal_in_a.dot(gap_now);
+    p.separation = p.separation + normal_in_a.dot(gap_now);
     // Both arms reach one world point, midway between the material points: once the bodies
     // have slid or turned they part (a 1 m cube turned 0.5 degree moves its corner 4 mm), and
     // the two halves of an impulse acting at different points would form a couple.
@@ -233,8 +234,8 @@ void collide_pairs(std::span<const uint64_t> pairs, const BodyStore& bodies,
       // Try the pair cache: the points carried with the bodies.
       const bool cacheable = !rolls(shape_a) && !rolls(shape_b);
       if (has_old && old.point_count > 0 && last.cache != nullptr && cacheable &&
-          reuse_manifold(old, *last.cache, xa, xb, relative, m)) {
-        block.file_manifold(m, last);
+          reuse_manifold(old, *last.cache, xa, xb, relative)) {
+        block.file_manifold(old, last);
         continue;
       }
       // Try the separation cache: still apart if the motion since cannot have closed the gap.
