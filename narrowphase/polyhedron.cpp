@@ -26,7 +26,7 @@ void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& o
   // Vertex i is ((centre +- ax) +- ay) +- az, summed in that order; perf: the partial sums are
   // shared (2, then 4, then 8 additions instead of 24), in named values rather than arrays: GCC
   // stored an array's sums one float at a time and read them back 16 bytes at once, a failed
-  // store-to-load forwarding that cost more than the rest of the function.
+  // store-to-load forwarding.
   const Vec3 x0 = centre - ax, x1 = centre + ax;
   const Vec3 xy0 = x0 - ay, xy1 = x1 - ay, xy2 = x0 + ay, xy3 = x1 + ay;
   out.vertices[0] = xy0 - az;

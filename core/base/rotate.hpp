@@ -8,9 +8,9 @@ namespace elan::detail {
 
 // q v q^-1 by Eigen's own formula (QuaternionBase::_transformVector: uv = 2 (q.vec x v), then
 // v + w uv + q.vec x uv), so the bits are those of `q * v`. perf: in a large function GCC may
-// leave Eigen's out of line; it then returns the vector through memory, stored one float at a
-// time, and the caller reads it back eight bytes at once, a failed store-to-load forwarding (the
-// pair loop of the collide stage had three such calls, about 5 % of its samples on a pyramid).
+// leave Eigen's out of line (it did in the collide stage's pair loop); it then returns the vector
+// through memory, stored one float at a time, and the caller reads it back eight bytes at once, a
+// failed store-to-load forwarding.
 // The sum is written out coefficient by coefficient, in Eigen's order ((v + w uv) + c), since GCC
 // outlined even the expression's assignment loop there.
 [[gnu::always_inline]] inline Vec3 rotate(const Quat& q, const Vec3& v) {

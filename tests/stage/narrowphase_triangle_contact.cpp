@@ -284,9 +284,6 @@ HeightField bumpy_field(uint32_t columns, std::mt19937& rng) {
   return build_heightfield(heights, columns, Real(0.5), Real(0.5));
 }
 
-// Random shapes and poses about random triangles (slivers, shapes centred on the plane, touching
-// exactly): the result is always finite, its normal unit, at most four points, each within the
-// speculative distance.
 // Heightfield cell (i, j)'s box: x and z between its samples, y between its least and greatest
 // height (the composite walk's box for the cell).
 void cell_box(const HeightField& field, uint32_t i, uint32_t j, Vec3& lo, Vec3& hi) {
@@ -298,6 +295,9 @@ void cell_box(const HeightField& field, uint32_t i, uint32_t j, Vec3& lo, Vec3& 
             Real(j + 1) * field.spacing_z);
 }
 
+// Random shapes and poses about random triangles (slivers, shapes centred on the plane, touching
+// exactly): the result is always finite, its normal unit, at most four points, each within the
+// speculative distance.
 TEST(TriangleContact, FiniteOnRandomAndDegenerateInput) {
   const std::array<Shape, 6> shapes = every_shape();
   std::mt19937 rng(7);
