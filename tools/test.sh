@@ -186,7 +186,7 @@ if [ -n "$fuzz_pid" ]; then
   cat build/test-asan/fuzz.out
   [ "$fuzz_status" -eq 0 ] || exit 1
 fi
-TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:ignore_noninstrumented_modules=1 \
   ctest --test-dir build/test-tsan -j"$jobs" --output-on-failure --timeout 900 \
         -E "$tsan_skip"
 echo "== all tests passed (Release, native golden hashes, ASan+UBSan, fuzzing, TSan)"
