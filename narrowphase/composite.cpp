@@ -125,9 +125,14 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
       }
     };
     if (q.type == ShapeType::Mesh) {
-      for_each_triangle(*q.mesh, lo, hi, [&](const MeshTriangle& t) {
-        if (reach_triangle(query, t, reach)) contact(t);
-      });
+      // perf: a triangle is copied out of the mesh only once in reach. Copied first, its corners
+      // were read back in wider pieces than the copy wrote them (a failed store forwarding).
+      const TriangleMesh& mesh = *q.mesh;
+      for_each_triangle_in_place(mesh, lo, hi,
+                                 [&](uint32_t t, const Vec3& a, const Vec3& b, const Vec3& c) {
+                                   if (reach_triangle(query, a, b, c, true, reach))
+                                     contact(mesh.triangle(t));
+                                 });
     } else {
       // perf: a heightfield triangle's active edges (a normal per neighbour) only where a
       // contact needs them.

@@ -171,11 +171,12 @@ TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real spec
   return q;
 }
 
-bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r) {
+bool reach_triangle(const TriangleQuery& q, const Vec3& a, const Vec3& b, const Vec3& c,
+                    bool two_sided, TriangleReach& r) {
   // Working frame: the surface's axes, origin at A's centre, so coordinates stay small.
   // perf: the corners are worked on as locals and only written to r: read back from r, GCC loaded
   // two floats at once that it had just stored one at a time (a failed store forwarding).
-  const Vec3 v[3] = {t.v[0] - q.position, t.v[1] - q.position, t.v[2] - q.position};
+  const Vec3 v[3] = {a - q.position, b - q.position, c - q.position};
   for (int k = 0; k < 3; ++k) r.v[k] = v[k];
   Vec3 geometric = (v[1] - v[0]).cross(v[2] - v[0]);
   const Real area2 = geometric.norm();
@@ -184,7 +185,7 @@ bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach
   const Real centre_height = -geometric.dot(v[0]);
   // A one-sided triangle collides from the front only: a body whose centre is behind it has
   // passed through (the continuous stage exists to prevent that) and must not be pushed down.
-  if (!t.two_sided && centre_height < 0) return false;
+  if (!two_sided && centre_height < 0) return false;
   r.geometric = geometric;
   r.face = centre_height >= 0 ? geometric : Vec3(-geometric);
   // Only the motion toward the plane can close the gap to it within the step.

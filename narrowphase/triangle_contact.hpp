@@ -80,10 +80,16 @@ struct TriangleReach {
   Vec3 closest = Vec3::Zero();
 };
 
-// Whether triangle `t` (corners and two_sided read; not its active edges) may give a contact:
-// false where collide_triangle gives none. perf: a heightfield derives a triangle's active edges
-// only when it is in reach.
-bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r);
+// Whether the triangle of corners a, b, c (surface frame, counter-clockwise seen from the front)
+// may give a contact: false where collide_triangle gives none. perf: a heightfield derives a
+// triangle's active edges only when it is in reach; a mesh's walk passes the corners where the
+// mesh keeps them and makes the MeshTriangle only for a triangle in reach.
+bool reach_triangle(const TriangleQuery& q, const Vec3& a, const Vec3& b, const Vec3& c,
+                    bool two_sided, TriangleReach& r);
+// The same for triangle `t` (corners and two_sided read; not its active edges).
+inline bool reach_triangle(const TriangleQuery& q, const MeshTriangle& t, TriangleReach& r) {
+  return reach_triangle(q, t.v[0], t.v[1], t.v[2], t.two_sided, r);
+}
 
 // Whether no triangle of `in_box` (each inside the box [lo, hi], surface frame) gives a contact at
 // any speculative distance up to `speculative`: A (q's shape at q.position) is farther than that

@@ -43,15 +43,15 @@ struct TriangleMesh {
 TriangleMesh build_triangle_mesh(std::span<const Vec3> vertices,
                                  std::span<const std::array<uint32_t, 3>> triangles);
 
-// Calls f(const MeshTriangle&) for every triangle whose box overlaps [lo, hi] (shape frame), in
-// tree order: the same order every time.
+// Calls f(uint32_t t, const Vec3& a, const Vec3& b, const Vec3& c) for every triangle t whose box
+// overlaps [lo, hi] (shape frame), with its corners where the mesh keeps them, in tree order: the
+// same order every time.
 template <class F>
-void for_each_triangle(const TriangleMesh& mesh, const Vec3& lo, const Vec3& hi, F&& f) {
+void for_each_triangle_in_place(const TriangleMesh& mesh, const Vec3& lo, const Vec3& hi, F&& f) {
   bvh_query(mesh.tree, lo, hi, [&](uint32_t first, uint32_t count) {
     for (uint32_t t = first; t < first + count; ++t) {
       // The triangle's box misses [lo, hi] when all three corners lie beyond one of its faces.
-      // perf: tested on the corners in place, axis by axis, stopping at the first that misses;
-      // only a triangle that meets the box is copied out.
+      // perf: tested on the corners in place, axis by axis, stopping at the first that misses.
       const std::array<uint32_t, 3>& corner = mesh.triangles[t];
       const Vec3 &a = mesh.vertices[corner[0]], &b = mesh.vertices[corner[1]],
                  &c = mesh.vertices[corner[2]];
@@ -60,9 +60,16 @@ void for_each_triangle(const TriangleMesh& mesh, const Vec3& lo, const Vec3& hi,
         misses = (a[k] > hi[k] && b[k] > hi[k] && c[k] > hi[k]) ||
                  (a[k] < lo[k] && b[k] < lo[k] && c[k] < lo[k]);
       }
-      if (misses) continue;
-      f(mesh.triangle(t));
+      if (!misses) f(t, a, b, c);
     }
+  });
+}
+
+// Calls f(const MeshTriangle&) for the same triangles in the same order: each copied out.
+template <class F>
+void for_each_triangle(const TriangleMesh& mesh, const Vec3& lo, const Vec3& hi, F&& f) {
+  for_each_triangle_in_place(mesh, lo, hi, [&](uint32_t t, const Vec3&, const Vec3&, const Vec3&) {
+    f(mesh.triangle(t));
   });
 }
 
