@@ -14,9 +14,10 @@ namespace elan::detail {
 namespace {
 
 // Triangles a leaf of the mesh's tree, at most. perf: leaves of 4 would make about one 32-byte
-// node per two triangles (16 bytes a triangle, ~35 in all on a grid); up to 8 make about one per
-// three (~10 bytes, ~30 in all). A query tests each triangle's box before the triangle itself,
-// so a wider leaf costs box tests only.
+// binary node per two triangles (16 bytes a triangle, ~35 in all on a grid); up to 8 make about
+// one per three (~10 bytes, ~30 in all), and the 4-wide tree collapsed from them as many bytes. A
+// query tests each triangle's box before the triangle itself, so a wider leaf costs box tests
+// only.
 constexpr int kMeshLeafSize = 8;
 
 // More triangles than this are refused: edge records number them 3 t + k in 32 bits.
@@ -178,7 +179,7 @@ TriangleMesh build_triangle_mesh(std::span<const Vec3> vertices,
   const std::vector<uint8_t> active = find_active_edges(vertices, triangles, normals);
   normals = {};
   std::vector<uint32_t> order;
-  mesh.tree = build_bvh(boxes, kMeshLeafSize, order);
+  mesh.tree = collapse_to_bvh4(build_bvh(boxes, kMeshLeafSize, order));
   mesh.min = Vec3::Constant(std::numeric_limits<Real>::max());
   mesh.max = -mesh.min;
   for (const Aabb& b : boxes) {
@@ -226,7 +227,7 @@ bool ray_triangle(const Vec3& origin, const Vec3& dir, const Vec3& a, const Vec3
 bool ray_cast_mesh(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir, Real max_t,
                    SurfaceHit& hit) {
   bool found = false;
-  bvh_ray(mesh.tree, origin, dir, max_t, [&](uint32_t first, uint32_t count, Real limit) {
+  bvh4_ray(mesh.tree, origin, dir, max_t, [&](uint32_t first, uint32_t count, Real limit) {
     for (uint32_t t = first; t < first + count; ++t) {
       const auto& tri = mesh.triangles[t];
       Real th;
@@ -234,8 +235,9 @@ bool ray_cast_mesh(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir
                         mesh.vertices[tri[2]], limit, th)) {
         continue;
       }
-      // determinism: a tie keeps the triangle found first in the tree's fixed walk.
-      if (found && !(th < hit.t)) continue;
+      // determinism: a tie keeps the lower triangle, whichever the walk met first (it visits a
+      // leaf entered exactly at the nearest hit so far, so every tied triangle is met).
+      if (found && (th > hit.t || (th == hit.t && t > hit.triangle))) continue;
       found = true;
       hit.t = th;
       hit.triangle = t;
@@ -255,7 +257,7 @@ bool ray_cast_mesh(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir
 std::size_t mesh_bytes(const TriangleMesh& mesh) {
   return sizeof(TriangleMesh) + mesh.vertices.capacity() * sizeof(Vec3) +
          mesh.triangles.capacity() * sizeof(mesh.triangles[0]) + mesh.active_edges.capacity() +
-         bvh_bytes(mesh.tree);
+         bvh4_bytes(mesh.tree);
 }
 
 }  // namespace elan::detail

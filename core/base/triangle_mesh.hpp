@@ -8,20 +8,20 @@
 #include <span>
 #include <vector>
 
-#include "core/base/bvh.hpp"
+#include "core/base/bvh4.hpp"
 #include "core/base/mesh_triangle.hpp"
 #include "elan/math.hpp"
 
 namespace elan::detail {
 
 // perf: under 32 bytes a triangle with its tree: 12 of indices, 1 of edge flags, ~6 of shared
-// vertices on a grid, ~10 of nodes at up to 8 triangles a leaf (32-byte nodes, about one per
-// three triangles).
+// vertices on a grid, ~10 of nodes at up to 8 triangles a leaf (the 4-wide tree: 128-byte nodes,
+// about one per twelve triangles).
 struct TriangleMesh {
   std::vector<Vec3> vertices;                      // m, shape frame
   std::vector<std::array<uint32_t, 3>> triangles;  // tree order
   std::vector<uint8_t> active_edges;               // per triangle: bit k, edge v[k] -> v[k + 1]
-  Bvh tree;                                        // leaves index `triangles` directly
+  Bvh4 tree;                                       // leaves index `triangles` directly
   Vec3 min = Vec3::Zero(), max = Vec3::Zero();     // bounds of the vertices used
 
   std::size_t size() const { return triangles.size(); }
@@ -36,10 +36,11 @@ struct TriangleMesh {
 };
 
 // Builds the mesh: checks the input, finds each edge's neighbour (an edge shared by more than two
-// triangles is active), builds the tree (leaves of at most 8 triangles) and reorders the
-// triangles into its leaf order. Throws elan::Error with field "shape.triangles" ("triangle 12:
-// index 40 out of range (30 vertices)", "... repeats vertex 3", "... has zero area") or
-// "shape.vertices" (none, or not finite, or past the supported coordinates).
+// triangles is active), builds the tree (binned SAH, leaves of at most 8 triangles, collapsed
+// 4-wide) and reorders the triangles into its leaf order. Throws elan::Error with field
+// "shape.triangles" ("triangle 12: index 40 out of range (30 vertices)", "... repeats vertex 3",
+// "... has zero area") or "shape.vertices" (none, or not finite, or past the supported
+// coordinates).
 TriangleMesh build_triangle_mesh(std::span<const Vec3> vertices,
                                  std::span<const std::array<uint32_t, 3>> triangles);
 
@@ -48,7 +49,7 @@ TriangleMesh build_triangle_mesh(std::span<const Vec3> vertices,
 // same order every time.
 template <class F>
 void for_each_triangle_in_place(const TriangleMesh& mesh, const Vec3& lo, const Vec3& hi, F&& f) {
-  bvh_query(mesh.tree, lo, hi, [&](uint32_t first, uint32_t count) {
+  bvh4_query(mesh.tree, lo, hi, [&](uint32_t first, uint32_t count) {
     for (uint32_t t = first; t < first + count; ++t) {
       // The triangle's box misses [lo, hi] when all three corners lie beyond one of its faces.
       // perf: tested on the corners in place, axis by axis, stopping at the first that misses.
@@ -74,7 +75,8 @@ void for_each_triangle(const TriangleMesh& mesh, const Vec3& lo, const Vec3& hi,
 }
 
 // The nearest hit of the ray origin + t dir, t in [0, max_t] (shape frame; dir need not be
-// unit), with either side of a triangle; false when it hits nothing.
+// unit), with either side of a triangle, the lower triangle on a tie (a ray through a shared
+// edge); false when it hits nothing.
 bool ray_cast_mesh(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir, Real max_t,
                    SurfaceHit& hit);
 

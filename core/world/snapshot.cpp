@@ -216,8 +216,70 @@ detail::Bvh read_tree(ByteReader& r, std::size_t items) {
   return t;
 }
 
+// A mesh's 4-wide tree (version 11 on): per node, the four children's boxes axis by axis (min,
+// then max), their indices, their counts.
+void write_tree4(ByteWriter& w, const detail::Bvh4& t) {
+  w.u32(uint32_t(t.nodes.size()));
+  for (const detail::Bvh4Node& n : t.nodes) {
+    for (const auto& axis : n.min) {
+      for (float f : axis) write_f32(w, f);
+    }
+    for (const auto& axis : n.max) {
+      for (float f : axis) write_f32(w, f);
+    }
+    for (uint32_t v : n.index) w.u32(v);
+    for (uint32_t v : n.count) w.u32(v);
+  }
+}
+
+// Reads a 4-wide tree over `items` items and checks it is one, as read_tree does: depth first
+// (a node's inner children follow it in order, each with its subtree), every node reached once,
+// no deeper than the walks' stacks, every node with a child, leaves within the items.
+detail::Bvh4 read_tree4(ByteReader& r, std::size_t items) {
+  detail::Bvh4 t;
+  t.nodes.resize(r.count(128, "tree node"));
+  for (detail::Bvh4Node& n : t.nodes) {
+    for (auto& axis : n.min) {
+      for (float& f : axis) f = read_f32(r);
+    }
+    for (auto& axis : n.max) {
+      for (float& f : axis) f = read_f32(r);
+    }
+    for (uint32_t& v : n.index) v = r.u32();
+    for (uint32_t& v : n.count) v = r.u32();
+  }
+  if (t.nodes.empty()) return t;
+  std::vector<std::pair<uint32_t, int>> stack{{0u, 0}};
+  std::size_t next = 0;
+  while (!stack.empty()) {
+    const auto [i, depth] = stack.back();
+    stack.pop_back();
+    if (i != next || i >= t.nodes.size() || depth > detail::kBvhMaxDepth) {
+      r.fail("tree is not a depth-first tree");
+    }
+    ++next;
+    const detail::Bvh4Node& n = t.nodes[i];
+    bool any = false;
+    // The inner children pushed last first, so that the first is visited next.
+    for (int k = 3; k >= 0; --k) {
+      const uint32_t count = n.count[k];
+      if (count == detail::kBvh4Empty) continue;
+      any = true;
+      if (count != 0) {
+        if (uint64_t(n.index[k]) + count > items) r.fail("tree leaf out of range");
+        continue;
+      }
+      if (n.index[k] <= i || n.index[k] >= t.nodes.size()) r.fail("tree child out of range");
+      stack.emplace_back(n.index[k], depth + 1);
+    }
+    if (!any) r.fail("tree node has no children");
+  }
+  if (next != t.nodes.size()) r.fail("tree has unreachable nodes");
+  return t;
+}
+
 void write_shape(ByteWriter& w, const Shape& s);
-Shape read_shape(ByteReader& r, bool in_compound);
+Shape read_shape(ByteReader& r, bool in_compound, uint32_t version);
 
 void write_mesh(ByteWriter& w, const detail::TriangleMesh& m) {
   w.u32(uint32_t(m.vertices.size()));
@@ -227,12 +289,12 @@ void write_mesh(ByteWriter& w, const detail::TriangleMesh& m) {
     for (uint32_t v : m.triangles[t]) w.u32(v);
     w.u8(m.active_edges[t]);
   }
-  write_tree(w, m.tree);
+  write_tree4(w, m.tree);
   w.vec3(m.min);
   w.vec3(m.max);
 }
 
-detail::TriangleMesh read_mesh(ByteReader& r) {
+detail::TriangleMesh read_mesh(ByteReader& r, uint32_t version) {
   detail::TriangleMesh m;
   m.vertices.resize(r.count(3 * sizeof(Real), "mesh vertex"));
   for (Vec3& v : m.vertices) v = r.vec3();
@@ -248,7 +310,9 @@ detail::TriangleMesh read_mesh(ByteReader& r) {
     if (m.active_edges[t] > 7) r.fail("mesh triangle edge flags out of range");
   }
   if (nt == 0) r.fail("mesh has no triangles");
-  m.tree = read_tree(r, nt);
+  // Versions 9 and 10 carry the binary tree, which the 4-wide one is made from at build: the
+  // same collapse gives the tree the mesh had, so the world steps as it would have.
+  m.tree = version >= 11 ? read_tree4(r, nt) : detail::collapse_to_bvh4(read_tree(r, nt));
   if (m.tree.nodes.empty()) r.fail("mesh has no tree");
   m.min = r.vec3();
   m.max = r.vec3();
@@ -300,7 +364,7 @@ void write_compound(ByteWriter& w, const detail::Compound& c) {
   write_tree(w, c.tree);
 }
 
-detail::Compound read_compound(ByteReader& r) {
+detail::Compound read_compound(ByteReader& r, uint32_t version) {
   detail::Compound c;
   const uint32_t n = r.count(2, "compound part");
   if (n == 0) r.fail("compound has no parts");
@@ -309,7 +373,7 @@ detail::Compound read_compound(ByteReader& r) {
   std::vector<uint8_t> seen(n, 0);
   for (uint32_t k = 0; k < n; ++k) {
     detail::CompoundPart& p = c.parts[k];
-    p.shape = read_shape(r, true);
+    p.shape = read_shape(r, true, version);
     p.pose.position = r.vec3();
     p.pose.rotation = read_quat(r);
     p.box.min = r.vec3();
@@ -349,7 +413,7 @@ void write_shape(ByteWriter& w, const Shape& s) {
 }
 
 // A compound's part must be convex (one level of nesting, as make_shape builds them).
-Shape read_shape(ByteReader& r, bool in_compound) {
+Shape read_shape(ByteReader& r, bool in_compound, uint32_t version) {
   Shape s;
   const uint8_t type = r.u8();
   if (type > uint8_t(ShapeType::Compound)) r.fail("unknown shape type " + std::to_string(type));
@@ -389,13 +453,13 @@ Shape read_shape(ByteReader& r, bool in_compound) {
   }
   if (has_hull) s.hull = std::make_shared<const detail::ConvexHull>(read_hull(r));
   if (s.type == ShapeType::Mesh) {
-    s.mesh = std::make_shared<const detail::TriangleMesh>(read_mesh(r));
+    s.mesh = std::make_shared<const detail::TriangleMesh>(read_mesh(r, version));
   }
   if (s.type == ShapeType::Heightfield) {
     s.heightfield = std::make_shared<const detail::HeightField>(read_heightfield(r));
   }
   if (s.type == ShapeType::Compound) {
-    s.compound = std::make_shared<const detail::Compound>(read_compound(r));
+    s.compound = std::make_shared<const detail::Compound>(read_compound(r, version));
   }
   return s;
 }
@@ -766,7 +830,7 @@ Decoded decode_snapshot(std::span<const uint8_t> bytes) {
   d.shape_destroyed.resize(d.shapes.size());
   d.shape_user_data.assign(d.shapes.size(), 0);
   for (std::size_t k = 0; k < d.shapes.size(); ++k) {
-    d.shapes[k] = read_shape(r, false);
+    d.shapes[k] = read_shape(r, false, version);
     d.shape_destroyed[k] = r.u8();
     if (d.shape_destroyed[k] > 1) r.fail("bad shape destroyed flag");
     if (version >= 10) d.shape_user_data[k] = r.u64();

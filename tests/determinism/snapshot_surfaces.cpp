@@ -4,6 +4,7 @@
 // resealed file carries an index or a tree that does not fit.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -26,11 +27,10 @@ constexpr Real kMarker = Real(7.125);
 // A static mesh (a bumpy grid), a static heightfield and a dynamic compound of twelve children
 // (so it has a tree) spinning in free flight, with a box resting on a plane beside them so the
 // file carries contacts too. The bodies are kept apart: the snapshot is what is tested here.
-World surfaces_world(int mesh_cells) {
-  World w;
+// The bumpy grid of n x n cells, with the marker vertex last.
+ShapeDef bumpy_mesh(int n) {
   ShapeDef mesh;
   mesh.type = ShapeType::Mesh;
-  const int n = mesh_cells;
   for (int j = 0; j <= n; ++j) {
     for (int i = 0; i <= n; ++i) {
       mesh.vertices.emplace_back(Real(i), Real(0.3 * std::sin(i + 2.0 * j)), Real(j));
@@ -44,6 +44,12 @@ World surfaces_world(int mesh_cells) {
       mesh.triangles.push_back({a, a + uint32_t(n) + 1, a + uint32_t(n) + 2});
     }
   }
+  return mesh;
+}
+
+World surfaces_world(int mesh_cells) {
+  World w;
+  const ShapeDef mesh = bumpy_mesh(mesh_cells);
   BodyDef s;
   s.motion = MotionType::Static;
   s.shape = w.create_shape(mesh);
@@ -207,17 +213,38 @@ TEST(SnapshotSurfaces, ResealedBadIndicesAndTreesAreRefused) {
   reseal(bytes);
   error = restore_error(bytes);
   EXPECT_NE(error.find("edge flags"), std::string::npos) << error;
-  // The tree follows the 18 triangles (13 bytes each) and its node count; the root is an inner
-  // node (18 triangles, leaves of at most 8): its second child's index (offset 12 in the node)
-  // made to point back at the root.
+  // The tree follows the 18 triangles (13 bytes each) and its node count. A 4-wide node is 24
+  // floats of boxes, then four child indices (offset 96) and four counts (offset 112). The root
+  // (18 triangles, leaves of at most 8) has leaf children: its first child's count set to 0 makes
+  // it an inner child whose index (its first triangle, 0) points back at the root.
   const std::size_t tree_at = count_at + 4 + 18 * 13;
+  const std::size_t root_at = tree_at + 4;
+  const auto u32_at = [&](const std::vector<uint8_t>& b, std::size_t at) {
+    uint32_t v = 0;
+    for (int k = 3; k >= 0; --k) v = v << 8 | b[at + std::size_t(k)];
+    return v;
+  };
   bytes = saved;
-  ASSERT_GE(bytes[tree_at], 3);
-  ASSERT_EQ(bytes[tree_at + 4 + 28], 0);  // the root's count: inner
-  for (int k = 0; k < 4; ++k) bytes[tree_at + 4 + 12 + k] = 0;
+  ASSERT_GE(u32_at(bytes, tree_at), 1u);
+  ASSERT_EQ(u32_at(bytes, root_at + 96), 0u);   // the first child's first triangle
+  ASSERT_GT(u32_at(bytes, root_at + 112), 0u);  // the first child's count: a leaf
+  for (int k = 0; k < 4; ++k) bytes[root_at + 112 + std::size_t(k)] = 0;
   reseal(bytes);
   error = restore_error(bytes);
   EXPECT_NE(error.find("tree child out of range"), std::string::npos) << error;
+  // A leaf past the triangles.
+  bytes = saved;
+  bytes[root_at + 96 + 3] = 0x01;  // the first child's first triangle: 2^24
+  reseal(bytes);
+  error = restore_error(bytes);
+  EXPECT_NE(error.find("tree leaf out of range"), std::string::npos) << error;
+
+  // A node with no child.
+  bytes = saved;
+  for (std::size_t k = 0; k < 16; ++k) bytes[root_at + 112 + k] = 0xff;
+  reseal(bytes);
+  error = restore_error(bytes);
+  EXPECT_NE(error.find("tree node has no children"), std::string::npos) << error;
 
   // Any byte of the file changed and resealed is refused or loads a world that steps: never a
   // crash, a hang or an out-of-range read.
@@ -239,6 +266,52 @@ TEST(SnapshotSurfaces, ResealedBadIndicesAndTreesAreRefused) {
     (void)hit;
   }
   EXPECT_GT(refused, 100);
+}
+
+// Versions 9 and 10 carry a mesh's binary tree (32-byte nodes: 3 f32 min, u32 index, 3 f32 max,
+// u32 count). Loaded, it is collapsed into the 4-wide tree the mesh is built with: the world steps
+// as it would have, and saves as version 11 the bytes it would have saved.
+TEST(SnapshotSurfaces, Version10MeshTreeLoadsAsTheTreeTheMeshIsBuiltWith) {
+  World world = surfaces_world(3);
+  const std::vector<uint8_t> saved = save_snapshot(world);
+  // The binary tree the builder made: build_bvh over the triangles' boxes in the definition's
+  // order, leaves of at most 8 (build_triangle_mesh).
+  const ShapeDef def = bumpy_mesh(3);
+  std::vector<detail::Aabb> boxes;
+  for (const auto& t : def.triangles) {
+    const Vec3 &a = def.vertices[t[0]], &b = def.vertices[t[1]], &c = def.vertices[t[2]];
+    boxes.push_back({a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)});
+  }
+  std::vector<uint32_t> order;
+  const detail::Bvh binary = detail::build_bvh(boxes, 8, order);
+  const detail::Bvh4& built = detail::state_of(world).shapes[0].mesh->tree;
+  ASSERT_TRUE(same_bytes(detail::collapse_to_bvh4(binary).nodes, built.nodes));
+
+  // The same world as version 10 wrote it: the version, and the binary tree in the 4-wide one's
+  // place.
+  const std::size_t tree_at = mesh_triangles_at(saved) + 4 + 18 * 13;
+  std::vector<uint8_t> old(saved.begin(), saved.begin() + std::ptrdiff_t(tree_at));
+  detail::ByteWriter w(old);
+  w.u32(uint32_t(binary.nodes.size()));
+  for (const detail::BvhNode& n : binary.nodes) {
+    for (float f : n.min) w.u32(std::bit_cast<uint32_t>(f));
+    w.u32(n.index);
+    for (float f : n.max) w.u32(std::bit_cast<uint32_t>(f));
+    w.u32(n.count);
+  }
+  old.insert(old.end(), saved.begin() + std::ptrdiff_t(tree_at + 4 + built.nodes.size() * 128),
+             saved.end());
+  old[8] = 10;
+  reseal(old);
+
+  World loaded = load_snapshot(old);
+  EXPECT_TRUE(same_bytes(detail::state_of(loaded).shapes[0].mesh->tree.nodes, built.nodes));
+  EXPECT_EQ(save_snapshot(loaded), saved);
+  for (int s = 0; s < 30; ++s) {
+    world.step(kDt);
+    loaded.step(kDt);
+    ASSERT_EQ(loaded.state_hash(), world.state_hash()) << "step " << s;
+  }
 }
 
 }  // namespace snapshot_surfaces_test

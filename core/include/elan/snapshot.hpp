@@ -16,8 +16,10 @@ namespace elan {
 
 /// Format version written by save_snapshot and save_rollback. A snapshot of any version from
 /// kOldestSnapshotVersion on is read (version 9 has no user data, gravity scales, sensor flags or
-/// overlaps: they load as their defaults); a rollback state of another version is refused.
-inline constexpr uint32_t kSnapshotVersion = 10;
+/// overlaps: they load as their defaults; versions 9 and 10 carry a mesh's binary tree, collapsed
+/// on load into the 4-wide tree the mesh is built with, so the world steps as it would have); a
+/// rollback state of another version is refused.
+inline constexpr uint32_t kSnapshotVersion = 11;
 inline constexpr uint32_t kOldestSnapshotVersion = 9;
 
 /// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built
@@ -35,8 +37,10 @@ inline constexpr uint32_t kOldestSnapshotVersion = 9;
 ///       R plane offset, 3R frame position, 4R frame rotation (w x y z), R volume,
 ///       3R unit inertia, 3R local min, 3R local max, R bounding radius, u8 has hull
 ///       [u32 n, n x 3R vertices | u32 n, n x (3R normal, R offset, u32 first, u32 count) faces
-///        | u32 n, n x u32 face vertices | u32 n, n x 2 u32 edges], u8 destroyed,
-///       u64 user data (version 10)
+///        | u32 n, n x u32 face vertices | u32 n, n x 2 u32 edges], then a mesh's, heightfield's
+///       or compound's built data (`core/world/snapshot.cpp`: a mesh's triangles in tree order
+///       and its tree, 4-wide from version 11: u32 nodes, each 12 f32 mins and 12 f32 maxes
+///       axis by axis, 4 u32 indices, 4 u32 counts), u8 destroyed, u64 user data (version 10)
 ///     | u32 bodies n, then each BodyStore column in declaration order, n values each
 ///     | u32 applied forces, each: u32 body, 3R force, 3R torque (the force and torque applied
 ///       for the next step; the body's `applied` column holds its entry's index)
