@@ -179,6 +179,26 @@ void write_tree(ByteWriter& w, const detail::Bvh& t) {
   }
 }
 
+// Checks that nodes [0, node_count) are one tree laid out depth first, as the walks assume: from
+// the root, every node visited is the next in the layout (`next`), none deeper than the walks'
+// stacks, every node reached. children(i, push) checks node i's own fields and calls push(child)
+// for its inner children, the last first, so that the first is visited next.
+template <class Children>
+void check_depth_first(ByteReader& r, std::size_t node_count, Children&& children) {
+  std::vector<std::pair<uint32_t, int>> stack{{0u, 0}};
+  std::size_t next = 0;
+  while (!stack.empty()) {
+    const auto [i, depth] = stack.back();
+    stack.pop_back();
+    if (i != next || i >= node_count || depth > detail::kBvhMaxDepth) {
+      r.fail("tree is not a depth-first tree");
+    }
+    ++next;
+    children(i, [&stack, below = depth + 1](uint32_t child) { stack.emplace_back(child, below); });
+  }
+  if (next != node_count) r.fail("tree has unreachable nodes");
+}
+
 // Reads a tree over `items` items and checks it is one: depth first (an inner node's first child
 // next, its second where the first's subtree ends), every node reached once, no deeper than the
 // walks' stacks, leaves within the items. A damaged tree is refused, so a walk cannot loop, run
@@ -193,26 +213,16 @@ detail::Bvh read_tree(ByteReader& r, std::size_t items) {
     n.count = r.u32();
   }
   if (t.nodes.empty()) return t;
-  // (node, depth) to visit; `next` is where the depth-first layout puts the next node visited.
-  std::vector<std::pair<uint32_t, int>> stack{{0u, 0}};
-  std::size_t next = 0;
-  while (!stack.empty()) {
-    const auto [i, depth] = stack.back();
-    stack.pop_back();
-    if (i != next || i >= t.nodes.size() || depth > detail::kBvhMaxDepth) {
-      r.fail("tree is not a depth-first tree");
-    }
-    ++next;
+  check_depth_first(r, t.nodes.size(), [&](uint32_t i, const auto& push) {
     const detail::BvhNode& n = t.nodes[i];
     if (n.leaf()) {
       if (uint64_t(n.index) + n.count > items) r.fail("tree leaf out of range");
-      continue;
+      return;
     }
     if (n.index <= i + 1 || n.index >= t.nodes.size()) r.fail("tree child out of range");
-    stack.emplace_back(n.index, depth + 1);
-    stack.emplace_back(i + 1, depth + 1);
-  }
-  if (next != t.nodes.size()) r.fail("tree has unreachable nodes");
+    push(n.index);
+    push(i + 1);
+  });
   return t;
 }
 
@@ -249,18 +259,9 @@ detail::Bvh4 read_tree4(ByteReader& r, std::size_t items) {
     for (uint32_t& v : n.count) v = r.u32();
   }
   if (t.nodes.empty()) return t;
-  std::vector<std::pair<uint32_t, int>> stack{{0u, 0}};
-  std::size_t next = 0;
-  while (!stack.empty()) {
-    const auto [i, depth] = stack.back();
-    stack.pop_back();
-    if (i != next || i >= t.nodes.size() || depth > detail::kBvhMaxDepth) {
-      r.fail("tree is not a depth-first tree");
-    }
-    ++next;
+  check_depth_first(r, t.nodes.size(), [&](uint32_t i, const auto& push) {
     const detail::Bvh4Node& n = t.nodes[i];
     bool any = false;
-    // The inner children pushed last first, so that the first is visited next.
     for (int k = 3; k >= 0; --k) {
       const uint32_t count = n.count[k];
       if (count == detail::kBvh4Empty) continue;
@@ -270,11 +271,10 @@ detail::Bvh4 read_tree4(ByteReader& r, std::size_t items) {
         continue;
       }
       if (n.index[k] <= i || n.index[k] >= t.nodes.size()) r.fail("tree child out of range");
-      stack.emplace_back(n.index[k], depth + 1);
+      push(n.index[k]);
     }
     if (!any) r.fail("tree node has no children");
-  }
-  if (next != t.nodes.size()) r.fail("tree has unreachable nodes");
+  });
   return t;
 }
 

@@ -11,22 +11,13 @@
 #include <vector>
 
 #include "core/base/bvh.hpp"
+#include "unit/random_boxes.hpp"
 
 namespace elan::detail {
 namespace bvh_test {
 
-std::vector<Aabb> random_boxes(std::size_t n, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<Real> pos(-50, 50), size(0.01f, 3);
-  std::vector<Aabb> boxes(n);
-  for (Aabb& b : boxes) {
-    const Vec3 c(pos(rng), pos(rng), pos(rng));
-    const Vec3 h(size(rng), size(rng), size(rng));
-    b.min = c - h;
-    b.max = c + h;
-  }
-  return boxes;
-}
+using tree_test::random_boxes;
+using tree_test::ray_box;
 
 bool overlaps(const Aabb& b, const Vec3& lo, const Vec3& hi) {
   return !((b.min.array() > hi.array()).any() || (b.max.array() < lo.array()).any());
@@ -139,23 +130,6 @@ TEST(Bvh, SameBoxesSameTree) {
   ASSERT_EQ(a.nodes.size(), b.nodes.size());
   EXPECT_EQ(0, std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)));
   EXPECT_EQ(o1, o2);
-}
-
-// Slab test of a Real box, as the brute force's exact ray-box distance.
-Real ray_box(const Aabb& b, const Vec3& o, const Vec3& d, Real max_t) {
-  Real t0 = 0, t1 = max_t;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (o[a] < b.min[a] || o[a] > b.max[a]) return -1;
-      continue;
-    }
-    Real ta = (b.min[a] - o[a]) / d[a], tb = (b.max[a] - o[a]) / d[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-    if (t0 > t1) return -1;
-  }
-  return t0;
 }
 
 TEST(Bvh, RayNearestHitEqualsBruteForce) {

@@ -10,22 +10,13 @@
 #include <vector>
 
 #include "core/base/bvh4.hpp"
+#include "unit/random_boxes.hpp"
 
 namespace elan::detail {
 namespace bvh4_test {
 
-std::vector<Aabb> random_boxes(std::size_t n, uint32_t seed, Real spread = 50) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<Real> pos(-spread, spread), size(0.01f, 3);
-  std::vector<Aabb> boxes(n);
-  for (Aabb& b : boxes) {
-    const Vec3 c(pos(rng), pos(rng), pos(rng));
-    const Vec3 h(size(rng), size(rng), size(rng));
-    b.min = c - h;
-    b.max = c + h;
-  }
-  return boxes;
-}
+using tree_test::random_boxes;
+using tree_test::ray_box;
 
 // Depth first with the inner children in order, every binary leaf once, no deeper than the
 // binary tree, the empty slots last and inverted; returns the depth.
@@ -117,22 +108,6 @@ TEST(Bvh4, BoxQueriesReportTheBinaryTreesLeavesInItsOrder) {
     }
     EXPECT_GT(reported, 1000);
   }
-}
-
-Real ray_box(const Aabb& b, const Vec3& o, const Vec3& d, Real max_t) {
-  Real t0 = 0, t1 = max_t;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (o[a] < b.min[a] || o[a] > b.max[a]) return -1;
-      continue;
-    }
-    Real ta = (b.min[a] - o[a]) / d[a], tb = (b.max[a] - o[a]) / d[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-    if (t0 > t1) return -1;
-  }
-  return t0;
 }
 
 // The nearest hit equals brute force's, and a caller breaking ties by item sees every tied item:
