@@ -92,9 +92,6 @@ uint32_t region_of(const Vec3 (&v)[3], const Vec3& p) {
   return kRegionFace;
 }
 
-// Whether the normal found at the triangle's feature `region` stands: the feature is an active
-// edge, or a vertex with an active edge whose normal leans out past none of its inactive edges.
-// `out_normal`: from the triangle towards A; `face`: the face normal toward A's side.
 // A triangle's active edges, read on first use: a heightfield's triangles come without them
 // (TriangleQuery::field), and most contacts are decided before they are needed.
 struct LazyEdges {
@@ -107,6 +104,9 @@ struct LazyEdges {
   }
 };
 
+// Whether the normal found at the triangle's feature `region` stands: the feature is an active
+// edge, or a vertex with an active edge whose normal leans out past none of its inactive edges.
+// `out_normal`: from the triangle towards A; `face`: the face normal toward A's side.
 bool keeps_normal(uint32_t region, LazyEdges& lazy, const Vec3 (&v)[3], const Vec3& face,
                   const Vec3& out_normal) {
   if (region == kRegionFace || out_normal.dot(face) < -kLeanTolerance) return false;
