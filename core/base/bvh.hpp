@@ -88,8 +88,17 @@ void bvh_query(const Bvh& tree, const Vec3& lo, const Vec3& hi, Leaf&& leaf) {
   }
 }
 
-// Slab test of the ray origin + t dir, t in [0, max_t], against node `n`; inv_dir = 1 / dir per
-// axis (infinite for a zero component). Returns the entry t, or a negative value for a miss.
+// 1 / dir per axis, infinite for a zero component: the slab test's inv_dir.
+inline Vec3 inverse_direction(const Vec3& dir) {
+  Vec3 inv;
+  for (int k = 0; k < 3; ++k) {
+    inv[k] = dir[k] != 0 ? Real(1) / dir[k] : std::numeric_limits<Real>::infinity();
+  }
+  return inv;
+}
+
+// Slab test of the ray origin + t dir, t in [0, max_t], against node `n`; inv_dir =
+// inverse_direction(dir). Returns the entry t, or a negative value for a miss.
 Real ray_enters_node(const BvhNode& n, const Vec3& origin, const Vec3& inv_dir, Real max_t);
 
 // Calls leaf(first, count, max_t) for each leaf the ray reaches before `max_t`, nearer subtree
@@ -97,10 +106,7 @@ Real ray_enters_node(const BvhNode& n, const Vec3& origin, const Vec3& inv_dir, 
 template <class Leaf>
 void bvh_ray(const Bvh& tree, const Vec3& origin, const Vec3& dir, Real max_t, Leaf&& leaf) {
   if (tree.nodes.empty()) return;
-  Vec3 inv;
-  for (int k = 0; k < 3; ++k) {
-    inv[k] = dir[k] != 0 ? Real(1) / dir[k] : std::numeric_limits<Real>::infinity();
-  }
+  const Vec3 inv = inverse_direction(dir);
   std::array<uint32_t, kBvhMaxDepth + 1> stack;
   int top = 0;
   stack[top++] = 0;

@@ -10,7 +10,6 @@
 #include <array>
 #include <bit>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -119,10 +118,7 @@ Real ray_enters_child(const Bvh4Node& n, int k, const Vec3& origin, const Vec3& 
 template <class Leaf>
 void bvh4_ray(const Bvh4& tree, const Vec3& origin, const Vec3& dir, Real max_t, Leaf&& leaf) {
   if (tree.nodes.empty()) return;
-  Vec3 inv;
-  for (int k = 0; k < 3; ++k) {
-    inv[k] = dir[k] != 0 ? Real(1) / dir[k] : std::numeric_limits<Real>::infinity();
-  }
+  const Vec3 inv = inverse_direction(dir);
   struct Pending {
     uint32_t index, count;  // count 0: a node
     Real t;                 // where the ray enters it
