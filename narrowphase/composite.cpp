@@ -324,15 +324,6 @@ bool box_clear_of_box(const Shape& p, const Transform& xp, const Shape& q, const
          ((hi + slack).array() < -q.half_extents.array()).any();
 }
 
-bool has_round_part(const Shape& s) {
-  if (s.type != ShapeType::Compound) return false;
-  for (const CompoundPart& p : s.compound->parts) {
-    const ShapeType t = p.shape.type;
-    if (t == ShapeType::Sphere || t == ShapeType::Capsule || t == ShapeType::Cylinder) return true;
-  }
-  return false;
-}
-
 bool collide_composite(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                        Real speculative_distance, Manifold& out, const SurfaceMotion* motion) {
   out.point_count = 0;

@@ -4,6 +4,7 @@
 // manifold the contact store keeps per pair.
 #pragma once
 
+#include "core/base/compound.hpp"
 #include "core/base/contact.hpp"
 #include "core/base/shape.hpp"
 
@@ -58,6 +59,8 @@ bool box_clear_of_box(const Shape& p, const Transform& xp, const Shape& q, const
 
 // Whether a compound has a round part (sphere, capsule, cylinder): its manifold is not carried by
 // the body pair cache (collide_pairs' rolls()).
-bool has_round_part(const Shape& s);
+inline bool has_round_part(const Shape& s) {
+  return s.type == ShapeType::Compound && s.compound->round;
+}
 
 }  // namespace elan::detail

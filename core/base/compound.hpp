@@ -25,7 +25,15 @@ struct Compound {
   std::vector<CompoundPart> parts;  // in tree order when there is a tree, else as given
   std::vector<uint32_t> child_of;   // parts[k] is the definition's child child_of[k]
   Bvh tree;                         // empty below kCompoundTreeMin children
+  // Read by every pair and every step, derived once from the parts by describe_parts (perf: the
+  // parts are large and far apart in memory; the collide and continuous stages asked them each
+  // time).
+  bool round = false;  // a part is a sphere, capsule or cylinder
+  Real thinnest = 0;   // half the thinnest side of a part's box in its principal frame, m
 };
+
+// Sets the compound's derived fields from its parts; whatever builds a Compound calls it last.
+void describe_parts(Compound& c);
 
 // Calls f(k, part) for each part whose box overlaps [lo, hi] (compound principal frame), in one
 // fixed order.

@@ -304,6 +304,7 @@ void make_compound(Shape& s, const ShapeDef& def) {
     s.bounding_radius =
         std::max(s.bounding_radius, p.pose.position.norm() + p.shape.bounding_radius);
   }
+  describe_parts(*compound);
   s.compound = std::move(compound);
 }
 

@@ -30,11 +30,8 @@ constexpr std::size_t kFewStatics = 16;
 // Half the thinnest side of the shape's box in its principal frame, m; a compound's thinnest
 // part's, which is what may pass through something in one step.
 Real min_extent(const Shape& s) {
-  Real extent = Real(0.5) * (s.local_max - s.local_min).minCoeff();
-  if (s.type == ShapeType::Compound) {
-    for (const CompoundPart& p : s.compound->parts) extent = std::min(extent, min_extent(p.shape));
-  }
-  return extent;
+  const Real extent = Real(0.5) * (s.local_max - s.local_min).minCoeff();
+  return s.type == ShapeType::Compound ? std::min(extent, s.compound->thinnest) : extent;
 }
 
 Real rotation_angle(const Quat& dq) {

@@ -386,6 +386,7 @@ detail::Compound read_compound(ByteReader& r, uint32_t version) {
   if (c.tree.nodes.empty() != (n < detail::kCompoundTreeMin)) {
     r.fail("compound tree does not match its part count");
   }
+  detail::describe_parts(c);
   return c;
 }
 

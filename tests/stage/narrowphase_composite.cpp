@@ -85,6 +85,7 @@ Shape compound_of(const std::vector<std::pair<Shape, Transform>>& parts) {
     c->parts.push_back(p);
     c->child_of.push_back(uint32_t(k));
   }
+  describe_parts(*c);
   s.compound = std::move(c);
   return s;
 }
