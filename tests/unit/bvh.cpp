@@ -16,6 +16,7 @@
 namespace elan::detail {
 namespace bvh_test {
 
+using tree_test::random_box;
 using tree_test::random_boxes;
 using tree_test::ray_box;
 
@@ -73,9 +74,8 @@ TEST(Bvh, BoxQueriesFindExactlyTheOverlappingItemsInAFixedOrder) {
   std::mt19937 rng(2);
   std::uniform_real_distribution<Real> pos(-55, 55), size(0.1f, 10);
   for (int q = 0; q < 200; ++q) {
-    const Vec3 c(pos(rng), pos(rng), pos(rng));
-    const Vec3 h(size(rng), size(rng), size(rng));
-    const Vec3 lo = c - h, hi = c + h;
+    const Aabb query = random_box(rng, pos, size);
+    const Vec3 &lo = query.min, &hi = query.max;
     std::set<uint32_t> expected;
     for (uint32_t k = 0; k < boxes.size(); ++k) {
       if (overlaps(boxes[k], lo, hi)) expected.insert(k);
@@ -107,9 +107,8 @@ TEST(Bvh, BoxQueriesReportTheOverlappingLeavesInStoredOrder) {
   std::uniform_real_distribution<Real> pos(-55, 55), size(0.1f, 20);
   int reported = 0;
   for (int q = 0; q < 300; ++q) {
-    const Vec3 c(pos(rng), pos(rng), pos(rng));
-    const Vec3 h(size(rng), size(rng), size(rng));
-    const Vec3 lo = c - h, hi = c + h;
+    const Aabb query = random_box(rng, pos, size);
+    const Vec3 &lo = query.min, &hi = query.max;
     std::vector<std::pair<uint32_t, uint32_t>> expected, found;
     for (const BvhNode& n : tree.nodes) {
       if (n.leaf() && node_overlaps(n, lo, hi)) expected.emplace_back(n.index, n.count);

@@ -15,6 +15,7 @@
 namespace elan::detail {
 namespace bvh4_test {
 
+using tree_test::random_box;
 using tree_test::random_boxes;
 using tree_test::ray_box;
 
@@ -93,10 +94,9 @@ TEST(Bvh4, BoxQueriesReportTheBinaryTreesLeavesInItsOrder) {
     std::uniform_real_distribution<Real> pos(-55, 55), size(0.05f, 20);
     int reported = 0;
     for (int q = 0; q < 400; ++q) {
-      const Vec3 c(pos(rng), pos(rng), pos(rng));
-      const Vec3 h(size(rng), size(rng), size(rng));
+      const Aabb query = random_box(rng, pos, size);
       // Some boxes with a face on an item's own bound, where the comparison's tie decides.
-      Vec3 lo = c - h, hi = c + h;
+      Vec3 lo = query.min, hi = query.max;
       if (q % 7 == 0) lo.x() = boxes[q].max.x(), hi.x() = lo.x() + 1;
       std::vector<std::pair<uint32_t, uint32_t>> expected, found;
       bvh_query(binary, lo, hi,

@@ -13,17 +13,21 @@
 
 namespace elan::detail::tree_test {
 
+using RealDistribution = std::uniform_real_distribution<Real>;
+
+// One box: each coordinate of its centre drawn from `pos`, each half size from `size`.
+inline Aabb random_box(std::mt19937& rng, RealDistribution& pos, RealDistribution& size) {
+  const Vec3 c(pos(rng), pos(rng), pos(rng));
+  const Vec3 h(size(rng), size(rng), size(rng));
+  return {c - h, c + h};
+}
+
 // n boxes, centres uniform in [-spread, spread]^3, half sizes in [0.01, 3].
 inline std::vector<Aabb> random_boxes(std::size_t n, uint32_t seed, Real spread = 50) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<Real> pos(-spread, spread), size(0.01f, 3);
+  RealDistribution pos(-spread, spread), size(0.01f, 3);
   std::vector<Aabb> boxes(n);
-  for (Aabb& b : boxes) {
-    const Vec3 c(pos(rng), pos(rng), pos(rng));
-    const Vec3 h(size(rng), size(rng), size(rng));
-    b.min = c - h;
-    b.max = c + h;
-  }
+  for (Aabb& b : boxes) b = random_box(rng, pos, size);
   return boxes;
 }
 
