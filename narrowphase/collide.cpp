@@ -7,6 +7,7 @@
 #include <cstring>
 #include <utility>
 
+#include "narrowphase/box_box.hpp"
 #include "narrowphase/capsule_polyhedron.hpp"
 #include "narrowphase/composite.hpp"
 #include "narrowphase/general.hpp"
@@ -112,6 +113,7 @@ PairFn pick(const Shape& a, const Shape& b) {
   if (ta == ShapeType::Capsule && tb == ShapeType::Capsule) return collide_capsule_capsule;
   if (ta == ShapeType::Capsule && is_sat_polyhedron(b)) return collide_capsule_poly;
   if (tb == ShapeType::Capsule && is_sat_polyhedron(a)) return nullptr;
+  if (ta == ShapeType::Box && tb == ShapeType::Box) return collide_box_box;
   if (sat_is_affordable(a, b)) return collide_sat;
   return collide_general;
 }
@@ -153,6 +155,9 @@ bool dispatch(const Shape& a, const Transform& xa, const Shape& b, const Transfo
 bool edge_pair_separates(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                          int edge_a, int edge_b, Real speculative_distance,
                          PolyhedronCache& cache) {
+  if (a.type == ShapeType::Box && b.type == ShapeType::Box) {
+    return box_edge_pair_separation(a, xa, b, xb, edge_a, edge_b) > speculative_distance;
+  }
   if (!sat_is_affordable(a, b)) return false;
   // The polyhedra as collide_sat_cached places them, so the gap has the SAT's bits.
   const Polyhedron& pa = polyhedron_of_a(a, xa, cache);

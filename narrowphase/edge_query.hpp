@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The SAT's edge query for polyhedra that are not both boxes (sat.cpp): of the edge pairs whose
+// The SAT's edge query (sat.cpp; two boxes take box_box.cpp instead): of the edge pairs whose
 // Gauss-map arcs cross (they build a face of the Minkowski difference), the first of largest
 // separation along ua x ub, oriented out of A, with that axis as the normal. Compiled once per
 // instruction set in a dispatching build (core/base/isa.hpp); the lanes' arithmetic is the scalar

@@ -3,19 +3,11 @@
 // including the edge-to-face adjacency the Gauss-map edge pruning needs.
 #include "narrowphase/polyhedron.hpp"
 
+#include "narrowphase/box_topology.hpp"
+
 namespace elan::detail {
 
 namespace {
-
-// Unit box: vertex i has coordinate signs (bit 0: x, bit 1: y, bit 2: z; set = +). Faces in the
-// order +x, -x, +y, -y, +z, -z (the face ids of round_pairs.hpp), loops counter-clockwise seen
-// from outside; edges with the two faces that share them.
-constexpr uint32_t kBoxLoops[24] = {1, 3, 7, 5, 0, 4, 6, 2, 2, 6, 7, 3,
-                                    0, 1, 5, 4, 4, 5, 7, 6, 0, 2, 3, 1};
-constexpr std::array<uint32_t, 2> kBoxEdges[12] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
-                                                   {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-constexpr std::array<uint32_t, 2> kBoxEdgeFaces[12] = {
-    {3, 5}, {2, 5}, {3, 4}, {2, 4}, {1, 5}, {0, 5}, {1, 4}, {0, 4}, {1, 3}, {0, 3}, {1, 2}, {0, 2}};
 
 void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& out) {
   const Vec3& h = box.half_extents;
@@ -56,7 +48,6 @@ void make_box(const Shape& box, const Mat3& r, const Vec3& centre, Polyhedron& o
   out.half_axes[0] = ax;
   out.half_axes[1] = ay;
   out.half_axes[2] = az;
-  out.half_extents = h;
   out.is_box = true;
 }
 

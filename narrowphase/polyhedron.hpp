@@ -34,10 +34,8 @@ struct Polyhedron {
   const std::array<uint32_t, 2>* edges = nullptr;
   const std::array<uint32_t, 2>* edge_faces = nullptr;
   Vec3 centre = Vec3::Zero();  // the centre of mass, inside the solid
-  // A box's half axes (rotation columns times half extents) and its half extents; zero for a
-  // hull.
+  // A box's half axes (rotation columns times half extents); zero for a hull.
   Vec3 half_axes[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  Vec3 half_extents = Vec3::Zero();
   bool is_box = false;
 };
 

@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: MIT
 // SAT over face normals and Gauss-map-pruned edge pairs, then reference/incident face clipping
 // (Gregorius GDC 2013/2015) or one point at the closest points of two edges. The capsule against a
-// polyhedron is in capsule_polyhedron.cpp.
+// polyhedron is in capsule_polyhedron.cpp, two boxes in box_box.cpp.
 #include "narrowphase/sat.hpp"
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cstdint>
 #include <limits>
 
@@ -79,32 +78,8 @@ Real min_projection(const Polyhedron& p, const Vec3& n) {
   return m;
 }
 
-// Faces of box `a` against box `b`, as query_faces. A box's faces come in opposite pairs,
-// normals[2k + 1] = -normals[2k], and b's least projection along -n is -(n.c) less the same
-// extents: negation is exact, so one set of products gives both faces' separations, the same bits
-// as min_projection's.
-FaceQuery query_box_faces(const Polyhedron& a, const Polyhedron& b) {
-  FaceQuery q;
-  for (int k = 0; k < 3; ++k) {
-    const Vec3& n = a.normals[2 * k];
-    const Real centre = n.dot(b.centre);
-    const Real extents = std::abs(n.dot(b.half_axes[0])) + std::abs(n.dot(b.half_axes[1])) +
-                         std::abs(n.dot(b.half_axes[2]));
-    const Real s[2] = {(centre - extents) - a.offsets[2 * k],
-                       (-centre - extents) - a.offsets[2 * k + 1]};
-    for (int side = 0; side < 2; ++side) {
-      if (s[side] > q.separation) {
-        q.separation = s[side];
-        q.face = 2 * k + side;
-      }
-    }
-  }
-  return q;
-}
-
 // Faces of `a` as axes: separation = how far b's deepest vertex is outside the face plane.
 FaceQuery query_faces(const Polyhedron& a, const Polyhedron& b) {
-  if (a.is_box && b.is_box) return query_box_faces(a, b);
   FaceQuery q;
   for (int f = 0; f < a.face_count; ++f) {
     const Real s = min_projection(b, a.normals[f]) - a.offsets[f];
@@ -116,111 +91,7 @@ FaceQuery query_faces(const Polyhedron& a, const Polyhedron& b) {
   return q;
 }
 
-// The edge of box p along direction i (0, 1, 2: edges 0-3, 4-7, 8-11 of the unit box) that is
-// extreme along d: the other two directions' signs pick it.
-int extreme_box_edge(const Polyhedron& p, int i, const Vec3& d) {
-  const int j = (i + 1) % 3, k = (i + 2) % 3;
-  const int bit_j = d.dot(p.half_axes[j]) > 0 ? 1 : 0;
-  const int bit_k = d.dot(p.half_axes[k]) > 0 ? 1 : 0;
-  // Within a direction's four edges the lower of the other two axes is the low bit.
-  return 4 * i + (j < k ? bit_j + 2 * bit_k : bit_k + 2 * bit_j);
-}
-
-// The separation of boxes a and b along A's edge direction i x B's direction j, oriented from A
-// to B (`d`), or the lowest Real when the two are nearly parallel.
-Real box_edge_axis_separation(const Polyhedron& a, const Polyhedron& b, int i, int j, Vec3& d) {
-  const Vec3 t = b.centre - a.centre;
-  const Vec3& ua = a.normals[2 * i];  // unit: the box's +x, +y, +z face normals
-  d = ua.cross(b.normals[2 * j]);
-  const Real len = d.norm();
-  if (len <= kParallelSine) return kLowest;
-  d /= len;
-  if (t.dot(d) < 0) d = -d;
-  const Real extents = std::abs(d.dot(a.half_axes[0])) + std::abs(d.dot(a.half_axes[1])) +
-                       std::abs(d.dot(a.half_axes[2])) + std::abs(d.dot(b.half_axes[0])) +
-                       std::abs(d.dot(b.half_axes[1])) + std::abs(d.dot(b.half_axes[2]));
-  return t.dot(d) - extents;
-}
-
-// The slack of box_edge_axes_above's bound, per metre of the pair's size (|T| and the half
-// extents): the bound and box_edge_axis_separation compute one value by two formulas, each in a
-// few dozen roundings of terms no larger than that size, divided by the axis's length; 1e-5 is
-// about 84 float epsilons.
-constexpr Real kEdgeBoundSlack = Real(1e-5);
-
-// The nine direction pairs (i, j) of two boxes whose separation may exceed `threshold`, as bit
-// 3 i + j. Gottschalk's OBB test in A's frame (Gottschalk, Lin, Manocha, "OBBTree", SIGGRAPH
-// 1996): with R = A^T B and T = A^T (B's centre - A's), the axis L = a_i x b_j has
-// T.L = T[i2] R[i1][j] - T[i1] R[i2][j], extents ea[i1] |R[i2][j]| + ea[i2] |R[i1][j]| and
-// eb[j1] |R[i][j2]| + eb[j2] |R[i][j1]|, and length sqrt(R[i1][j]^2 + R[i2][j]^2) (i1, i2: the
-// other two of A's directions, j1, j2 of B's). The separation is (|T.L| - extents) / |L|; a pair
-// is left out when that, plus the slack over both formulas' rounding, is at most the threshold.
-// perf: the nine dot products of R and three of T are shared by all nine axes, instead of a cross
-// product, a norm and seven dot products per axis.
-uint32_t box_edge_axes_above(const Polyhedron& a, const Polyhedron& b, Real threshold) {
-  const Vec3 t = b.centre - a.centre;
-  Real r[3][3], ta[3];
-  for (int i = 0; i < 3; ++i) {
-    ta[i] = t.dot(a.normals[2 * i]);
-    for (int j = 0; j < 3; ++j) r[i][j] = a.normals[2 * i].dot(b.normals[2 * j]);
-  }
-  const Vec3& ea = a.half_extents;
-  const Vec3& eb = b.half_extents;
-  const Real scale = std::abs(ta[0]) + std::abs(ta[1]) + std::abs(ta[2]) + ea.sum() + eb.sum();
-  const Real slack = kEdgeBoundSlack * scale;
-  uint32_t axes = 0;
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const Real centres = std::abs(ta[i2] * r[i1][j] - ta[i1] * r[i2][j]);
-      const Real extents = ea[i1] * std::abs(r[i2][j]) + ea[i2] * std::abs(r[i1][j]) +
-                           eb[j1] * std::abs(r[i][j2]) + eb[j2] * std::abs(r[i][j1]);
-      const Real len = std::sqrt(r[i1][j] * r[i1][j] + r[i2][j] * r[i2][j]);
-      // Non-finite input compares false: the axis is kept and the exact test decides, as before.
-      const bool below = centres - extents + slack <= threshold * len;
-      axes |= uint32_t(!below) << (3 * i + j);
-    }
-  }
-  return axes;
-}
-
-// Two boxes: each has edges along three directions only, so the edge-edge faces of A - B are the
-// nine direction pairs, each facing both ways. Along the unit d = ua x ub oriented from A to B
-// the separation is T.d - ra - rb (T: B's centre from A's; ra, rb: the boxes' extents along d;
-// Gottschalk's OBB test), the value the Gauss-map query finds for the two edges extreme along d
-// and -d. perf: nine axes instead of the 144 edge pairs.
-//
-// Only the direction pairs in `axes` (bit 3 i + j) are measured. When the first largest of all
-// nine exceeds a threshold it is among those box_edge_axes_above keeps for that threshold (an
-// axis left out is at most the threshold, so it can neither beat nor tie it): the same query,
-// bit for bit. Otherwise the result is at most the threshold, or empty.
-EdgeQuery query_box_edges(const Polyhedron& a, const Polyhedron& b, uint32_t axes) {
-  EdgeQuery q;
-  for (; axes != 0; axes &= axes - 1) {
-    const int k = std::countr_zero(axes);
-    const int i = k / 3, j = k % 3;
-    Vec3 d;
-    const Real separation = box_edge_axis_separation(a, b, i, j, d);
-    if (separation > q.separation) {
-      q.separation = separation;
-      q.normal = d;
-      q.edge_a = extreme_box_edge(a, i, d);
-      q.edge_b = extreme_box_edge(b, j, Vec3(-d));
-    }
-  }
-  return q;
-}
-
-// The deepest edge axis when it exceeds `threshold` (kLowest: always): the nine direction pairs
-// of two boxes (those that may exceed it), else the Gauss-map query of edge_query.hpp (its
-// path's kernel). Below the threshold the result may be any axis at most the threshold, or none.
-EdgeQuery query_edges(const Polyhedron& a, const Polyhedron& b, Real threshold) {
-  if (a.is_box && b.is_box) return query_box_edges_above(a, b, threshold);
-  return query_hull_edges(a, b);
-}
-
-// One edge pair of query_edges: the arcs' crossing (crossing_arcs) and then the separation
+// One edge pair of query_hull_edges: the arcs' crossing (crossing_arcs) and then the separation
 // (candidate_separations, edge_query.cpp), the same operations in the same order, so the same bits.
 Real gauss_edge_pair_separation(const Polyhedron& a, const Polyhedron& b, int ea, int eb) {
   const Vec3& na = a.normals[a.edge_faces[ea][0]];
@@ -331,12 +202,6 @@ bool face_contact(const Polyhedron& ref, int rf, const Polyhedron& inc, bool ref
 
 }  // namespace
 
-EdgeQuery query_box_edges_above(const Polyhedron& a, const Polyhedron& b, Real threshold) {
-  constexpr uint32_t kAllNine = 0x1FF;
-  return query_box_edges(a, b,
-                         threshold == kLowest ? kAllNine : box_edge_axes_above(a, b, threshold));
-}
-
 bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculative_distance,
                        Manifold& out, Separation* separation) {
   out.point_count = 0;
@@ -350,17 +215,7 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
     report_separation(separation, Separation::Kind::FaceOfB, fb.separation);
     return false;
   }
-  // The edge query decides the outcome only when its separation exceeds the speculative distance
-  // (a rejection) or beats the face the contact would take (an edge contact); an axis at most both
-  // changes nothing, so the box query measures only the axes that may exceed them. Non-finite
-  // faces (below) take every axis, as before.
-  Real edge_threshold = kLowest;
-  if (fa.face >= 0 && fb.face >= 0) {
-    const Real face =
-        beats(fb.separation, fa.separation, kFaceRelTol) ? fb.separation : fa.separation;
-    edge_threshold = std::min(speculative_distance, face + kEdgeRelTol * std::abs(face) + kAbsTol);
-  }
-  EdgeQuery ee = query_edges(a, b, edge_threshold);
+  EdgeQuery ee = query_hull_edges(a, b);
   if (ee.separation > speculative_distance) {
     // Checked by the supports along the pair's own axis before it is believed: a hull's edges
     // once gave an axis whose gap, measured from the two edges, was 1.29 m for shapes 0.34 m into
@@ -401,10 +256,6 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
 
 Real edge_pair_separation(const Polyhedron& a, const Polyhedron& b, int edge_a, int edge_b) {
   if (edge_a < 0 || edge_a >= a.edge_count || edge_b < 0 || edge_b >= b.edge_count) return kLowest;
-  if (a.is_box && b.is_box) {
-    Vec3 d;
-    return box_edge_axis_separation(a, b, edge_a / 4, edge_b / 4, d);
-  }
   return gauss_edge_pair_separation(a, b, edge_a, edge_b);
 }
 

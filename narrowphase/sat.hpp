@@ -27,16 +27,10 @@ inline constexpr uint32_t kFeatureSegment = 3u << 30;  // capsule segment or gen
 bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculative_distance,
                        Manifold& out, Separation* separation = nullptr);
 
-// The edge query of two boxes (a.is_box and b.is_box) when its deepest axis exceeds `threshold`:
-// the first largest of the nine direction pairs, measuring only those that may exceed it; with
-// kLowest, all nine. When the deepest is at most the threshold, any axis at most it, or none
-// (separation kLowest). collide_polyhedra passes the least separation that changes its outcome.
-EdgeQuery query_box_edges_above(const Polyhedron& a, const Polyhedron& b, Real threshold);
-
-// The separation query_edges gives A's edge `edge_a` and B's edge `edge_b` when they build a face
-// of the Minkowski difference (their Gauss-map arcs cross; for two boxes, the direction pair of
-// the edges), bit for bit; the lowest Real when they do not, are nearly parallel, or are not
-// edges of a and b. collide_polyhedra's rejection on an edge axis reports that pair.
+// The separation the edge query gives A's edge `edge_a` and B's edge `edge_b` when they build a
+// face of the Minkowski difference (their Gauss-map arcs cross), bit for bit; the lowest Real when
+// they do not, are nearly parallel, or are not edges of a and b. collide_polyhedra's rejection on
+// an edge axis reports that pair.
 Real edge_pair_separation(const Polyhedron& a, const Polyhedron& b, int edge_a, int edge_b);
 
 }  // namespace elan::detail

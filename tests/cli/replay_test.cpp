@@ -532,17 +532,16 @@ TEST_F(ProgramReplay, ReplaysBitForBitWithAnyThreadsAndBroadphase) {
   }
 }
 
-// Two ulps more on the first component of the impulse the program applies after step kPushStep
-// (one can round away in v + J / m:
-// ProgramRecording.TwoUlpsInOneCallAreFoundAtTheRightStepAndBody), edited through the codec: the
-// replay parts at the next step, and the divergence finder (the keyframe at kPushStep replayed with
-// the recorded calls) names the pushed body.
+// kPushUlps ulps more on the first component of the impulse the program applies after step
+// kPushStep (fewer can round away in v + J / m: recorded_program.hpp), edited through the codec:
+// the replay parts at the next step, and the divergence finder (the keyframe at kPushStep replayed
+// with the recorded calls) names the pushed body.
 //
 // The recorded state after that step is known only from a keyframe there: replaying from the
 // keyframe before it re-applies the edited call too, which reproduces the replay and not the
 // recorded hash (that case is reported without a body). So this recording keeps a keyframe at
 // every step.
-TEST_F(ProgramReplay, TwoUlpsInOneCallAreFoundAtItsStepAndBody) {
+TEST_F(ProgramReplay, FourUlpsInOneCallAreFoundAtItsStepAndBody) {
   static const elan::test::RecordedProgram every_step = elan::test::record_program(2, 1);
   elan::Recording r = elan::decode_recording(to_string(every_step.recording), path_);
   for (const elan::RecordedCall& c : elan::list_calls(r)) {
@@ -550,8 +549,7 @@ TEST_F(ProgramReplay, TwoUlpsInOneCallAreFoundAtItsStepAndBody) {
     uint8_t* x = r.calls.data() + c.offset + 8;  // after the body id
     elan::Real v;
     std::memcpy(&v, x, sizeof v);
-    v = std::nextafter(std::nextafter(v, std::numeric_limits<elan::Real>::infinity()),
-                       std::numeric_limits<elan::Real>::infinity());
+    v = elan::test::nudged_up(v);
     std::memcpy(x, &v, sizeof v);
   }
   write_recording(r);
@@ -563,10 +561,10 @@ TEST_F(ProgramReplay, TwoUlpsInOneCallAreFoundAtItsStepAndBody) {
   EXPECT_EQ(d["keyframe"], elan::test::kPushStep + 1);
   EXPECT_EQ(d["method"], "keyframe");
   // The pushed body, or a lower-index one it touches, which the push reaches within its step
-  // (the in-process test ProgramRecording.TwoUlpsInOneCallAreFoundAtTheRightStepAndBody checks the
+  // (the in-process test ProgramRecording.FourUlpsInOneCallAreFoundAtTheRightStepAndBody checks the
   // contact).
   EXPECT_LE(d["body"].get<std::size_t>(), every_step.pushed_body) << j.dump();
-  // When the pushed body is named: the edited x component changes vx by two ulps of J / m; the
+  // When the pushed body is named: the edited x component changes vx by an ulp; the
   // position moved by vx dt rounds to the same bits here, so vx is the first field that differs.
   if (d["body"] == every_step.pushed_body) {
     EXPECT_EQ(d["field"], "vx");
@@ -579,8 +577,7 @@ TEST_F(ProgramReplay, TwoUlpsInOneCallAreFoundAtItsStepAndBody) {
     uint8_t* x = r.calls.data() + c.offset + 8;
     elan::Real v;
     std::memcpy(&v, x, sizeof v);
-    v = std::nextafter(std::nextafter(v, std::numeric_limits<elan::Real>::infinity()),
-                       std::numeric_limits<elan::Real>::infinity());
+    v = elan::test::nudged_up(v);
     std::memcpy(x, &v, sizeof v);
   }
   write_recording(r);

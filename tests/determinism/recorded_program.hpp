@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "elan/recorder.hpp"
@@ -17,8 +18,17 @@ namespace elan::test {
 
 inline constexpr uint64_t kProgramSteps = 120;
 inline constexpr Real kProgramDt = Real(1) / 60;
-// The impulse the one-ulp test edits: applied to body kPushedBody's id before step kPushStep + 1.
+// The impulse the divergence tests edit: applied to body kPushedBody's id before step
+// kPushStep + 1.
 inline constexpr uint64_t kPushStep = 30;
+// The edit: this many ulps more on the impulse's first component, J = 1.7 (ulp 2^-23). Less than
+// one ulp of the velocity's sum v + J / m (m = 1) can round away. That sum lies between 4 and 8
+// m/s there (ulp 2^-21: three ulps of J change it, two do not), so four are one ulp of it.
+inline constexpr int kPushUlps = 4;
+inline Real nudged_up(Real v) {
+  for (int k = 0; k < kPushUlps; ++k) v = std::nextafter(v, std::numeric_limits<Real>::infinity());
+  return v;
+}
 
 struct RecordedProgram {
   std::vector<uint8_t> recording;
@@ -50,8 +60,8 @@ inline RecordedProgram record_program(int threads, uint64_t keyframe_every = 10)
     BodyDef b;
     b.shape = box;
     b.position = Vec3(Real(0.3) * Real(i % 2), Real(0.25) + Real(0.55) * Real(i), Real(0.1) * i);
-    // The pushed box is light: its velocity change J / m is of the size of J, so one ulp more in
-    // J is one ulp more in the velocity (with 125 kg it could round away).
+    // The pushed box is light: its velocity change J / m is of the size of J, so a few ulps more
+    // in J are an ulp more in the velocity (with 125 kg they could round away).
     if (i == 3) b.mass = Real(1);
     boxes.push_back(w.create_body(b));
   }
