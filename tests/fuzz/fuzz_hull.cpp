@@ -24,14 +24,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   std::vector<Vec3> points;
   if (mode & 1) {
     while (!in.empty() && points.size() < 512) {
-      points.emplace_back(in.raw_float(), in.raw_float(), in.raw_float());
+      points.push_back(Vec3{in.raw_float(), in.raw_float(), in.raw_float()});
     }
   } else {
     // Scale 1e-3 to 1e3 m; the grid step of 1/16 of a unit makes exact coplanarity common.
     const Real scale = std::pow(Real(10), Real(int(mode >> 1) % 7 - 3));
     while (!in.empty() && points.size() < 512) {
       const auto coord = [&] { return Real(int8_t(in.u8())) / Real(16) * scale; };
-      points.emplace_back(coord(), coord(), coord());
+      points.push_back(Vec3{coord(), coord(), coord()});
     }
   }
   ConvexHull hull;

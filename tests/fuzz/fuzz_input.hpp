@@ -23,8 +23,18 @@ struct Bytes {
 
   bool empty() const { return at >= size; }
   uint8_t u8() { return at < size ? data[at++] : 0; }
-  uint16_t u16() { return uint16_t(u8() | (u8() << 8)); }
-  uint32_t u32() { return uint32_t(u16()) | (uint32_t(u16()) << 16); }
+  // Low byte first. determinism: each read in a statement of its own, as the operands of one
+  // expression (and a call's arguments) may be read in any order: GCC and Clang differ.
+  uint16_t u16() {
+    const uint32_t low = u8();
+    const uint32_t high = u8();
+    return uint16_t(low | (high << 8));
+  }
+  uint32_t u32() {
+    const uint32_t low = u16();
+    const uint32_t high = u16();
+    return low | (high << 16);
+  }
   // A value in [lo, hi] on a grid of 65536 steps.
   Real in(Real lo, Real hi) { return lo + (hi - lo) * Real(u16()) / Real(65535); }
   // Any float bit pattern, NaN and infinities included (for the hull's "points" refusal).
@@ -37,7 +47,8 @@ struct Bytes {
   Vec3 in_box(Real half) { return {in(-half, half), in(-half, half), in(-half, half)}; }
   // A unit quaternion (a zero draw gives the identity).
   Quat rotation() {
-    Quat q(in(-1, 1), in(-1, 1), in(-1, 1), in(-1, 1));
+    // Braces: the four reads happen in order, as in_box's.
+    Quat q{in(-1, 1), in(-1, 1), in(-1, 1), in(-1, 1)};
     if (!(q.norm() > Real(1e-3))) return Quat::Identity();
     q.normalize();
     return q;

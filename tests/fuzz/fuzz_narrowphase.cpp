@@ -43,7 +43,7 @@ std::optional<Piece> read_piece(fuzz::Bytes& in) {
       break;
     case 1:
       d.type = ShapeType::Box;
-      d.half_extents = Vec3(in.in(Real(0.05), 2), in.in(Real(0.05), 2), in.in(Real(0.05), 2));
+      d.half_extents = Vec3{in.in(Real(0.05), 2), in.in(Real(0.05), 2), in.in(Real(0.05), 2)};
       break;
     case 2:
       d.type = ShapeType::Capsule;
