@@ -203,9 +203,10 @@ int clip_incident_face(const Vec3& h, int rf, const BoxPlacement& inc, const Vec
                  uint32_t(clipped.out_label[q] & 0x7F);
     ++count;
   }
-  if (count == 0 && clipped.count == 0) {
-    // The faces do not overlap sideways (separated boxes, or round-off): the incident box's
-    // deepest vertex, so that a speculative contact still exists.
+  if (count == 0) {
+    // No clipped point within the speculative distance: the incident box's deepest vertex, when
+    // the faces do not overlap sideways (a speculative contact still exists) or when that vertex,
+    // clipped away, is below the reference face (the boxes overlap), as sat.cpp's face_contact.
     Real bs = std::numeric_limits<Real>::max();
     Vec3 deepest = Vec3::Zero();
     for (uint32_t v = 0; v < 8; ++v) {
@@ -217,7 +218,7 @@ int clip_incident_face(const Vec3& h, int rf, const BoxPlacement& inc, const Vec
       }
     }
     const Real s = bs - h[k];
-    if (s > speculative_distance) return 0;
+    if (s > speculative_distance || (clipped.count > 0 && !(s < 0))) return 0;
     points[0] = deepest;
     points[0][k] -= (Real(0.5) * s) * sign;
     seps[0] = s;

@@ -178,9 +178,14 @@ bool face_contact(const Polyhedron& ref, int rf, const Polyhedron& inc, bool ref
     ids[count] = base | clip_vertex_id(clipped, k);
     ++count;
   }
-  if (count == 0 && clipped.count == 0) {
-    // The faces do not overlap sideways (separated shapes, or round-off): keep the incident
-    // polyhedron's deepest vertex so a speculative contact still exists.
+  if (count == 0) {
+    // No clipped point within the speculative distance. Either the faces do not overlap sideways
+    // (separated shapes, or round-off): keep the incident polyhedron's deepest vertex so that a
+    // speculative contact still exists. Or the clipped face lies beyond that distance while the
+    // deepest vertex, off it, is below the reference face: the shapes overlap (every axis's
+    // separation is at most the face's, below zero), so that vertex is a contact. A hull whose
+    // most anti-parallel face does not hold its deepest vertex, 5 cm into a box, once gave no
+    // point at all (found by fuzz_narrowphase).
     int best = 0;
     Real bs = std::numeric_limits<Real>::max();
     for (int i = 0; i < inc.vertex_count; ++i) {
@@ -191,7 +196,7 @@ bool face_contact(const Polyhedron& ref, int rf, const Polyhedron& inc, bool ref
       }
     }
     const Real s = bs - offset;
-    if (s > speculative_distance) return false;
+    if (s > speculative_distance || (clipped.count > 0 && !(s < 0))) return false;
     points[0] = inc.vertices[best] - (Real(0.5) * s) * n;
     seps[0] = s;
     ids[0] = base | 0x3FFFu;
