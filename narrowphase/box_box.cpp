@@ -117,42 +117,10 @@ bool box_edge_contact(const BoxPlacement& p, const Vec3& ea, const Vec3& eb, con
   return true;
 }
 
-// A convex polygon being clipped, with the label of the line leaving each vertex (clip.hpp's
-// labels: incident edge k is k, side plane k is kSidePlaneLabel + k). A quadrilateral clipped by
-// four lines has at most eight vertices; the room beyond them bounds what rounding could add.
+// A quadrilateral clipped by four lines has at most eight vertices; the room beyond them bounds
+// what rounding could add.
 constexpr int kBoxClipVertices = 16;
-struct BoxClip {
-  int count = 0;
-  Vec3 points[kBoxClipVertices];
-  uint8_t out_label[kBoxClipVertices];
-};
-
-// Keeps the part of `in` with sign * x[axis] <= h (Sutherland-Hodgman, labels as clip_polygon).
-void clip_to_side(const BoxClip& in, int axis, Real sign, Real h, uint8_t label, BoxClip& out) {
-  out.count = 0;
-  const int n = in.count;
-  if (n == 0) return;
-  Real d_cur = sign * in.points[n - 1][axis] - h;
-  int cur = n - 1;
-  for (int next = 0; next < n && out.count < kBoxClipVertices - 1; ++next) {
-    const Real d_next = sign * in.points[next][axis] - h;
-    const bool cur_in = d_cur <= 0;
-    const bool next_in = d_next <= 0;
-    if (cur_in != next_in) {
-      const Real t = d_cur / (d_cur - d_next);
-      out.points[out.count] = in.points[cur] + t * (in.points[next] - in.points[cur]);
-      out.out_label[out.count] = cur_in ? label : in.out_label[cur];
-      ++out.count;
-    }
-    if (next_in) {
-      out.points[out.count] = in.points[next];
-      out.out_label[out.count] = in.out_label[next];
-      ++out.count;
-    }
-    cur = next;
-    d_cur = d_next;
-  }
-}
+using BoxClip = ClipBuffer<kBoxClipVertices>;
 
 // The face contact with face rf of the reference box (half extents h) against the incident box
 // (half extents g, placed by `inc` in the reference box's frame), in that frame: the incident
@@ -185,7 +153,9 @@ int clip_incident_face(const Vec3& h, int rf, const BoxPlacement& inc, const Vec
     const uint32_t v0 = kBoxLoops[4 * rf + q], v1 = kBoxLoops[4 * rf + (q + 1) % 4];
     const int side = 3 - k - std::countr_zero(v0 ^ v1);
     const Real out_sign = ((v0 >> side) & 1) ? Real(1) : Real(-1);
-    clip_to_side(poly[cur], side, out_sign, h[side], uint8_t(kSidePlaneLabel + q), poly[1 - cur]);
+    // The side plane out_sign x[side] <= h[side], one coordinate against a half extent.
+    const auto beyond = [&](const Vec3& x) { return out_sign * x[side] - h[side]; };
+    clip_by(poly[cur], beyond, uint8_t(kSidePlaneLabel + q), poly[1 - cur]);
     cur = 1 - cur;
   }
   const BoxClip& clipped = poly[cur];
@@ -198,9 +168,7 @@ int clip_incident_face(const Vec3& h, int rf, const BoxPlacement& inc, const Vec
     points[count] = p;
     points[count][k] -= (Real(0.5) * s) * sign;
     seps[count] = s;
-    const int prev = q == 0 ? clipped.count - 1 : q - 1;
-    ids[count] = face_bits | (uint32_t(clipped.out_label[prev] & 0x7F) << 7) |
-                 uint32_t(clipped.out_label[q] & 0x7F);
+    ids[count] = face_bits | clip_vertex_id(clipped, q);
     ++count;
   }
   if (count == 0) {
@@ -226,6 +194,13 @@ int clip_incident_face(const Vec3& h, int rf, const BoxPlacement& inc, const Vec
     count = 1;
   }
   return count;
+}
+
+// Faces 2k and 2k + 1 of a box, whose separations are `plus` and `minus`, into the query: the
+// first largest of all faces in order.
+void take_deeper_faces(FaceQuery& q, int k, Real plus, Real minus) {
+  if (plus > q.separation) q.separation = plus, q.face = 2 * k;
+  if (minus > q.separation) q.separation = minus, q.face = 2 * k + 1;
 }
 
 // The face contact on face rf of A (ref_is_a) or of B, stored in `out` in the world.
@@ -274,13 +249,7 @@ bool collide_box_box(const Shape& a, const Transform& xa, const Shape& b, const 
     const Real reach =
         (eb[0] * std::abs(p.r[k][0]) + eb[1] * std::abs(p.r[k][1]) + eb[2] * std::abs(p.r[k][2])) +
         ea[k];
-    const Real s[2] = {p.t[k] - reach, -p.t[k] - reach};
-    for (int side = 0; side < 2; ++side) {
-      if (s[side] > fa.separation) {
-        fa.separation = s[side];
-        fa.face = 2 * k + side;
-      }
-    }
+    take_deeper_faces(fa, k, p.t[k] - reach, -p.t[k] - reach);
   }
   if (fa.separation > speculative_distance) {
     report_separation(separation, Separation::Kind::FaceOfA, fa.separation);
@@ -294,13 +263,7 @@ bool collide_box_box(const Shape& a, const Transform& xa, const Shape& b, const 
     const Real reach =
         (ea[0] * std::abs(p.r[0][k]) + ea[1] * std::abs(p.r[1][k]) + ea[2] * std::abs(p.r[2][k])) +
         eb[k];
-    const Real s[2] = {-u[k] - reach, u[k] - reach};
-    for (int side = 0; side < 2; ++side) {
-      if (s[side] > fb.separation) {
-        fb.separation = s[side];
-        fb.face = 2 * k + side;
-      }
-    }
+    take_deeper_faces(fb, k, -u[k] - reach, u[k] - reach);
   }
   if (fb.separation > speculative_distance) {
     report_separation(separation, Separation::Kind::FaceOfB, fb.separation);

@@ -26,6 +26,17 @@ Quat random_rotation(std::mt19937& rng) {
   return Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
 }
 
+// How far two boxes turned by qa and qb reach along the unit `dir` together: their centres this
+// far apart along it put their supports in touch.
+Real reach_along(const Shape& a, const Quat& qa, const Shape& b, const Quat& qb, const Vec3& dir) {
+  Real reach = 0;
+  for (int k = 0; k < 3; ++k) {
+    reach += std::abs(dir.dot(qa * (Vec3::Unit(k) * a.half_extents[k])));
+    reach += std::abs(dir.dot(qb * (Vec3::Unit(k) * b.half_extents[k])));
+  }
+  return reach;
+}
+
 // Signed distance of world point p from the surface of box `s` at `x` (negative inside), exact
 // for points inside or beside a face and a lower bound of nothing else: enough to check that a
 // contact point lies on the surface.
@@ -54,11 +65,7 @@ TEST(BoxBox, EdgeRejectionIsWhatTheCacheTestsAgainBitForBit) {
     const Shape& b = shapes[pick(rng)];
     const Quat qa = random_rotation(rng), qb = random_rotation(rng);
     const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
-    Real reach = 0;
-    for (int k = 0; k < 3; ++k) {
-      reach += std::abs(dir.dot(qa * (Vec3::Unit(k) * a.half_extents[k])));
-      reach += std::abs(dir.dot(qb * (Vec3::Unit(k) * b.half_extents[k])));
-    }
+    const Real reach = reach_along(a, qa, b, qb, dir);
     const Transform xa = pose(Vec3(3, -2, 5), qa);
     const Transform xb = pose(Vec3(3, -2, 5) + (reach + Real(0.05) * u(rng)) * dir, qb);
     Manifold m;
@@ -128,11 +135,7 @@ TEST(BoxBox, PointsLieMidwayBetweenTheTwoSurfaces) {
   for (int i = 0; i < 2000; ++i) {
     const Quat qa = random_rotation(rng), qb = random_rotation(rng);
     const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
-    Real reach = 0;
-    for (int k = 0; k < 3; ++k) {
-      reach += std::abs(dir.dot(qa * (Vec3::Unit(k) * a.half_extents[k])));
-      reach += std::abs(dir.dot(qb * (Vec3::Unit(k) * b.half_extents[k])));
-    }
+    const Real reach = reach_along(a, qa, b, qb, dir);
     const Transform xa = pose(Vec3(-4, 1, 2), qa);
     const Transform xb = pose(xa.position + (reach - Real(0.1) + Real(0.1) * u(rng)) * dir, qb);
     Manifold m;
