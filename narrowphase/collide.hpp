@@ -33,11 +33,11 @@ bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transfor
 // box), not SAT, GJK or a convex routine: the dispatch's own choice.
 bool exact_test_is_closed_form(const Shape& a, const Shape& b);
 
-// A's polyhedron from the last box or hull pair, for a caller that tests one body against
-// several in a row: the SAT works in a frame centred on A, so A's vertices and planes depend on
-// its shape and rotation alone, and the next pair with the same A (bit for bit) reuses them.
-// collide_pairs' pairs are sorted by their first body, and in a pile most hull pairs follow one
-// with the same A.
+// A's polyhedron from the last hull pair (or box against hull), for a caller that tests one body
+// against several in a row: the SAT works in a frame centred on A, so A's vertices and planes
+// depend on its shape and rotation alone, and the next pair with the same A (bit for bit) reuses
+// them. collide_pairs' pairs are sorted by their first body, and in a pile most hull pairs follow
+// one with the same A.
 struct PolyhedronCache {
   const Shape* shape = nullptr;
   Quat rotation = Quat::Identity();
@@ -52,7 +52,8 @@ bool collide(const Shape& a, const Transform& xa, const Shape& b, const Transfor
 // Whether the SAT of the box or hull pair (a, b) would reject it on the axis of A's edge `edge_a`
 // and B's edge `edge_b` (a Separation::Kind::EdgePair it reported before): the two edges still
 // make a face of the Minkowski difference and its gap is above `speculative_distance`, computed
-// as the SAT's edge query computes it. False when that is not so or the edges are not theirs.
+// as the SAT's edge query computes it (two boxes: as box_box.cpp's routine does). False when that
+// is not so or the edges are not theirs.
 bool edge_pair_separates(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                          int edge_a, int edge_b, Real speculative_distance, PolyhedronCache& cache);
 

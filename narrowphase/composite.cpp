@@ -239,10 +239,6 @@ int choose_four(const Vec3* pos, const Real* sep, int count, const Vec3& normal,
 void collide_piece_with(const Shape& p, const Transform& xp, uint32_t part_a, const Shape& b,
                         const Transform& xb, Walk& w) {
   if (b.type != ShapeType::Compound) {
-    if (p.type == ShapeType::Box && b.type == ShapeType::Box &&
-        box_clear_of_box(p, xp, b, xb, w.speculative)) {
-      return;
-    }
     collide_pieces(p, xp, b, xb, part_a, w);
     return;
   }
@@ -306,23 +302,6 @@ bool merge(const Candidates& cands, Real speculative, Manifold& out) {
 }
 
 }  // namespace
-
-// The slack of box_clear_of_box, per metre of the coordinates' size: box_in and the SAT's face
-// query compute one extent by two formulas, each within a few roundings of that size; 1e-5 is
-// about 84 float epsilons.
-constexpr Real kClearSlack = Real(1e-5);
-
-// p's box in q's frame (box_in) grown by the speculative distance and the slack misses q's.
-bool box_clear_of_box(const Shape& p, const Transform& xp, const Shape& q, const Transform& xq,
-                      Real speculative) {
-  Vec3 lo, hi;
-  box_in(p, xp, xq, speculative, lo, hi);
-  const Real size =
-      std::max({lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff(), q.half_extents.maxCoeff()});
-  const Vec3 slack = Vec3::Constant(kClearSlack * size);
-  return ((lo - slack).array() > q.half_extents.array()).any() ||
-         ((hi + slack).array() < -q.half_extents.array()).any();
-}
 
 bool collide_composite(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                        Real speculative_distance, Manifold& out, const SurfaceMotion* motion) {

@@ -48,15 +48,6 @@ bool collide_composite(const Shape& a, const Transform& xa, const Shape& b, cons
                        Real speculative_distance, Manifold& out,
                        const SurfaceMotion* motion = nullptr);
 
-// Whether box p (at xp) is clear of box q (at xq) by more than the speculative distance along one
-// of q's axes, with a slack over the rounding. p's extent along that axis is then beyond q's face
-// by more than the speculative distance, so collide() rejects the pair (the SAT, on a face of q or
-// one of p's it tests first): the walk skips a compound's box part against a box this way.
-// perf: a compound resting on or falling onto a large box (the ground) has parts far above its
-// top face; their box costs less than the SAT's polyhedron and face queries.
-bool box_clear_of_box(const Shape& p, const Transform& xp, const Shape& q, const Transform& xq,
-                      Real speculative);
-
 // Whether a compound has a round part (sphere, capsule, cylinder): its manifold is not carried by
 // the body pair cache (collide_pairs' rolls()).
 inline bool has_round_part(const Shape& s) {

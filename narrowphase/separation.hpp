@@ -17,9 +17,9 @@ namespace elan::detail {
 // While that motion stays below gap minus the speculative distance, the same routine rejects the
 // pair again (collide_pairs' separation cache). An edge axis turns with both bodies, so no motion
 // bound keeps it; EdgePair names the SAT's two edges instead (edge_a of A, edge_b of B), and the
-// cache tests that one axis again with the SAT's own arithmetic: while it still separates, the
-// SAT rejects the pair again. Unknown: nothing that lasts (a near-parallel capsule pair measures
-// two points).
+// cache tests that one axis again with the SAT's own arithmetic (two boxes: the box-box
+// routine's): while it still separates, the SAT rejects the pair again. Unknown: nothing that lasts
+// (a near-parallel capsule pair measures two points).
 struct Separation {
   enum class Kind : uint8_t { Unknown, Distance, FaceOfA, FaceOfB, EdgePair };
   Kind kind = Kind::Unknown;

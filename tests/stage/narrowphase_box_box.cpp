@@ -171,5 +171,53 @@ TEST(BoxBox, PointsLieMidwayBetweenTheTwoSurfaces) {
   EXPECT_GT(clipped_points, 600);
 }
 
+// A box clear of another along one of that box's face normals by more than the speculative
+// distance is rejected on a face, and the face gap it reports is at least that clearance, within
+// rounding.
+// Boxes placed so that their extent along one of the other box's axes lies within 1e-4 m either
+// side of the speculative distance past its face, across the face at random, at random
+// orientations: parts of scenes/compounds.json's tables against its ground slab and a cube.
+TEST(BoxBox, ClearAlongAFaceNormalIsRejectedOnAFace) {
+  const Shape parts[] = {test::box(Real(0.04), Real(0.2), Real(0.04)),
+                         test::box(Real(0.5), Real(0.05), Real(0.35)),
+                         test::box(Real(0.2), Real(0.2), Real(0.2))};
+  const Shape others[] = {test::box(40, 1, 40), test::box(Real(0.3), Real(0.3), Real(0.3))};
+  constexpr Real kSpeculative = Real(0.02);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  PolyhedronCache cache;
+  int clear_by_more = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Shape& p = parts[i % 3];
+    const Shape& q = others[(i / 3) % 2];
+    const Quat qp = random_rotation(rng), qq = random_rotation(rng);
+    const int axis = i % 3;
+    const Real side = u(rng) < 0 ? Real(-1) : Real(1);
+    // p's extent along q's axis, and a random offset across it within q's face.
+    const Vec3 n = qq * (side * Vec3::Unit(axis));
+    Real extent = 0;
+    for (int k = 0; k < 3; ++k) extent += std::abs(n.dot(qp * (Vec3::Unit(k) * p.half_extents[k])));
+    const Real gap = kSpeculative + Real(1e-4) * u(rng);
+    Vec3 across = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      if (k != axis) across[k] = q.half_extents[k] * u(rng);
+    }
+    const Transform xq = pose(Vec3(3, -1, 2), qq);
+    const Transform xp =
+        pose(xq.position + qq * across + (q.half_extents[axis] + extent + gap) * n, qp);
+    if (!(gap > kSpeculative + Real(5e-5))) continue;
+    ++clear_by_more;
+    Manifold m;
+    Separation s;
+    ASSERT_FALSE(collide(p, xp, q, xq, kSpeculative, m, cache, s)) << i << " gap " << gap;
+    // q's face, or a face of p's tested first that separates them as far.
+    ASSERT_TRUE(s.kind == Separation::Kind::FaceOfA || s.kind == Separation::Kind::FaceOfB) << i;
+    // Positions as far as the slab's 40 m from its centre round to about 5e-6 m, and the gap
+    // passes through a few dozen such roundings: 2e-5 of the larger box's size.
+    EXPECT_GE(s.gap, gap - Real(2e-5) * std::max(Real(1), q.half_extents.maxCoeff())) << i;
+  }
+  EXPECT_GT(clear_by_more, 4000);
+}
+
 }  // namespace narrowphase_box_box_test
 }  // namespace elan::detail

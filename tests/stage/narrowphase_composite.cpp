@@ -442,50 +442,5 @@ TEST(Composite, PairCacheKeepsOnlyCompoundsWithoutRoundParts) {
   EXPECT_EQ(store.pair_cache()[0].key, make_pair_key(0, 1));
 }
 
-// The walk skips a compound's box part whose box in a box's frame clears it by more than the
-// speculative distance: collide() must reject every such pair. Boxes placed so that their extent
-// along one of the other box's axes lies within 1e-4 m either side of the speculative distance
-// past its face, at random orientations, against the ground slab of scenes/compounds.json and a
-// cube: the skip holds wherever it is taken, and it is taken for most of the pairs clear by more.
-TEST(Composite, BoxClearOfBoxOnlyWhereCollideRejects) {
-  const Shape parts[] = {box(Real(0.04), Real(0.2), Real(0.04)),
-                         box(Real(0.5), Real(0.05), Real(0.35)),
-                         box(Real(0.2), Real(0.2), Real(0.2))};
-  const Shape others[] = {box(40, 1, 40), box(Real(0.3), Real(0.3), Real(0.3))};
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<Real> u(-1, 1);
-  int skipped = 0, clear_by_more = 0;
-  for (int i = 0; i < 20000; ++i) {
-    const Shape& p = parts[i % 3];
-    const Shape& q = others[(i / 3) % 2];
-    const Real w = u(rng), x = u(rng), y = u(rng), z = u(rng);
-    const Quat qp = Quat(w, x, y, z).normalized();
-    const Real w2 = u(rng), x2 = u(rng), y2 = u(rng), z2 = u(rng);
-    const Quat qq = Quat(w2, x2, y2, z2).normalized();
-    const int axis = i % 3;
-    const Real side = u(rng) < 0 ? Real(-1) : Real(1);
-    // p's extent along q's axis, and a random offset across it within q's face.
-    const Vec3 n = qq * (side * Vec3::Unit(axis));
-    Real extent = 0;
-    for (int k = 0; k < 3; ++k) extent += std::abs(n.dot(qp * (Vec3::Unit(k) * p.half_extents[k])));
-    const Real gap = kSpec + Real(1e-4) * u(rng);
-    Vec3 across = Vec3::Zero();
-    for (int k = 0; k < 3; ++k) {
-      if (k != axis) across[k] = q.half_extents[k] * u(rng);
-    }
-    const Transform xq = test::pose(Vec3(Real(3), Real(-1), Real(2)), qq);
-    const Transform xp =
-        test::pose(xq.position + qq * across + (q.half_extents[axis] + extent + gap) * n, qp);
-    Manifold m;
-    const bool hit = collide(p, xp, q, xq, kSpec, m);
-    if (box_clear_of_box(p, xp, q, xq, kSpec)) {
-      ++skipped;
-      ASSERT_FALSE(hit) << i << " gap " << gap;
-    }
-    clear_by_more += gap > kSpec + Real(5e-5);
-  }
-  EXPECT_GT(skipped, clear_by_more / 2);
-}
-
 }  // namespace narrowphase_composite_test
 }  // namespace elan::detail
