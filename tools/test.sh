@@ -90,11 +90,8 @@ ctest --test-dir build/test-native -j"$jobs" --output-on-failure --timeout 300 -
 #   by the snapshot, rollback and soak tests that stay; with them the tumbler scene (kinematic
 #   bodies, which the API tests move) and the sweep's 20,000-box match (the moving scene's match
 #   runs the same code);
-# - two narrowphase tolerances that the random hulls drawn under clang miss by a few 1e-6 (the
-#   argument order of the draws differs between compilers; not a defect of the engine);
 # - the public-header check, which reads gcc's include output.
-clang_skip='GoldenHash.*"(pile10k|pile4k|heightfield_rain|joint_grid)"|Gjk.MatchesExactDistanceOnRandomHulls'
-clang_skip+='|CollidePairs.CarriedManifoldsAgreeWithTheExactTest|Unit.PublicHeadersIncludeNoTbbOrJson'
+clang_skip='GoldenHash.*"(pile10k|pile4k|heightfield_rain|joint_grid)"|Unit.PublicHeadersIncludeNoTbbOrJson'
 asan_skip="$clang_skip"'|GoldenHash.*"(pyramid20|many_pyramids|jolt_pyramid)"'
 asan_skip+='|Determinism.HashEqualEveryStepForAnyThreadCountAndBroadphase|Determinism.TumblerHashEqual'
 asan_skip+='|GeometryDeterminism.HashEqualEveryStep|GeometryWorld.SameHashesForAnyThreadCount'
@@ -165,7 +162,7 @@ fi
 #   twice in one process, and the sweep's 20,000-box match, whose threaded code the moving
 #   scene's match and the determinism tests run;
 # - the same clang-only skips as above.
-tsan_skip='CollidePairs.CarriedManifoldsAgreeWithTheExactTest|Unit.PublicHeadersIncludeNoTbbOrJson'
+tsan_skip='Unit.PublicHeadersIncludeNoTbbOrJson'
 tsan_skip+='|MemoryUse.StepBuffersAreGivenBackWithinTheStep'
 tsan_skip+='|Rollback.(SizeIsEightyOne|AnotherWorldsState|CorruptOrTruncated)|SnapshotSurfaces.Resealed'
 tsan_skip+='|Snapshot.(RestoresSettingsStepCountAndShapes|SavingALoadedWorldGivesTheSameBytes)'

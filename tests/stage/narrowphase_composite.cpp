@@ -376,19 +376,21 @@ TEST(Composite, CompoundTimeOfImpactIsTheLeastOverItsParts) {
   int hits = 0, misses = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     const Shape& mover = movers[trial % 5];
-    const Vec3 start = Vec3(u(rng), u(rng), u(rng)).normalized() * (Real(1.6) + Real(0.4) * u(rng));
+    const Vec3 direction = Vec3{u(rng), u(rng), u(rng)}.normalized();
+    const Vec3 start = direction * (Real(1.6) + Real(0.4) * u(rng));
     // Across the compound's region, or past it: the path's closest approach to the compound's
     // centre spreads from 0 to about 2 m, so that many paths meet or graze only an outer part.
-    const Vec3 end = -start + Real(2.5) * Vec3(u(rng), u(rng), u(rng));
+    const Vec3 end = -start + Real(2.5) * Vec3{u(rng), u(rng), u(rng)};
     const Transform a0 = at(start.x(), start.y(), start.z(), test::random_turn(rng, u));
+    const Real angle = Real(0.6) * u(rng);
+    const Vec3 axis = Vec3{u(rng), u(rng), u(rng)}.normalized();
     const Transform a1 =
-        at(end.x(), end.y(), end.z(),
-           (axis_angle(Real(0.6) * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()) * a0.rotation)
-               .normalized());
+        at(end.x(), end.y(), end.z(), (axis_angle(angle, axis) * a0.rotation).normalized());
     const Quat q0 = test::random_turn(rng, u);
-    const Transform b0 = at(Real(0.1) * u(rng), Real(0.1) * u(rng), 0, q0);
-    const Transform b1 = at(Real(0.1) * u(rng), 0, Real(0.1) * u(rng),
-                            (axis_angle(Real(0.3) * u(rng), Vec3::UnitZ()) * q0).normalized());
+    const Transform b0 = test::pose(Vec3{Real(0.1) * u(rng), Real(0.1) * u(rng), 0}, q0);
+    const Vec3 pb1{Real(0.1) * u(rng), 0, Real(0.1) * u(rng)};
+    const Transform b1 =
+        test::pose(pb1, (axis_angle(Real(0.3) * u(rng), Vec3::UnitZ()) * q0).normalized());
     const Real t = time_of_impact(mover, a0, a1, target_compound, b0, b1, target);
     Real least = 1;
     for (const auto& [pa, xa] : pieces(mover, a0, a1)) {

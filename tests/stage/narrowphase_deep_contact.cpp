@@ -128,12 +128,13 @@ TEST(DeepContact, DepthBoundsTheTrueDepthAndSeparatesThePair) {
   for (int trial = 0; trial < 600; ++trial) {
     const Shape& a = shapes[trial % 6];
     const Shape& b = shapes[(trial / 6) % 6];
+    const Vec3 pa{u(rng), u(rng), u(rng)};
     const Transform xa =
-        at(u(rng), u(rng), u(rng), Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized());
+        test::pose(pa, Quat{u(rng), u(rng), u(rng), u(rng) + Real(1.5)}.normalized());
     const Real ra = inner_ball_radius(a), rb = inner_ball_radius(b);
-    const Vec3 off = Vec3(u(rng), u(rng), u(rng)) * (kDeepFraction * (ra + rb) / Real(1.8));
+    const Vec3 off = Vec3{u(rng), u(rng), u(rng)} * (kDeepFraction * (ra + rb) / Real(1.8));
     const Transform xb = {xa.position + off,
-                          Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized()};
+                          Quat{u(rng), u(rng), u(rng), u(rng) + Real(1.5)}.normalized()};
     ASSERT_TRUE(inner_balls_deep(xa.position, ra, xb.position, rb));
     const Manifold m = deep(a, xa, b, xb);
     const Real depth = -m.points[0].separation;

@@ -96,8 +96,8 @@ TEST(Epa, MatchesSatDepthOnRandomHulls) {
     const Shape a = oracle::random_hull(rng, 8 + i % 16, 1.0);
     const Shape b = oracle::random_hull(rng, 8 + (i * 5) % 24, 0.8);
     const Transform xa = at(0, 0, 0, oracle::random_rotation(rng));
-    const Vec3 offset = Vec3(Real(u(rng)), Real(u(rng)), Real(u(rng))) * Real(0.6);
-    const Transform xb = at(offset.x(), offset.y(), offset.z(), oracle::random_rotation(rng));
+    const Vec3 offset = test::draw3(rng, u, Real(0.6));
+    const Transform xb = test::pose(offset, oracle::random_rotation(rng));
     const oracle::Poly pa = oracle::place_hull(a, xa), pb = oracle::place_hull(b, xb);
     const double depth = oracle::sat_depth(pa, pb);
     if (depth < 1e-3) continue;
@@ -242,8 +242,9 @@ TEST(Epa, AfterTheCallersGjkMatchesItsOwnSearch) {
     const Shape& sb = shapes[(trial / 4) % 4];
     const Quat qa = test::random_turn(rng, u);
     const Quat qb = test::random_turn(rng, u);
-    const Transform xa = at(Real(5) + u(rng), Real(0.5) * u(rng), 0, qa);
-    const Transform xb = at(Real(5) + u(rng), Real(0.5) * u(rng), Real(0.6) * u(rng), qb);
+    const Vec3 centre_a{Real(5) + u(rng), Real(0.5) * u(rng), 0};
+    const Vec3 centre_b{Real(5) + u(rng), Real(0.5) * u(rng), Real(0.6) * u(rng)};
+    const Transform xa = test::pose(centre_a, qa), xb = test::pose(centre_b, qb);
     const PlacedShape pa = place(sa, xa, true), pb = place(sb, xb, true);
     Simplex s;
     const GjkResult g = gjk_placed(pa, pb, Vec3::Zero(), s, Real(0.05));

@@ -170,9 +170,9 @@ TEST(ManifoldFeatureIds, StableUnderSmallMotionAndChangedWithFeatures) {
 // A pose turned at random, its centre within `reach` of `around` on each axis.
 Transform random_pose(std::mt19937& rng, std::uniform_real_distribution<float>& u,
                       const Vec3& around, Real reach) {
-  const Vec3 offset(u(rng), u(rng), u(rng));
+  const Vec3 offset{u(rng), u(rng), u(rng)};
   return pose(around + reach * offset,
-              Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.1)).normalized());
+              Quat{u(rng), u(rng), u(rng), u(rng) + Real(1.1)}.normalized());
 }
 
 // A rejection reports what it measured: a gap above the speculative distance and no larger than

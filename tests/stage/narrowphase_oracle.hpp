@@ -130,9 +130,9 @@ inline Shape random_hull(std::mt19937& rng, int n, double scale) {
   std::uniform_real_distribution<double> u(0.3, 1.0);
   ShapeDef d;
   d.type = ShapeType::ConvexHull;
-  const V3 stretch(u(rng), u(rng), u(rng));
+  const V3 stretch{u(rng), u(rng), u(rng)};
   for (int i = 0; i < n; ++i) {
-    V3 p(g(rng), g(rng), g(rng));
+    V3 p{g(rng), g(rng), g(rng)};
     p = p.normalized() * (scale * u(rng));
     d.points.push_back(p.cwiseProduct(stretch).cast<Real>());
   }
@@ -141,7 +141,7 @@ inline Shape random_hull(std::mt19937& rng, int n, double scale) {
 
 inline Quat random_rotation(std::mt19937& rng) {
   std::normal_distribution<double> g(0, 1);
-  Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
+  Eigen::Quaterniond q{g(rng), g(rng), g(rng), g(rng)};
   q.normalize();
   return q.cast<Real>();
 }

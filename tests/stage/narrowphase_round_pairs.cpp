@@ -183,7 +183,7 @@ TEST(RoundPairs, SphereConvexMatchesSphereBox) {
   std::uniform_real_distribution<Real> u(Real(-1.6), Real(1.6));
   int over = 0, beside = 0, inside = 0;
   for (int i = 0; i < 600; ++i) {
-    const Vec3 local(u(rng), u(rng), u(rng));
+    const Vec3 local{u(rng), u(rng), u(rng)};
     Transform xa;
     xa.position = xb.apply(local);
     ASSERT_TRUE(collide_sphere_convex(sphere(0.35), xa, hull, xb, 10, m)) << i;

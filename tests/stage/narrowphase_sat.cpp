@@ -249,9 +249,9 @@ TEST(SatPolyhedra, BoxPairMatchesTheSatOfTheSameBoxesAsHulls) {
   std::uniform_real_distribution<Real> u(-1, 1);
   int edge_contacts = 0, compared = 0;
   for (int i = 0; i < 800; ++i) {
-    const Quat qa = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
-    const Quat qb = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
-    const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
+    const Quat qa = Quat{u(rng), u(rng), u(rng), u(rng)}.normalized();
+    const Quat qb = Quat{u(rng), u(rng), u(rng), u(rng)}.normalized();
+    const Vec3 dir = test::draw3(rng, u).normalized();
     // Centres a little nearer than the boxes reach along dir (their supports along it touch).
     Real reach = 0;
     for (int k = 0; k < 3; ++k) {
@@ -291,8 +291,8 @@ TEST(SatSegment, FaceQueryGivesTheDistanceOverAFaceAndABoundBesideIt) {
   std::uniform_real_distribution<Real> u(-1, 1);
   int over = 0, beside = 0;
   for (int i = 0; i < 600; ++i) {
-    const Vec3 centre = turn * Vec3(2 * u(rng), Real(1.1) + Real(0.5) * u(rng), Real(1.5) * u(rng));
-    const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
+    const Vec3 centre = turn * Vec3{2 * u(rng), Real(1.1) + Real(0.5) * u(rng), Real(1.5) * u(rng)};
+    const Vec3 dir = test::draw3(rng, u).normalized();
     const Real half = Real(0.35) + Real(0.25) * u(rng);
     const SegmentFaceQuery q = query_segment_faces(centre - half * dir, centre + half * dir, poly);
     const Shape core = test::capsule(Real(0.1), half);

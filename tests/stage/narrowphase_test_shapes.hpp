@@ -43,10 +43,22 @@ inline Shape sphere(Real radius) {
   return make_shape(d);
 }
 
+// The randomised tests draw in braces ({d(rng), d(rng), ...}), whose elements are evaluated in
+// order: a call's arguments are not, and GCC and Clang evaluate them in opposite orders, so draws
+// passed as arguments give each compiler other cases to test.
+
+// Three draws of `d`, in order (scaled by `scale`).
+template <class Distribution>
+Vec3 draw3(std::mt19937& rng, Distribution& d, Real scale = 1) {
+  const Vec3 v{Real(d(rng)), Real(d(rng)), Real(d(rng))};
+  return scale * v;
+}
+
 // A random rotation for the randomised tests: a normalised quaternion of uniform components with
 // w biased positive (away from the double cover's far side).
 inline Quat random_turn(std::mt19937& rng, std::uniform_real_distribution<float>& u) {
-  return Quat(u(rng), u(rng), u(rng), u(rng) + Real(1.5)).normalized();
+  const Quat q{u(rng), u(rng), u(rng), u(rng) + Real(1.5)};
+  return q.normalized();
 }
 
 // The hull of a box's eight corners: must collide exactly like the box.

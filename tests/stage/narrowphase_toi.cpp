@@ -143,13 +143,14 @@ TEST(TimeOfImpact, ConvexMatchesTheFullAdvancement) {
   for (int trial = 0; trial < 3000; ++trial) {
     const Shape& sa = shapes[std::size_t(trial) % shapes.size()];
     const Shape& sb = shapes[std::size_t(trial / 4) % shapes.size()];
-    const Vec3 start(Real(2) * u(rng), Real(1.5) + u(rng), Real(2) * u(rng));
-    const Vec3 end = start + Vec3(u(rng), Real(-2) + u(rng), u(rng));
+    const Vec3 start{Real(2) * u(rng), Real(1.5) + u(rng), Real(2) * u(rng)};
+    const Vec3 end = start + Vec3{u(rng), Real(-2) + u(rng), u(rng)};
     const Quat q0 = turn();
     const Quat q1 = (Quat(Eigen::AngleAxis<Real>(Real(0.5) * u(rng), Vec3::UnitX())) * q0);
     const Transform xa0 = at(start.x(), start.y(), start.z(), q0);
     const Transform xa1 = at(end.x(), end.y(), end.z(), q1.normalized());
-    const Transform xb = at(Real(0.2) * u(rng), 0, Real(0.2) * u(rng), turn());
+    const Vec3 pb{Real(0.2) * u(rng), 0, Real(0.2) * u(rng)};
+    const Transform xb = test::pose(pb, turn());
     const Real t = time_of_impact(sa, xa0, xa1, sb, xb, xb, Real(0.005));
     const Real ref = reference_time_of_impact(sa, xa0, xa1, sb, xb, xb, Real(0.005));
     ASSERT_EQ(t, ref) << trial;
@@ -188,13 +189,12 @@ TEST(TimeOfImpact, SurfaceImpactIsTheEarliestOverItsTriangles) {
   for (int trial = 0; trial < 240; ++trial) {
     const Shape& s = shapes[trial % 4];
     const Quat q0 = test::random_turn(rng, u);
-    const Quat q1 = (Quat(Eigen::AngleAxis<Real>(Real(0.8) * u(rng),
-                                                 Vec3(u(rng), u(rng), u(rng)).normalized())) *
-                     q0)
-                        .normalized();
-    const Transform x0 =
-        at(2 + Real(1.2) * u(rng), 1 + Real(0.4) * u(rng), 2 + Real(1.2) * u(rng), q0);
-    const Vec3 d(Real(1.5) * u(rng), Real(-1.2) + Real(0.6) * u(rng), Real(1.5) * u(rng));
+    const Real angle = Real(0.8) * u(rng);
+    const Vec3 axis = Vec3{u(rng), u(rng), u(rng)}.normalized();
+    const Quat q1 = (Quat(Eigen::AngleAxis<Real>(angle, axis)) * q0).normalized();
+    const Transform x0 = test::pose(
+        Vec3{2 + Real(1.2) * u(rng), 1 + Real(0.4) * u(rng), 2 + Real(1.2) * u(rng)}, q0);
+    const Vec3 d{Real(1.5) * u(rng), Real(-1.2) + Real(0.6) * u(rng), Real(1.5) * u(rng)};
     Transform x1 = x0;
     x1.position += d;
     x1.rotation = q1;

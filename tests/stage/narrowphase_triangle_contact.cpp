@@ -305,13 +305,13 @@ TEST(TriangleContact, FiniteOnRandomAndDegenerateInput) {
   int touching = 0;
   for (int trial = 0; trial < 3000; ++trial) {
     MeshTriangle t;
-    for (int k = 0; k < 3; ++k) t.v[k] = Vec3(u(rng), Real(0.1) * u(rng), u(rng));
+    for (int k = 0; k < 3; ++k) t.v[k] = Vec3{u(rng), Real(0.1) * u(rng), u(rng)};
     if (trial % 5 == 0) t.v[2] = t.v[0] + Real(1e-3) * (t.v[1] - t.v[0]) + Vec3(0, 0, Real(1e-4));
     if (!((t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).norm() > 0)) continue;
     t.active_edges = uint8_t(trial % 8);
     t.two_sided = trial % 3 != 0;
     const Shape& s = shapes[trial % 6];
-    Vec3 p(u(rng), Real(0.5) * u(rng), u(rng));
+    Vec3 p{u(rng), Real(0.5) * u(rng), u(rng)};
     if (trial % 7 == 0) p = (t.v[0] + t.v[1] + t.v[2]) / 3;  // centred on the plane
     const Quat q = test::random_turn(rng, u);
     TriangleContact c;
@@ -341,10 +341,10 @@ TEST(TriangleContact, GjkStopsEarlyOnlyPastTheRejectDistance) {
   int stopped = 0, ran = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     Vec3 v[3];
-    for (int k = 0; k < 3; ++k) v[k] = Vec3(u(rng), Real(0.2) * u(rng), u(rng));
+    for (int k = 0; k < 3; ++k) v[k] = Vec3{u(rng), Real(0.2) * u(rng), u(rng)};
     const Shape& s = shapes[trial % 4];
     const Quat q = test::random_turn(rng, u);
-    const PlacedShape a = place(s, at(u(rng), Real(0.6) * u(rng), u(rng), q), false);
+    const PlacedShape a = place(s, test::pose(Vec3{u(rng), Real(0.6) * u(rng), u(rng)}, q), false);
     const Real reject = Real(0.05) + Real(0.1) * (u(rng) + 1);
     Simplex s0, s1;
     const GjkResult full = gjk_triangle(a, v, Vec3::UnitY(), s0);
@@ -378,11 +378,12 @@ TEST(TriangleContact, GjkFromTheClosestPointAgreesInFewerIterations) {
   int compared = 0, from_face = 0, from_closest = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     MeshTriangle t;
-    for (int k = 0; k < 3; ++k) t.v[k] = Vec3(u(rng), Real(0.2) * u(rng), u(rng));
+    for (int k = 0; k < 3; ++k) t.v[k] = Vec3{u(rng), Real(0.2) * u(rng), u(rng)};
     const Shape& s = shapes[trial % 4];
     const Quat q = test::random_turn(rng, u);
     const TriangleQuery query = make_triangle_query(
-        s, at(Real(1.5) * u(rng), Real(0.2) + Real(0.4) * u(rng), Real(1.5) * u(rng), q),
+        s,
+        test::pose(Vec3{Real(1.5) * u(rng), Real(0.2) + Real(0.4) * u(rng), Real(1.5) * u(rng)}, q),
         Real(0.5));
     TriangleReach r;
     if (!reach_triangle(query, t, r)) continue;
@@ -419,8 +420,8 @@ TEST(TriangleContact, HeightfieldQueryMatchesWholeTriangles) {
     const Shape& s = shapes[trial % 6];
     const Quat q = test::random_turn(rng, u);
     // Over the field's middle, from well clear of it to half sunk.
-    const Transform xa =
-        at(2 + Real(1.2) * u(rng), Real(0.35) + Real(0.3) * u(rng), 2 + Real(1.2) * u(rng), q);
+    const Transform xa = test::pose(
+        Vec3{2 + Real(1.2) * u(rng), Real(0.35) + Real(0.3) * u(rng), 2 + Real(1.2) * u(rng)}, q);
     TriangleQuery query = make_triangle_query(s, xa, kSpec);
     query.field = &field;
     for (uint32_t t = 0; t < 2 * (kColumns - 1) * (kColumns - 1); ++t) {
@@ -488,10 +489,10 @@ TEST(TriangleContact, ReachRejectsOnlyTrianglesWithoutAContact) {
   for (int trial = 0; trial < 1500; ++trial) {
     const Shape& s = shapes[1 + trial % 5];
     const Quat q = test::random_turn(rng, u);
-    const Transform xa =
-        at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng), q);
+    const Transform xa = test::pose(
+        Vec3{2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng)}, q);
     TriangleQuery query = make_triangle_query(s, xa, kSpec);
-    if (trial % 3 == 0) query.motion = Vec3(Real(0.05) * u(rng), Real(-0.1), Real(0.05) * u(rng));
+    if (trial % 3 == 0) query.motion = Vec3{Real(0.05) * u(rng), Real(-0.1), Real(0.05) * u(rng)};
     for (uint32_t t = 0; t < 2 * (kColumns - 1) * (kColumns - 1); ++t) {
       const MeshTriangle tri = field.triangle(t);
       TriangleReach before, now;
@@ -528,10 +529,10 @@ TEST(TriangleContact, ClearOfBoxOnlyWhenItsTrianglesGiveNothing) {
   for (int trial = 0; trial < 1200; ++trial) {
     const Shape& s = shapes[trial % 6];
     const Quat q = test::random_turn(rng, u);
-    const Transform xa =
-        at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng), q);
+    const Transform xa = test::pose(
+        Vec3{2 + Real(1.2) * u(rng), Real(0.3) + Real(0.25) * u(rng), 2 + Real(1.2) * u(rng)}, q);
     TriangleQuery query = make_triangle_query(s, xa, kSpec);
-    if (trial % 3 == 0) query.motion = Vec3(Real(0.05) * u(rng), Real(-0.1), Real(0.05) * u(rng));
+    if (trial % 3 == 0) query.motion = Vec3{Real(0.05) * u(rng), Real(-0.1), Real(0.05) * u(rng)};
     query.field = &field;
     const Real cell_speculative = kSpec + query.motion.norm();
     for (uint32_t j = 0; j + 1 < kColumns; ++j) {
@@ -585,7 +586,7 @@ TEST(TriangleContact, ClearOfBoxKeepsACellAThinPieceReachesUnder) {
   int clear = 0, not_clear = 0, under = 0;
   for (int trial = 0; trial < 500; ++trial) {
     const Shape& s = shapes[trial % 3];
-    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+    const Quat q = Quat{u(rng), u(rng), u(rng), u(rng)}.normalized();
     const Real x = Real(2.5) + Real(0.8) * u(rng), z = Real(2.5) + Real(0.8) * u(rng);
     const Vec3 centre = Vec3(x, x + z, z) + (Real(0.1) + Real(0.1) * u(rng)) * up;
     TriangleQuery query = make_triangle_query(s, at(centre.x(), centre.y(), centre.z(), q), kSpec);
@@ -705,10 +706,10 @@ TEST(TriangleContact, ShortcutsDecideAsTheSupportDoes) {
   for (int trial = 0; trial < 1500; ++trial) {
     const Shape& s = shapes[trial % 6];
     const Quat q = test::random_turn(rng, u);
-    const Transform xa =
-        at(2 + Real(1.2) * u(rng), Real(0.3) + Real(0.3) * u(rng), 2 + Real(1.2) * u(rng), q);
+    const Transform xa = test::pose(
+        Vec3{2 + Real(1.2) * u(rng), Real(0.3) + Real(0.3) * u(rng), 2 + Real(1.2) * u(rng)}, q);
     TriangleQuery query = make_triangle_query(s, xa, kSpec);
-    if (trial % 3 == 0) query.motion = Vec3(Real(0.05) * u(rng), Real(-0.2), Real(0.05) * u(rng));
+    if (trial % 3 == 0) query.motion = Vec3{Real(0.05) * u(rng), Real(-0.2), Real(0.05) * u(rng)};
     query.field = &field;
     query.down = support_world(query.full, Vec3(0, -1, 0));
     const Real cell_speculative = kSpec + query.motion.norm();
@@ -732,7 +733,7 @@ TEST(TriangleContact, ShortcutsDecideAsTheSupportDoes) {
     // Random two-sided triangles around A, as a mesh gives them.
     for (int k = 0; k < 20; ++k) {
       MeshTriangle t;
-      for (Vec3& p : t.v) p = xa.position + Vec3(u(rng), Real(0.6) * u(rng), u(rng));
+      for (Vec3& p : t.v) p = xa.position + Vec3{u(rng), Real(0.6) * u(rng), u(rng)};
       TriangleReach want, got;
       const bool keep = reach_with_supports(query, t, want);
       ASSERT_EQ(reach_triangle(query, t, got), keep) << "trial " << trial << " triangle " << k;
