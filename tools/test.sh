@@ -161,7 +161,7 @@ fi
 #   whose threads only step the world they save, as the restore tests that stay do; pile1k run
 #   twice in one process, and the sweep's 20,000-box match, whose threaded code the moving
 #   scene's match and the determinism tests run;
-# - the same clang-only skips as above.
+# - the public-header check, as above.
 tsan_skip='Unit.PublicHeadersIncludeNoTbbOrJson'
 tsan_skip+='|MemoryUse.StepBuffersAreGivenBackWithinTheStep'
 tsan_skip+='|Rollback.(SizeIsEightyOne|AnotherWorldsState|CorruptOrTruncated)|SnapshotSurfaces.Resealed'
