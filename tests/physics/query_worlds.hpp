@@ -16,7 +16,7 @@ inline Real uniform(std::mt19937& rng, Real lo, Real hi) {
 }
 
 inline Quat random_rotation(std::mt19937& rng) {
-  return Quat(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1))
+  return Quat{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)}
       .normalized();
 }
 
@@ -84,7 +84,7 @@ inline World random_world(uint32_t seed, int n, int threads = 1) {
     BodyDef b;
     b.shape = shapes[s];
     b.motion = static_only[s] || rng() % 3 == 0 ? MotionType::Static : MotionType::Dynamic;
-    b.position = Vec3(uniform(rng, -12, 12), uniform(rng, -12, 12), uniform(rng, -12, 12));
+    b.position = Vec3{uniform(rng, -12, 12), uniform(rng, -12, 12), uniform(rng, -12, 12)};
     b.orientation = static_only[s] ? Quat::Identity() : random_rotation(rng);
     b.category_bits = rng() % 5 == 0 ? 2u : 1u;
     w.create_body(b);
@@ -103,8 +103,8 @@ struct RandomRay {
   Vec3 origin, dir;
 };
 inline RandomRay random_ray(std::mt19937& rng) {
-  const Vec3 o(uniform(rng, -16, 16), uniform(rng, -16, 16), uniform(rng, -16, 16));
-  const Vec3 d = Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)).normalized();
+  const Vec3 o{uniform(rng, -16, 16), uniform(rng, -16, 16), uniform(rng, -16, 16)};
+  const Vec3 d = Vec3{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)}.normalized();
   return {o, d};
 }
 

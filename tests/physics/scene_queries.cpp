@@ -187,9 +187,9 @@ TEST(SceneQueries, ShapeCastsMatchBruteForce) {
   for (int k = 0; k < 60; ++k) {
     const ShapeId id = ids[k % 3];
     const detail::Shape& a = state(w).shapes[id.index];
-    const Transform start{Vec3(uniform(rng, -14, 14), uniform(rng, -14, 14), uniform(rng, -14, 14)),
+    const Transform start{Vec3{uniform(rng, -14, 14), uniform(rng, -14, 14), uniform(rng, -14, 14)},
                           random_rotation(rng)};
-    const Vec3 move(uniform(rng, -8, 8), uniform(rng, -8, 8), uniform(rng, -8, 8));
+    const Vec3 move{uniform(rng, -8, 8), uniform(rng, -8, 8), uniform(rng, -8, 8)};
     std::vector<ShapeCastHit> all;
     w.cast_shape_all(id, start, move, all);
     // Reference: every body swept against alone.
@@ -246,9 +246,9 @@ TEST(SceneQueries, FirstShapeCastIntoAPileMatchesBruteForce) {
     for (int i = 0; i < 12; ++i) {
       for (int j = 0; j < 12; ++j) {
         b.shape = kinds[(i + j + layer) % 2];
-        b.position = Vec3(Real(i) * 0.5f - 3 + uniform(rng, -0.03f, 0.03f),
+        b.position = Vec3{Real(i) * 0.5f - 3 + uniform(rng, -0.03f, 0.03f),
                           Real(layer) * 0.5f + uniform(rng, -0.03f, 0.03f),
-                          Real(j) * 0.5f - 3 + uniform(rng, -0.03f, 0.03f));
+                          Real(j) * 0.5f - 3 + uniform(rng, -0.03f, 0.03f)};
         b.orientation = random_rotation(rng);
         w.create_body(b);
       }
@@ -258,9 +258,9 @@ TEST(SceneQueries, FirstShapeCastIntoAPileMatchesBruteForce) {
   for (int k = 0; k < 90; ++k) {
     const ShapeId id = casts[k % 3];
     const detail::Shape& a = state(w).shapes[id.index];
-    const Transform start{Vec3(uniform(rng, -3.5f, 3.5f), 6, uniform(rng, -3.5f, 3.5f)),
+    const Transform start{Vec3{uniform(rng, -3.5f, 3.5f), 6, uniform(rng, -3.5f, 3.5f)},
                           random_rotation(rng)};
-    const Vec3 move(uniform(rng, -2, 2), -10, uniform(rng, -2, 2));
+    const Vec3 move{uniform(rng, -2, 2), -10, uniform(rng, -2, 2)};
     const Transform x = detail::principal_pose(a, start);
     std::size_t want = SIZE_MAX;
     detail::CastContact best;
@@ -316,7 +316,7 @@ TEST(SceneQueries, OverlapsAndPointsMatchBruteForce) {
   for (int k = 0; k < 200; ++k) {
     const ShapeId id = ids[k % 3];
     const detail::Shape& a = state(w).shapes[id.index];
-    const Transform pose{Vec3(uniform(rng, -13, 13), uniform(rng, -13, 13), uniform(rng, -13, 13)),
+    const Transform pose{Vec3{uniform(rng, -13, 13), uniform(rng, -13, 13), uniform(rng, -13, 13)},
                          random_rotation(rng)};
     const Transform x = detail::principal_pose(a, pose);
     std::vector<BodyId> got, want;
@@ -443,7 +443,7 @@ TEST(SceneQueries, TreeKeptInStepByEveryChange) {
   for (int k = 0; k < 40; ++k) {
     const BodyId id = w.body_at(rng() % (w.body_count() - 1));
     if (w.motion_type(id) == MotionType::Static) continue;
-    w.set_position(id, Vec3(uniform(rng, -12, 12), uniform(rng, -12, 12), uniform(rng, -12, 12)));
+    w.set_position(id, Vec3{uniform(rng, -12, 12), uniform(rng, -12, 12), uniform(rng, -12, 12)});
     w.set_orientation(id, random_rotation(rng));
   }
   check("set_position");
@@ -453,7 +453,7 @@ TEST(SceneQueries, TreeKeptInStepByEveryChange) {
   BodyDef b;
   b.shape = w.create_shape(ball);
   for (int k = 0; k < 30; ++k) {
-    b.position = Vec3(uniform(rng, -12, 12), uniform(rng, -12, 12), uniform(rng, -12, 12));
+    b.position = Vec3{uniform(rng, -12, 12), uniform(rng, -12, 12), uniform(rng, -12, 12)};
     w.create_body(b);
   }
   check("create_body");

@@ -22,7 +22,7 @@ Real uniform(std::mt19937& rng, double lo, double hi) {
 
 Vec3 random_unit(std::mt19937& rng) {
   std::normal_distribution<double> g(0, 1);
-  return Vec3(Real(g(rng)), Real(g(rng)), Real(g(rng))).normalized();
+  return Vec3{Real(g(rng)), Real(g(rng)), Real(g(rng))}.normalized();
 }
 
 // Closed-form support points (principal frame), written here so the test does not lean on the
@@ -67,7 +67,7 @@ Shape random_shape(ShapeType type, std::mt19937& rng) {
       s.bounding_radius = s.radius;
       break;
     case ShapeType::Box:
-      s.half_extents = Vec3(uniform(rng, 0.05, 2), uniform(rng, 0.05, 2), uniform(rng, 0.05, 2));
+      s.half_extents = Vec3{uniform(rng, 0.05, 2), uniform(rng, 0.05, 2), uniform(rng, 0.05, 2)};
       s.bounding_radius = s.half_extents.norm();
       break;
     case ShapeType::Capsule:
@@ -80,8 +80,8 @@ Shape random_shape(ShapeType type, std::mt19937& rng) {
     case ShapeType::ConvexHull: {
       auto hull = std::make_shared<ConvexHull>();
       // Off-centre cloud: the principal frame need not centre the local box.
-      const Vec3 shift(uniform(rng, -0.3, 0.3), uniform(rng, -0.3, 0.3), uniform(rng, -0.3, 0.3));
-      const Vec3 scale(uniform(rng, 0.2, 2), uniform(rng, 0.2, 2), uniform(rng, 0.2, 2));
+      const Vec3 shift{uniform(rng, -0.3, 0.3), uniform(rng, -0.3, 0.3), uniform(rng, -0.3, 0.3)};
+      const Vec3 scale{uniform(rng, 0.2, 2), uniform(rng, 0.2, 2), uniform(rng, 0.2, 2)};
       for (int k = 0; k < 12; ++k) {
         hull->vertices.push_back(random_unit(rng).cwiseProduct(scale) + shift);
       }
@@ -132,12 +132,14 @@ TEST(Bounds, ContainShapeOverTheStepForEveryShapeType) {
     shapes.push_back(random_shape(types[k % 5], rng));
     const std::size_t i = bodies.push_back();
     bodies.shape[i] = uint32_t(shapes.size() - 1);
-    bodies.set_position(i, Vec3(uniform(rng, -50, 50), uniform(rng, -50, 50), uniform(rng, -5, 5)));
-    bodies.set_orientation(i, Quat(random_unit(rng).x(), random_unit(rng).y(), random_unit(rng).z(),
-                                   uniform(rng, -1, 1))
+    bodies.set_position(i, Vec3{uniform(rng, -50, 50), uniform(rng, -50, 50), uniform(rng, -5, 5)});
+    bodies.set_orientation(i, Quat{random_unit(rng).x(), random_unit(rng).y(), random_unit(rng).z(),
+                                   uniform(rng, -1, 1)}
                                   .normalized());
-    bodies.set_linear_velocity(i, random_unit(rng) * uniform(rng, 0, 30));
-    bodies.set_angular_velocity(i, random_unit(rng) * uniform(rng, 0, 40));
+    const Vec3 along = random_unit(rng);
+    bodies.set_linear_velocity(i, along * uniform(rng, 0, 30));
+    const Vec3 about = random_unit(rng);
+    bodies.set_angular_velocity(i, about * uniform(rng, 0, 40));
   }
   const Real dt = Real(1) / 60, margin = Real(0.01);
   BoundsColumns out;
@@ -174,9 +176,9 @@ TEST(Bounds, TightForBodiesAtRest) {
     shapes.push_back(random_shape(types[k % 4], rng));
     const std::size_t i = bodies.push_back();
     bodies.shape[i] = uint32_t(k);
-    bodies.set_position(i, Vec3(uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)));
+    bodies.set_position(i, Vec3{uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)});
     bodies.set_orientation(
-        i, Quat(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1))
+        i, Quat{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)}
                .normalized());
   }
   const Real margin = Real(0.05);

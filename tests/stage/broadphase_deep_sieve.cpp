@@ -53,8 +53,8 @@ Crowd make_crowd(std::size_t n, uint32_t seed, std::size_t clump = 0) {
   c.balls.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     Vec3 p = Vec3::Zero();
-    if (i % 3 == 1) p = Vec3(Real(near(rng)), Real(near(rng)), Real(near(rng)));
-    if (i % 3 == 2) p = Vec3(Real(far(rng)), Real(far(rng)), Real(far(rng)));
+    if (i % 3 == 1) p = Vec3{Real(near(rng)), Real(near(rng)), Real(near(rng))};
+    if (i % 3 == 2) p = Vec3{Real(far(rng)), Real(far(rng)), Real(far(rng))};
     if (i < clump) p = Vec3::Zero();
     const Real h = Real(0.5);
     c.bounds.min_x[i] = p.x() - h;

@@ -17,8 +17,8 @@ Real uniform(std::mt19937& rng, Real lo, Real hi) {
 }
 
 TreeBox random_box(std::mt19937& rng) {
-  const Vec3 c(uniform(rng, -20, 20), uniform(rng, -20, 20), uniform(rng, -20, 20));
-  const Vec3 h(uniform(rng, 0.1f, 1.5f), uniform(rng, 0.1f, 1.5f), uniform(rng, 0.1f, 1.5f));
+  const Vec3 c{uniform(rng, -20, 20), uniform(rng, -20, 20), uniform(rng, -20, 20)};
+  const Vec3 h{uniform(rng, 0.1f, 1.5f), uniform(rng, 0.1f, 1.5f), uniform(rng, 0.1f, 1.5f)};
   return {c - h, c + h};
 }
 
@@ -98,8 +98,8 @@ TEST(DynamicTree, StaysValidAndQueriesMatchTestingEveryItem) {
     }
     // Rays: the leaves entered within the limit, each found once.
     for (int q = 0; q < 20; ++q) {
-      const Vec3 o(uniform(rng, -25, 25), uniform(rng, -25, 25), uniform(rng, -25, 25));
-      Vec3 d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+      const Vec3 o{uniform(rng, -25, 25), uniform(rng, -25, 25), uniform(rng, -25, 25)};
+      Vec3 d{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
       if (q % 5 == 0) d.y() = 0;  // parallel to a slab
       d.normalize();
       std::vector<uint32_t> got, want;
@@ -121,10 +121,10 @@ TEST(DynamicTree, StaysValidAndQueriesMatchTestingEveryItem) {
     // by an ulp of the coordinates, so the reference grows by 1e-4 less (must be found) and
     // 1e-4 more (may be found).
     for (int q = 0; q < 20; ++q) {
-      const Vec3 o(uniform(rng, -25, 25), uniform(rng, -25, 25), uniform(rng, -25, 25));
-      Vec3 d(uniform(rng, -10, 10), uniform(rng, -10, 10), uniform(rng, -10, 10));
+      const Vec3 o{uniform(rng, -25, 25), uniform(rng, -25, 25), uniform(rng, -25, 25)};
+      Vec3 d{uniform(rng, -10, 10), uniform(rng, -10, 10), uniform(rng, -10, 10)};
       if (q % 5 == 0) d.x() = 0;
-      const Vec3 g(uniform(rng, 0.1f, 2), uniform(rng, 0.1f, 2), uniform(rng, 0.1f, 2));
+      const Vec3 g{uniform(rng, 0.1f, 2), uniform(rng, 0.1f, 2), uniform(rng, 0.1f, 2)};
       std::vector<uint32_t> got;
       tree.sweep(o, d, g, 1, [&](uint32_t i, Real limit) {
         got.push_back(i);
@@ -148,9 +148,9 @@ TEST(DynamicTree, StaysValidAndQueriesMatchTestingEveryItem) {
     }
     // Pruning: a walk that lowers its limit to each leaf's entry sees, first, the least entry.
     for (int q = 0; q < 20; ++q) {
-      const Vec3 o(uniform(rng, -25, 25), uniform(rng, -25, 25), uniform(rng, -25, 25));
+      const Vec3 o{uniform(rng, -25, 25), uniform(rng, -25, 25), uniform(rng, -25, 25)};
       const Vec3 d =
-          Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)).normalized();
+          Vec3{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)}.normalized();
       const Vec3 inv = d.cwiseInverse();
       Real best = 60, want = 60;
       tree.ray(o, d, 60, [&](uint32_t i, Real limit) {

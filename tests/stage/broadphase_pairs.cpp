@@ -100,20 +100,21 @@ BoxSet make_boxes(Layout layout, std::size_t n, uint32_t seed, int planes) {
   const Real side = Real(1.5) * std::cbrt(Real(n));  // about one box per 27 m^3
   std::vector<Vec3> clusters;
   for (int c = 0; c < 5; ++c) {
-    clusters.emplace_back(uniform(rng, -side, side), uniform(rng, -side, side),
-                          uniform(rng, -side, side));
+    clusters.push_back(
+        Vec3{uniform(rng, -side, side), uniform(rng, -side, side), uniform(rng, -side, side)});
   }
   const int grid = int(std::ceil(std::cbrt(double(n))));
   for (std::size_t i = 0; i < n; ++i) {
-    Vec3 c(uniform(rng, -side, side), uniform(rng, -side, side), uniform(rng, -side, side));
+    Vec3 c{uniform(rng, -side, side), uniform(rng, -side, side), uniform(rng, -side, side)};
     Vec3 h = Vec3::Constant(uniform(rng, Real(0.2), Real(1.5)));
     switch (layout) {
       case Layout::Uniform:
-        h = Vec3(uniform(rng, 0.2, 1.5), uniform(rng, 0.2, 1.5), uniform(rng, 0.2, 1.5));
+        h = Vec3{uniform(rng, 0.2, 1.5), uniform(rng, 0.2, 1.5), uniform(rng, 0.2, 1.5)};
         break;
       case Layout::Clustered: {
         std::normal_distribution<double> g(0, 2);
-        c = clusters[rng() % clusters.size()] + Vec3(Real(g(rng)), Real(g(rng)), Real(g(rng)));
+        const Vec3& around = clusters[rng() % clusters.size()];
+        c = around + Vec3{Real(g(rng)), Real(g(rng)), Real(g(rng))};
         break;
       }
       case Layout::Elongated:
@@ -121,7 +122,7 @@ BoxSet make_boxes(Layout layout, std::size_t n, uint32_t seed, int planes) {
         h[int(rng() % 3)] = uniform(rng, side / 4, side);
         break;
       case Layout::AllOverlap:
-        c = Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        c = Vec3{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
         h = Vec3::Constant(uniform(rng, Real(1), Real(3)));
         break;
       case Layout::AllDisjoint:
@@ -276,9 +277,9 @@ TEST(SweepAndPrune, MatchesBruteForceEveryUpdateOfMovingScene) {
   std::vector<Vec3> pos(n), vel(n), half(n);
   const Real side = 10;
   auto spawn = [&](std::size_t i) {
-    pos[i] = Vec3(uniform(rng, -side, side), uniform(rng, -side, side), uniform(rng, -side, side));
-    vel[i] = Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)) * Real(0.2);
-    half[i] = Vec3(uniform(rng, 0.2, 0.8), uniform(rng, 0.2, 0.8), uniform(rng, 0.2, 0.8));
+    pos[i] = Vec3{uniform(rng, -side, side), uniform(rng, -side, side), uniform(rng, -side, side)};
+    vel[i] = Vec3{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)} * Real(0.2);
+    half[i] = Vec3{uniform(rng, 0.2, 0.8), uniform(rng, 0.2, 0.8), uniform(rng, 0.2, 0.8)};
   };
   for (std::size_t i = 0; i < n; ++i) spawn(i);
   BoxSet s;

@@ -21,11 +21,11 @@ std::vector<SolverBody> random_bodies(std::size_t n, std::mt19937& rng) {
   std::uniform_real_distribution<float> u(-100, 100);
   std::vector<SolverBody> bodies(n);
   for (SolverBody& b : bodies) {
-    b.v = Vec3(u(rng), u(rng), u(rng));
-    b.w = Vec3(u(rng), u(rng), u(rng));
-    b.dp = Vec3(u(rng), u(rng), u(rng));
-    b.dtheta = Vec3(u(rng), u(rng), u(rng));
-    b.dq = Quat(u(rng), u(rng), u(rng), u(rng));
+    b.v = Vec3{u(rng), u(rng), u(rng)};
+    b.w = Vec3{u(rng), u(rng), u(rng)};
+    b.dp = Vec3{u(rng), u(rng), u(rng)};
+    b.dtheta = Vec3{u(rng), u(rng), u(rng)};
+    b.dq = Quat{u(rng), u(rng), u(rng), u(rng)};
   }
   return bodies;
 }
@@ -87,8 +87,8 @@ TEST(BodyLanes, ScatterWritesOnlyTheWrittenPacketsVelocities) {
     WideBody in;
     std::uniform_real_distribution<float> u(-5, 5);
     for (int l = 0; l < kLanes; ++l) {
-      set_lane(in.v, l, Vec3(u(rng), u(rng), u(rng)));
-      set_lane(in.w, l, Vec3(u(rng), u(rng), u(rng)));
+      set_lane(in.v, l, Vec3{u(rng), u(rng), u(rng)});
+      set_lane(in.w, l, Vec3{u(rng), u(rng), u(rng)});
     }
     scatter_velocity(after.data(), packets, written_end, in);
     std::vector<SolverBody> expected = before;

@@ -42,7 +42,7 @@ TEST(ExponentialMap, MatchesTheClosedFormOnBothSidesOfThePolynomialsRange) {
   const Real h = Real(1.0 / 240);
   for (double angle : {0.0, 1e-9, 1e-6, 1e-3, 0.05, 0.3, 0.7, 0.999, 1.0, 1.001, 1.5, 2.5, 3.1}) {
     for (int trial = 0; trial < 200; ++trial) {
-      const Vec3d axis = Vec3d(n(rng), n(rng), n(rng)).normalized();
+      const Vec3d axis = Vec3d{n(rng), n(rng), n(rng)}.normalized();
       const Vec3 w = (axis * (angle / h)).cast<Real>();
       const Quat q = rotation_from_angular_velocity(w, h);
       const Quatd exact = exact_exp(w.cast<double>(), double(h));
@@ -104,20 +104,20 @@ Bodies make_bodies(std::size_t n, std::mt19937& rng) {
   s.masses.resize(n + 1);
   for (std::size_t k = 1; k <= n; ++k) {
     const std::size_t i = s.store.push_back();
-    s.store.set_orientation(i, Quat(u(rng), u(rng), u(rng), u(rng)).normalized());
+    s.store.set_orientation(i, Quat{u(rng), u(rng), u(rng), u(rng)}.normalized());
     SolverBody& b = s.packets[k];
     SolverBodyMass& p = s.masses[k];
     const Real spin = k % 7 == 0 ? Real(300) : Real(20);  // 300 rad/s: the libm route at 1/240 s
-    b.v = Vec3(u(rng), u(rng), u(rng));
-    b.w = spin * Vec3(u(rng), u(rng), u(rng));
+    b.v = Vec3{u(rng), u(rng), u(rng)};
+    b.w = spin * Vec3{u(rng), u(rng), u(rng)};
     if (k % 14 == 0) b.w = Vec3(0, spin, 0);  // about one axis: w.x and w.z are zero
-    b.dp = Vec3(u(rng), u(rng), u(rng));
-    b.dtheta = Vec3(u(rng), u(rng), u(rng));
-    b.dq = Quat(1, Real(0.1) * u(rng), Real(0.1) * u(rng), Real(0.1) * u(rng)).normalized();
+    b.dp = Vec3{u(rng), u(rng), u(rng)};
+    b.dtheta = Vec3{u(rng), u(rng), u(rng)};
+    b.dq = Quat{1, Real(0.1) * u(rng), Real(0.1) * u(rng), Real(0.1) * u(rng)}.normalized();
     p.body = uint32_t(i);
     p.inv_mass = k % 5 == 0 ? 0 : 1;
     p.gyroscopic = k % 3 != 0 && p.inv_mass != 0;
-    const Vec3 moments = p.gyroscopic ? Vec3(1 + u(rng) * Real(0.5), 2, 3 + u(rng)) : Vec3::Ones();
+    const Vec3 moments = p.gyroscopic ? Vec3{1 + u(rng) * Real(0.5), 2, 3 + u(rng)} : Vec3::Ones();
     s.store.inv_ix[i] = 1 / moments.x();
     s.store.inv_iy[i] = 1 / moments.y();
     s.store.inv_iz[i] = 1 / moments.z();

@@ -33,7 +33,7 @@ TEST(SolverPartition, CutsAtTheMedianOfTheWidestAxis) {
   std::uniform_real_distribution<float> u(-1, 1);
   std::vector<Vec3> centres;
   // Wider in z (4 m) than in x (2 m) and y (1 m).
-  for (int i = 0; i < 1001; ++i) centres.emplace_back(u(rng), Real(0.5) * u(rng), 2 * u(rng));
+  for (int i = 0; i < 1001; ++i) centres.push_back(Vec3{u(rng), Real(0.5) * u(rng), 2 * u(rng)});
   const BodyStore s = store_with(centres);
   std::vector<uint32_t> simulated;
   for (uint32_t i = 0; i < 1001; i += 1) simulated.push_back(i);

@@ -23,7 +23,7 @@ TEST(SolverTangents, EachLaneIsTheScalarBasisOfItsNormal) {
     WideVec3 normals;
     Vec3 n[kLanes];
     for (int l = 0; l < kLanes; ++l) {
-      n[l] = Vec3(g(rng), g(rng), g(rng));
+      n[l] = Vec3{g(rng), g(rng), g(rng)};
       if (l % 4 == 1) n[l].z() = Real(1e-7) * g(rng);         // beside the sign switch
       if (l % 4 == 2) n[l] = Vec3(0, trial % 2 ? 1 : -1, 0);  // a floor or a ceiling
       n[l].normalize();

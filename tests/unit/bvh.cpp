@@ -139,8 +139,8 @@ TEST(Bvh, RayNearestHitEqualsBruteForce) {
   std::uniform_real_distribution<Real> pos(-60, 60), unit(-1, 1);
   int hits = 0;
   for (int q = 0; q < 300; ++q) {
-    const Vec3 o(pos(rng), pos(rng), pos(rng));
-    Vec3 d(unit(rng), unit(rng), unit(rng));
+    const Vec3 o{pos(rng), pos(rng), pos(rng)};
+    Vec3 d{unit(rng), unit(rng), unit(rng)};
     if (q % 10 == 0) d = Vec3(0, 0, q % 20 == 0 ? 1 : -1);  // axis-parallel rays too
     const Real max_t = 200;
     Real best = -1;

@@ -122,8 +122,8 @@ TEST(Bvh4, RayNearestHitEqualsBruteForceAndEveryTieIsReached) {
   std::uniform_real_distribution<Real> pos(-50, 50), unit(-1, 1);
   int hits = 0;
   for (int q = 0; q < 400; ++q) {
-    const Vec3 o(pos(rng), pos(rng), pos(rng));
-    Vec3 d(unit(rng), unit(rng), unit(rng));
+    const Vec3 o{pos(rng), pos(rng), pos(rng)};
+    Vec3 d{unit(rng), unit(rng), unit(rng)};
     if (q % 10 == 0) d = Vec3(0, q % 20 == 0 ? 1 : -1, 0);  // axis-parallel rays too
     const Real max_t = 200;
     Real best = -1;

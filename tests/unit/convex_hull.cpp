@@ -148,7 +148,7 @@ TEST(ConvexHull, DropsInteriorDuplicateAndEdgePoints) {
   for (const Vec3& c : corners) pts.push_back(c);
   std::mt19937 rng(7);
   std::uniform_real_distribution<Real> u(-1, 1);
-  for (int i = 0; i < 50; ++i) pts.push_back(h.cwiseProduct(Vec3(u(rng), u(rng), u(rng))) * 0.9f);
+  for (int i = 0; i < 50; ++i) pts.push_back(h.cwiseProduct(Vec3{u(rng), u(rng), u(rng)}) * 0.9f);
   for (int a = 0; a < 3; ++a) {
     Vec3 c = Vec3::Zero();
     c[a] = h[a];
@@ -216,7 +216,7 @@ TEST(ConvexHull, RandomCloudsMatchBruteForceSupportingPlanes) {
   for (int trial = 0; trial < 20; ++trial) {
     std::vector<Vec3> pts;
     const int n = 5 + trial * 2;
-    for (int i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+    for (int i = 0; i < n; ++i) pts.push_back(Vec3{u(rng), u(rng), u(rng)});
     const ConvexHull hull = build_convex_hull(pts);
     expect_valid_hull(hull, pts);
     expect_matches_supporting_planes(hull, pts);
@@ -231,23 +231,23 @@ TEST(ConvexHull, RandomCloudInvariants) {
   for (int trial = 0; trial < 40; ++trial) {
     std::vector<Vec3> pts;
     const int n = 20 + 25 * (trial % 8);
-    const Vec3 offset(u(rng) * 100, u(rng) * 100, u(rng) * 100);
+    const Vec3 offset{u(rng) * 100, u(rng) * 100, u(rng) * 100};
     const Real scale = std::pow(Real(10), Real(trial % 5 - 2));
     for (int i = 0; i < n; ++i) {
       Vec3 p;
       switch (trial % 4) {
         case 0:
-          p = Vec3(u(rng), u(rng), u(rng));
+          p = Vec3{u(rng), u(rng), u(rng)};
           break;
         case 1:
-          p = Vec3(g(rng), g(rng), g(rng));
+          p = Vec3{g(rng), g(rng), g(rng)};
           break;
         // Integer grid: many exactly coplanar and collinear points, the hard case for merging.
         case 2:
-          p = Vec3(Real(grid(rng)), Real(grid(rng)), Real(grid(rng)));
+          p = Vec3{Real(grid(rng)), Real(grid(rng)), Real(grid(rng))};
           break;
         default:
-          p = Vec3(g(rng), g(rng), g(rng)).normalized();
+          p = Vec3{g(rng), g(rng), g(rng)}.normalized();
           break;
       }
       pts.push_back(p * scale + (trial % 3 == 0 ? Vec3(offset * scale) : Vec3::Zero()));

@@ -95,12 +95,12 @@ TEST(FixedMath, SlerpAgreesWithEigensInDoubleAndTakesTheShorterArc) {
   std::mt19937 rng(7);
   std::normal_distribution<double> g(0.0, 1.0);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const auto draw = [&] { return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized(); };
+  const auto draw = [&] { return Eigen::Quaterniond{g(rng), g(rng), g(rng), g(rng)}.normalized(); };
   for (int i = 0; i < 2000; ++i) {
     const Eigen::Quaterniond a = draw();
     // Every fourth pair nearly parallel (down to 1e-7 rad apart), the rest anywhere.
     const Eigen::Quaterniond b =
-        i % 4 == 0 ? (a * Eigen::Quaterniond(1, 1e-7 * g(rng), 1e-7 * g(rng), 0).normalized())
+        i % 4 == 0 ? (a * Eigen::Quaterniond{1, 1e-7 * g(rng), 1e-7 * g(rng), 0}.normalized())
                    : draw();
     const double t = i % 10 == 0 ? double(i % 20 == 0) : unit(rng);
     const Quat qa = a.cast<Real>(), qb = b.cast<Real>();

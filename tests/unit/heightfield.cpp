@@ -147,8 +147,8 @@ TEST(HeightField, RayNearestHitEqualsBruteForce) {
   std::uniform_real_distribution<Real> pos(-3, 30), unit(-1, 1);
   int hits = 0, below = 0;
   for (int q = 0; q < 400; ++q) {
-    const Vec3 o(pos(rng), 4 * unit(rng), pos(rng));
-    Vec3 d(unit(rng), unit(rng), unit(rng));
+    const Vec3 o{pos(rng), 4 * unit(rng), pos(rng)};
+    Vec3 d{unit(rng), unit(rng), unit(rng)};
     if (q % 7 == 0) d = Vec3(0, q % 14 == 0 ? -1 : 1, 0);  // vertical rays
     if (q % 11 == 0) d.x() = 0;                            // rays in a z column
     Real best = -1;
@@ -187,7 +187,7 @@ TEST(HeightField, RaysAtSamplesAndEdgesOfAFlatFieldAlwaysHit) {
       for (int k = 0; k < 4; ++k) {
         Vec3 target = f.point(i, j);
         if (k >= 2) target.x() += 0.185f;
-        const Vec3 d = k % 2 == 0 ? Vec3(0, -1, 0) : Vec3(unit(rng), -1, unit(rng)).normalized();
+        const Vec3 d = k % 2 == 0 ? Vec3(0, -1, 0) : Vec3{unit(rng), -1, unit(rng)}.normalized();
         SurfaceHit hit;
         if (!ray_cast_heightfield(f, target - 5 * d, d, 100, hit)) ++misses;
       }

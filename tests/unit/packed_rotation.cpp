@@ -20,7 +20,7 @@ TEST(PackedRotation, ComesBackWithinItsErrorBound) {
   std::normal_distribution<float> n(0, 1);
   Real worst = 0;
   for (int trial = 0; trial < 20000; ++trial) {
-    Quat q(n(rng), n(rng), n(rng), n(rng));
+    Quat q{n(rng), n(rng), n(rng), n(rng)};
     if (trial % 4 == 1) q.w() = Real(1e-4) * n(rng);  // near a half turn
     if (trial % 4 == 2) q.coeffs()[trial % 3] = 0;    // an exact zero among the kept
     q.normalize();
@@ -30,7 +30,7 @@ TEST(PackedRotation, ComesBackWithinItsErrorBound) {
     const Real sign = q.dot(r) < 0 ? Real(-1) : Real(1);
     const Real error = (q.coeffs() - sign * r.coeffs()).norm();
     worst = std::max(worst, error);
-    const Vec3 point(n(rng), n(rng), n(rng));
+    const Vec3 point{n(rng), n(rng), n(rng)};
     EXPECT_LE((q * point - r * point).norm(), PackedRotation::kError * point.norm())
         << "trial " << trial;
     if (HasFailure()) return;

@@ -17,8 +17,8 @@ using RealDistribution = std::uniform_real_distribution<Real>;
 
 // One box: each coordinate of its centre drawn from `pos`, each half size from `size`.
 inline Aabb random_box(std::mt19937& rng, RealDistribution& pos, RealDistribution& size) {
-  const Vec3 c(pos(rng), pos(rng), pos(rng));
-  const Vec3 h(size(rng), size(rng), size(rng));
+  const Vec3 c{pos(rng), pos(rng), pos(rng)};
+  const Vec3 h{size(rng), size(rng), size(rng)};
   return {c - h, c + h};
 }
 

@@ -221,7 +221,7 @@ TEST(ShapeMass, OffCentreRotatedBoxCloudRecoversCentroidAndPrincipalAxes) {
     pts.push_back(pts.back());  // duplicate
   }
   for (int i = 0; i < 40; ++i) {
-    pts.push_back(q * Vec3(half.cwiseProduct(Vec3(u(rng), u(rng), u(rng))) * 0.95f) + centre);
+    pts.push_back(q * Vec3{half.cwiseProduct(Vec3{u(rng), u(rng), u(rng)}) * 0.95f} + centre);
   }
   const Shape s = make_shape(hull_def(pts));
   EXPECT_EQ(s.hull->vertices.size(), 8u);
@@ -255,7 +255,7 @@ TEST(ShapeMass, HullOfParallelepipedMatchesAffineImageOfCube) {
     Eigen::Matrix3d a;
     for (int i = 0; i < 9; ++i) a.data()[i] = u(rng);
     a += 1.5 * Eigen::Matrix3d::Identity();
-    const Eigen::Vector3d t(u(rng) * 4, u(rng) * 4, u(rng) * 4);
+    const Eigen::Vector3d t{u(rng) * 4, u(rng) * 4, u(rng) * 4};
     std::vector<Vec3> pts;
     for (const Vec3& c : box_corners(Vec3::Ones())) {
       pts.push_back((a * c.cast<double>() + t).cast<Real>());
@@ -280,9 +280,9 @@ TEST(ShapeMass, HullMassIsInvariantUnderRigidMotion) {
   std::normal_distribution<Real> g(0, 1);
   for (int trial = 0; trial < 10; ++trial) {
     std::vector<Vec3> pts, moved;
-    for (int i = 0; i < 30; ++i) pts.emplace_back(g(rng), g(rng) * 0.5f, g(rng) * 2);
-    const Quat q = Quat(Eigen::AngleAxis<Real>(g(rng), Vec3(g(rng), g(rng), g(rng)).normalized()));
-    const Vec3 t(g(rng), g(rng), g(rng));
+    for (int i = 0; i < 30; ++i) pts.push_back(Vec3{g(rng), g(rng) * 0.5f, g(rng) * 2});
+    const Quat q = Quat{Eigen::AngleAxis<Real>(g(rng), Vec3{g(rng), g(rng), g(rng)}.normalized())};
+    const Vec3 t{g(rng), g(rng), g(rng)};
     for (const Vec3& p : pts) moved.push_back(q * p + t);
     const Shape a = make_shape(hull_def(pts));
     const Shape b = make_shape(hull_def(moved));

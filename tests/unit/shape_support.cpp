@@ -132,7 +132,7 @@ std::vector<Shape> test_shapes() {
   d.type = ShapeType::ConvexHull;
   std::mt19937 rng(21);
   std::normal_distribution<Real> g(0, 1);
-  for (int i = 0; i < 40; ++i) d.points.emplace_back(g(rng), g(rng) * 0.6f, g(rng) * 1.3f);
+  for (int i = 0; i < 40; ++i) d.points.push_back(Vec3{g(rng), g(rng) * 0.6f, g(rng) * 1.3f});
   shapes.push_back(make_shape(d));
   return shapes;
 }
@@ -146,7 +146,7 @@ TEST(ShapeSupport, MatchesBruteForceOverSurfaceSamples) {
   std::normal_distribution<Real> g(0, 1);
   std::vector<Vec3> dirs = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(),
                             Vec3::UnitZ(), -Vec3::UnitZ(), Vec3(1, 1, 0), Vec3(0, -1, 1)};
-  for (int i = 0; i < 150; ++i) dirs.emplace_back(g(rng), g(rng), g(rng));
+  for (int i = 0; i < 150; ++i) dirs.push_back(Vec3{g(rng), g(rng), g(rng)});
   for (const Shape& s : test_shapes()) {
     SCOPED_TRACE(name_of(s));
     const std::vector<Vec3> samples = surface_samples(s);
@@ -173,7 +173,7 @@ TEST(ShapeSupport, HullSupportIsAVertex) {
   std::mt19937 rng(2);
   std::normal_distribution<Real> g(0, 1);
   for (int i = 0; i < 100; ++i) {
-    const Vec3 p = support(s, Vec3(g(rng), g(rng), g(rng)));
+    const Vec3 p = support(s, Vec3{g(rng), g(rng), g(rng)});
     EXPECT_NE(std::find(s.hull->vertices.begin(), s.hull->vertices.end(), p),
               s.hull->vertices.end());
   }

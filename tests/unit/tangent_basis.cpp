@@ -35,9 +35,9 @@ TEST(TangentBasis, OrthonormalAndRightHandedForEveryNormal) {
   std::mt19937 rng(4);
   std::normal_distribution<float> g(0, 1);
   for (int i = 0; i < 20000; ++i) {
-    Vec3 n(g(rng), g(rng), g(rng));
+    Vec3 n{g(rng), g(rng), g(rng)};
     if (i % 4 == 1) n.z() = Real(1e-7) * g(rng);  // beside the sign switch
-    if (i % 4 == 2) n = Vec3(Real(1e-4) * g(rng), Real(1e-4) * g(rng), -1);  // near -z
+    if (i % 4 == 2) n = Vec3{Real(1e-4) * g(rng), Real(1e-4) * g(rng), -1};  // near -z
     normals.push_back(n.normalized());
   }
   for (const Vec3& n : normals) {

@@ -183,8 +183,8 @@ TEST(TriangleMesh, RayNearestHitEqualsBruteForce) {
   std::uniform_real_distribution<Real> pos(-5, 45), unit(-1, 1);
   int hits = 0;
   for (int q = 0; q < 300; ++q) {
-    const Vec3 o(pos(rng), 3 + unit(rng) * 4, pos(rng));
-    const Vec3 d(unit(rng), unit(rng), unit(rng));
+    const Vec3 o{pos(rng), 3 + unit(rng) * 4, pos(rng)};
+    const Vec3 d{unit(rng), unit(rng), unit(rng)};
     Real best = -1;
     uint32_t best_tri = 0;
     for (uint32_t t = 0; t < m.size(); ++t) {
@@ -240,7 +240,7 @@ TEST(TriangleMesh, RaysAtVerticesAndEdgesOfAFlatGridAlwaysHit) {
       for (int k = 0; k < 4; ++k) {
         Vec3 target(Real(i) * 0.37f, 1.3f, Real(j) * 0.37f);
         if (k >= 2) target.x() += 0.185f;
-        const Vec3 d = k % 2 == 0 ? Vec3(0, -1, 0) : Vec3(unit(rng), -1, unit(rng)).normalized();
+        const Vec3 d = k % 2 == 0 ? Vec3(0, -1, 0) : Vec3{unit(rng), -1, unit(rng)}.normalized();
         SurfaceHit hit;
         if (!ray_cast_mesh(m, target - 5 * d, d, 100, hit)) ++misses;
       }
