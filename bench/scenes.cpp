@@ -71,6 +71,8 @@ void usage() {
       "  [--scenes=a,b,...] [--no_sleep=a,b,...] [--sweep=1000,2000,...] [--allpairs_max=N]\n"
       "  [--joint_scenes=a,b,...] [--joint_warmup=N] [--joint_steps=N]\n"
       "  [--geometry_scenes=a,b,...] [--geometry_warmup=N] [--geometry_steps=N]\n"
+      "  (a scene named scene:kind, e.g. heightfield_rain:box, keeps its static bodies and its\n"
+      "  moving bodies of that shape type only)\n"
       "  [--no_bullet]\n");
 }
 
@@ -590,9 +592,38 @@ void bm_calib_stream(benchmark::State& state, int threads, std::vector<float>* a
   state.SetBytesProcessed(int64_t(3 * n * sizeof(float)) * state.iterations());
 }
 
+// The shape type a `scene:kind` name selects (the scene format's type names).
+elan::ShapeType kind_of(const std::string& name, const std::string& kind) {
+  const std::pair<const char*, elan::ShapeType> kinds[] = {
+      {"sphere", elan::ShapeType::Sphere},          {"box", elan::ShapeType::Box},
+      {"capsule", elan::ShapeType::Capsule},        {"cylinder", elan::ShapeType::Cylinder},
+      {"convex_hull", elan::ShapeType::ConvexHull}, {"compound", elan::ShapeType::Compound}};
+  for (const auto& [text, type] : kinds) {
+    if (kind == text) return type;
+  }
+  std::fprintf(stderr, "bench_scenes: %s: no such kind of body '%s'\n", name.c_str(), kind.c_str());
+  std::exit(2);
+}
+
+// A scene of scenes/ by name. `scene:kind` (heightfield_rain:box) keeps the scene's bodies that do
+// not move and its moving bodies of that shape type only, so that what one kind of body costs
+// against a surface, in both engines, is measured apart from the rest of the scene.
 std::shared_ptr<const elan::Scene> load(const std::string& name, bool allow_sleep = true) {
-  elan::Scene scene = elan::load_scene(std::string(ELAN_SCENE_DIR) + "/" + name + ".json");
+  const auto colon = name.find(':');
+  const std::string file = name.substr(0, colon);
+  elan::Scene scene = elan::load_scene(std::string(ELAN_SCENE_DIR) + "/" + file + ".json");
   if (!allow_sleep) scene.world.allow_sleep = false;
+  if (colon != std::string::npos) {
+    const elan::ShapeType kind = kind_of(name, name.substr(colon + 1));
+    if (!scene.joints.empty()) {
+      std::fprintf(stderr, "bench_scenes: %s: a scene with joints cannot be split by kind\n",
+                   name.c_str());
+      std::exit(2);
+    }
+    std::erase_if(scene.bodies, [kind](const elan::SceneBody& b) {
+      return b.body.motion != elan::MotionType::Static && b.shape.type != kind;
+    });
+  }
   return std::make_shared<const elan::Scene>(std::move(scene));
 }
 
