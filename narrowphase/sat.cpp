@@ -183,9 +183,8 @@ bool face_contact(const Polyhedron& ref, int rf, const Polyhedron& inc, bool ref
     // (separated shapes, or round-off): keep the incident polyhedron's deepest vertex so that a
     // speculative contact still exists. Or the clipped face lies beyond that distance while the
     // deepest vertex, off it, is below the reference face: the shapes overlap (every axis's
-    // separation is at most the face's, below zero), so that vertex is a contact. A hull whose
-    // most anti-parallel face does not hold its deepest vertex, 5 cm into a box, once gave no
-    // point at all (found by fuzz_narrowphase).
+    // separation is at most the face's, below zero), so that vertex is a contact: a hull whose
+    // most anti-parallel face does not hold its deepest vertex (docs/fuzzing.md).
     int best = 0;
     Real bs = std::numeric_limits<Real>::max();
     for (int i = 0; i < inc.vertex_count; ++i) {
