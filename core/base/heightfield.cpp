@@ -74,6 +74,7 @@ HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, R
     f.min_height = std::min(f.min_height, Real(f.heights[k]));
     f.max_height = std::max(f.max_height, Real(f.heights[k]));
   }
+  set_active_edges(f);
   return f;
 }
 
@@ -105,41 +106,76 @@ void HeightField::cell_corners(uint32_t i, uint32_t j, MeshTriangle (&pair)[2]) 
   pair[1].v[0] = p00, pair[1].v[1] = p01, pair[1].v[2] = p11;
 }
 
+namespace {
+
+// Bit k of cell c's three in `bits` (3 c + k from the start).
+void set_edge_bit(std::vector<uint8_t>& bits, std::size_t c, int k) {
+  const std::size_t b = 3 * c + std::size_t(k);
+  bits[b / 8] = uint8_t(bits[b / 8] | (1u << (b % 8)));
+}
+
+}  // namespace
+
+void set_active_edges(HeightField& f) {
+  const uint32_t cells_x = f.columns - 1, cells_z = f.rows - 1;
+  const std::size_t cells = std::size_t(cells_x) * cells_z;
+  f.edge_bits.assign((3 * cells + 7) / 8 + 2, 0);
+  for (uint32_t j = 0; j < cells_z; ++j) {
+    for (uint32_t i = 0; i < cells_x; ++i) {
+      const std::size_t c = std::size_t(j) * cells_x + i;
+      MeshTriangle own[2];
+      f.cell_corners(i, j, own);
+      const Vec3 lower = own[0].normal(), upper = own[1].normal();
+      // The diagonal, as the lower triangle walks it (its edge 0, p00 to p11).
+      if (edge_is_active(lower, upper, own[0].v[1] - own[0].v[0])) set_edge_bit(f.edge_bits, c, 0);
+      // Side z = j, as the lower triangle walks it (its edge 2, p10 to p00), against the upper
+      // triangle of cell (i, j - 1).
+      if (j == 0) {
+        set_edge_bit(f.edge_bits, c, 1);
+      } else {
+        MeshTriangle below[2];
+        f.cell_corners(i, j - 1, below);
+        if (edge_is_active(lower, below[1].normal(), own[0].v[0] - own[0].v[2])) {
+          set_edge_bit(f.edge_bits, c, 1);
+        }
+      }
+      // Side x = i, as the upper triangle walks it (its edge 0, p00 to p01), against the lower
+      // triangle of cell (i - 1, j).
+      if (i == 0) {
+        set_edge_bit(f.edge_bits, c, 2);
+      } else {
+        MeshTriangle left[2];
+        f.cell_corners(i - 1, j, left);
+        if (edge_is_active(upper, left[0].normal(), own[1].v[1] - own[1].v[0])) {
+          set_edge_bit(f.edge_bits, c, 2);
+        }
+      }
+    }
+  }
+}
+
 uint8_t HeightField::active_edges_of(const MeshTriangle& m) const {
   const uint32_t t = m.index;
   const uint32_t c = t / 2, cells_x = columns - 1;
-  const uint32_t i = c % cells_x, j = c / cells_x;
-  // The neighbour of each edge (other: the cell's other triangle; the rest in adjacent cells) as
-  // its far corner, which with the edge spans the neighbour's plane.
-  std::array<Vec3, 3> far;
-  std::array<bool, 3> border{};
+  const auto bits = [this](std::size_t cell) {
+    const std::size_t b = 3 * cell;
+    const uint32_t word = uint32_t(edge_bits[b / 8]) | uint32_t(edge_bits[b / 8 + 1]) << 8;
+    return (word >> (b % 8)) & 7u;
+  };
+  const uint32_t own = bits(c);
+  const uint32_t diagonal = own & 1u, side_z = (own >> 1) & 1u, side_x = (own >> 2) & 1u;
   if ((t & 1) == 0) {
-    far[0] = point(i, j + 1);      // diagonal: the upper triangle
-    border[1] = i + 2 >= columns;  // side x = i + 1: the upper triangle of cell (i + 1, j)
-    if (!border[1]) far[1] = point(i + 2, j + 1);
-    border[2] = j == 0;  // side z = j: the upper triangle of cell (i, j - 1)
-    if (!border[2]) far[2] = point(i, j - 1);
-  } else {
-    border[0] = i == 0;  // side x = i: the lower triangle of cell (i - 1, j)
-    if (!border[0]) far[0] = point(i - 1, j);
-    border[1] = j + 2 >= rows;  // side z = j + 1: the lower triangle of cell (i, j + 1)
-    if (!border[1]) far[1] = point(i + 1, j + 2);
-    far[2] = point(i + 1, j);  // diagonal: the lower triangle
+    // Lower: edge 0 the diagonal, edge 1 side x = i + 1 (cell (i + 1, j)'s, or the border),
+    // edge 2 side z = j.
+    const bool last_column = c % cells_x + 1 == cells_x;
+    const uint32_t right = last_column ? 1u : (bits(c + 1) >> 2) & 1u;
+    return uint8_t(diagonal | right << 1 | side_z << 2);
   }
-  const Vec3 n1 = m.normal();
-  uint8_t active = 0;
-  for (int k = 0; k < 3; ++k) {
-    if (border[k]) {
-      active |= uint8_t(1u << k);
-      continue;
-    }
-    // The neighbour walks the edge the other way: (v[k + 1], v[k], far) is counter-clockwise.
-    const Vec3& a = m.v[k];
-    const Vec3& b = m.v[(k + 1) % 3];
-    const Vec3 n2 = (a - b).cross(far[k] - b).normalized();
-    if (edge_is_active(n1, n2, b - a)) active |= uint8_t(1u << k);
-  }
-  return active;
+  // Upper: edge 0 side x = i, edge 1 side z = j + 1 (cell (i, j + 1)'s, or the border), edge 2
+  // the diagonal.
+  const bool last_row = c / cells_x + 1 == rows - 1;
+  const uint32_t above = last_row ? 1u : (bits(c + cells_x) >> 1) & 1u;
+  return uint8_t(side_x | above << 1 | diagonal << 2);
 }
 
 MeshTriangle HeightField::triangle(uint32_t t) const {
@@ -230,7 +266,8 @@ bool ray_cast_heightfield(const HeightField& field, const Vec3& origin, const Ve
 }
 
 std::size_t heightfield_bytes(const HeightField& field) {
-  return sizeof(HeightField) + field.heights.capacity() * sizeof(float);
+  return sizeof(HeightField) + field.heights.capacity() * sizeof(float) +
+         field.edge_bits.capacity();
 }
 
 }  // namespace elan::detail

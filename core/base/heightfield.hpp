@@ -16,12 +16,18 @@ namespace elan::detail {
 // Sample (i, j) is the point (i spacing_x, heights[j * columns + i], j spacing_z). Cell (i, j)
 // spans samples i..i+1 and j..j+1 and is split along its diagonal from (i, j) to (i+1, j+1) into
 // triangle 2 c (the corner (i+1, j)) and 2 c + 1 (the corner (i, j+1)), c = j (columns - 1) + i;
-// both face up (+y). perf: 4 bytes a sample (float heights), nothing per cell.
+// both face up (+y). perf: 4 bytes a sample (float heights) and 3 bits a cell (the active edges
+// the cell owns, as Jolt's HeightFieldShape keeps them): 4.375 bytes a sample in all.
 struct HeightField {
   uint32_t columns = 0, rows = 0;
   Real spacing_x = 1, spacing_z = 1;
   std::vector<float> heights;
   Real min_height = 0, max_height = 0;
+  // Cell c's three bits from bit 3 c on: its diagonal, its side z = j (p00 to p10) and its side
+  // x = i (p00 to p01), 1 where active (see triangle()). The other two sides are the neighbours'
+  // (the grid's last row and column: the border, always active). Two spare bytes at the end, so
+  // that a cell's bits are read with one 16-bit load. Derived from the heights: set_active_edges.
+  std::vector<uint8_t> edge_bits;
 
   Real height(uint32_t i, uint32_t j) const { return Real(heights[std::size_t(j) * columns + i]); }
   Vec3 point(uint32_t i, uint32_t j) const {
@@ -31,14 +37,18 @@ struct HeightField {
   // the neighbouring triangle meets it at a convex angle past kActiveEdgeCos.
   MeshTriangle triangle(uint32_t t) const;
   // Triangle t's corners and index alone (active_edges left at its default), and the active edges
-  // of such a triangle: triangle(t) is the two together. perf: the edges cost a normal per
-  // neighbour; a query that rejects most triangles on their corners derives them only for the rest.
+  // of such a triangle: triangle(t) is the two together. perf: a query that rejects most
+  // triangles on their corners looks up the edges only for the rest.
   MeshTriangle corners(uint32_t t) const;
   // corners(2 c) and corners(2 c + 1) of cell (i, j), c = j (columns - 1) + i. perf: a walk over
   // cells reads the four samples once for both, and needs no division to find the cell.
   void cell_corners(uint32_t i, uint32_t j, MeshTriangle (&pair)[2]) const;
   uint8_t active_edges_of(const MeshTriangle& m) const;
 };
+
+// Derives field.edge_bits from its heights: each edge decided once, from the unit normals of the
+// two triangles that share it (edge_is_active), so both see it alike.
+void set_active_edges(HeightField& field);
 
 // Checks and builds. Throws elan::Error: "shape.heights" (fewer than 2 x 2, a row of another
 // length, a height not finite or past the supported coordinates), "shape.spacing" (zero,

@@ -347,6 +347,7 @@ detail::HeightField read_heightfield(ByteReader& r) {
         f.spacing_z > 0)) {
     r.fail("heightfield spacing is not finite and positive");
   }
+  detail::set_active_edges(f);
   return f;
 }
 
