@@ -44,8 +44,8 @@ constexpr double kCompliance = 1e-6;
 constexpr std::size_t kWholeEnvelope = 16 * 1024;
 
 // Capacity for n, a quarter past it when it must grow: the buffers are sized to what a step can
-// need at most (every lane and joint loaded, a system of kDirectMaxRows), so a warm step
-// allocates nothing.
+// need at most (every manifold of a small island and every joint loaded, a system of
+// kDirectMaxRows), so a warm step allocates nothing.
 template <class V>
 void reserve_for(V& v, std::size_t n) {
   if (v.capacity() < n) v.reserve(n + n / 4);
@@ -279,7 +279,13 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
   auto small = [&](uint32_t root) {
     return root != UINT32_MAX && island_size[root] <= kDirectMaxBodies;
   };
-  const std::size_t item_bound = ctx.lane_manifolds.size() + joints.size();
+  // At most every manifold of an island of at most kDirectMaxBodies bodies is an item, and every
+  // joint row. memory: bounded by those manifolds, not by all of them, since a pile of large
+  // islands has none (its buffers would hold about a quarter of the world's bytes unused).
+  std::size_t small_manifolds = 0;
+  for (const ManifoldHead& m : contacts) small_manifolds += small(island_root[m.body_a]);
+  const std::size_t item_bound =
+      std::min(small_manifolds, ctx.lane_manifolds.size()) + joints.size();
   reserve_for(ds.item_source, item_bound);
   const std::size_t bundles = std::min(ds.loaded_lanes.size(), ctx.bundles.size());
   for (std::size_t j = 0; j < bundles; ++j) {
@@ -313,7 +319,7 @@ bool build_direct_systems(const ContactSolverContext& ctx, std::span<const Manif
     reserve_for(ds.system_of_bundle, ctx.bundles.size());
     ds.system_of_bundle.resize(ctx.bundles.size(), UINT32_MAX);
   }
-  reserve_for(ds.rows, (3 + kMaxManifoldPoints) * ctx.lane_manifolds.size() + 3 * joints.size());
+  reserve_for(ds.rows, (3 + kMaxManifoldPoints) * (item_bound - joints.size()) + 3 * joints.size());
   reserve_for(ds.packets, ctx.bodies.size());
   reserve_for(ds.order, std::max<std::size_t>(item_bound, kDirectMaxRows));
   if (ds.item_source.empty()) return false;
