@@ -18,6 +18,7 @@ inline constexpr uint8_t kSidePlaneLabel = 64;
 // A convex polygon of at most N vertices, with the label of the line leaving each vertex.
 template <int N>
 struct ClipBuffer {
+  static constexpr int kCapacity = N;
   int count = 0;
   std::array<Vec3, N> points;
   std::array<uint8_t, N> out_label;  // label of the edge leaving the vertex

@@ -65,14 +65,14 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
   supporting_feature(a, xa, n, origin, fa);
   supporting_feature(b, xb, -n, origin, fb);
 
-  ClipPolygon clipped;
+  FeatureClip clipped;
   const Feature* ref = fa.count >= 3 ? &fa : (fb.count >= 3 ? &fb : nullptr);
   const bool ref_is_a = ref == &fa;
   if (ref) clip_against(*ref, ref_is_a ? fb : fa, clipped);
 
-  Vec3 points[kMaxClipVertices];
-  Real seps[kMaxClipVertices];
-  uint32_t ids[kMaxClipVertices];
+  Vec3 points[FeatureClip::kCapacity];
+  Real seps[FeatureClip::kCapacity];
+  uint32_t ids[FeatureClip::kCapacity];
   int count = 0;
   const uint32_t base =
       kFeatureSegment | (1u << 28) | ((fa.id & 0x7F) << 21) | ((fb.id & 0x7F) << 14);

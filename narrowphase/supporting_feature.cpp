@@ -125,10 +125,13 @@ void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const
   f.id = 0x7F;
 }
 
-void clip_against(const Feature& ref, const Feature& inc, ClipPolygon& out) {
-  ClipPolygon tmp;
-  ClipPolygon* cur = &out;
-  ClipPolygon* other = &tmp;
+namespace {
+
+template <int N>
+void clip_features(const Feature& ref, const Feature& inc, ClipBuffer<N>& out) {
+  ClipBuffer<N> tmp;
+  ClipBuffer<N>* cur = &out;
+  ClipBuffer<N>* other = &tmp;
   // Use an even number of swaps so the result lands in `out`.
   if (ref.count % 2 == 1) std::swap(cur, other);
   for (int k = 0; k < inc.count; ++k) {
@@ -145,9 +148,20 @@ void clip_against(const Feature& ref, const Feature& inc, ClipPolygon& out) {
     const Vec3& v1 = ref.points[k + 1 < ref.count ? k + 1 : 0];
     Vec3 side = (v1 - v0).cross(nref);
     if (side.dot(centroid - v0) > 0) side = -side;
-    clip_polygon(*cur, side, v0, uint8_t(kSidePlaneLabel + k), *other);
+    const auto beyond = [&](const Vec3& x) { return side.dot(x - v0); };
+    clip_by(*cur, beyond, uint8_t(kSidePlaneLabel + k), *other);
     std::swap(cur, other);
   }
+}
+
+}  // namespace
+
+void clip_against(const Feature& ref, const Feature& inc, FeatureClip& out) {
+  clip_features(ref, inc, out);
+}
+
+void clip_against(const Feature& ref, const Feature& inc, TriangleClip& out) {
+  clip_features(ref, inc, out);
 }
 
 Real plane_gap(const Feature& ref, const Vec3& n, const Vec3& p, bool ref_is_a) {

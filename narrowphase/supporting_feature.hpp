@@ -29,9 +29,18 @@ struct Feature {
 void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const Vec3& origin,
                         Feature& f);
 
+// A feature clipped against another: each side plane adds at most one vertex to the convex
+// polygon it cuts, so two features give at most 2 kMaxFeature (one more: clip_by stops short of
+// its capacity). perf: the stack buffers of a contact are a few cache lines, not ClipPolygon's
+// 6.5 KB with its labels a page away from its points.
+using FeatureClip = ClipBuffer<2 * kMaxFeature + 1>;
+// A feature clipped against a triangle, or a triangle against a feature: kMaxFeature + 3 at most.
+using TriangleClip = ClipBuffer<kMaxFeature + 4>;
+
 // Clips `inc` against the side planes of polygon `ref` (both relative to one origin); writes
 // the clipped points to `out`.
-void clip_against(const Feature& ref, const Feature& inc, ClipPolygon& out);
+void clip_against(const Feature& ref, const Feature& inc, FeatureClip& out);
+void clip_against(const Feature& ref, const Feature& inc, TriangleClip& out);
 
 // Separation along n of point p (on the incident side) from the plane of polygon `ref`.
 Real plane_gap(const Feature& ref, const Vec3& n, const Vec3& p, bool ref_is_a);

@@ -412,7 +412,7 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
   const uint32_t base = (region << 22) | ((fa.id & 0x7F) << 14);
   if (ref != nullptr) {
     const bool ref_is_a = ref == &fa;
-    ClipPolygon clipped;
+    TriangleClip clipped;
     clip_against(*ref, ref_is_a ? fb : fa, clipped);
     const RefPlane plane = ref_plane(*ref, n, ref_is_a);
     for (int k = 0; k < std::min(clipped.count, kMaxPoints); ++k) {
