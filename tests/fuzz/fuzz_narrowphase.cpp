@@ -78,33 +78,10 @@ std::optional<Piece> read_piece(fuzz::Bytes& in) {
 std::optional<Poly> polytope_of(const Piece& p) {
   const Transform& x = p.pose;
   if (p.shape.type == ShapeType::ConvexHull) return oracle::place_hull(p.shape, x);
-  const Eigen::Matrix3d r = x.rotation.toRotationMatrix().cast<double>();
-  const V3 t = x.position.cast<double>();
+  if (p.shape.type == ShapeType::Box) return oracle::place_box(p.shape.half_extents, x);
+  if (p.shape.type != ShapeType::Sphere) return std::nullopt;
   Poly poly;
-  if (p.shape.type == ShapeType::Sphere) {
-    poly.v.push_back(t);
-    return poly;
-  }
-  if (p.shape.type != ShapeType::Box) return std::nullopt;
-  const V3 h = p.shape.half_extents.cast<double>();
-  for (int k = 0; k < 8; ++k) {
-    const V3 c((k & 1) ? h.x() : -h.x(), (k & 2) ? h.y() : -h.y(), (k & 4) ? h.z() : -h.z());
-    poly.v.push_back(r * c + t);
-  }
-  // Each face: the axis, the side, and its corners in a loop (bit `axis` fixed).
-  for (int axis = 0; axis < 3; ++axis) {
-    const int u = 1 << ((axis + 1) % 3), w = 1 << ((axis + 2) % 3), a = 1 << axis;
-    for (int side = 0; side < 2; ++side) {
-      const int base = side ? a : 0;
-      const int loop[4] = {base, base | u, base | u | w, base | w};
-      poly.tris.push_back({loop[0], loop[1], loop[2]});
-      poly.tris.push_back({loop[0], loop[2], loop[3]});
-      poly.normals.push_back(r.col(axis) * (side ? 1.0 : -1.0));
-    }
-    for (int k = 0; k < 8; ++k) {
-      if (!(k & a)) poly.edges.push_back({k, k | a});
-    }
-  }
+  poly.v.push_back(x.position.cast<double>());
   return poly;
 }
 

@@ -78,6 +78,34 @@ inline Poly place_hull(const Shape& s, const Transform& x) {
   return p;
 }
 
+// A box of half extents h placed in the world: its 8 corners (bit k of the index: + or - along
+// axis k), each face as two triangles with its normal, its 12 edges.
+inline Poly place_box(const Vec3& h, const Transform& x) {
+  Poly p;
+  const Eigen::Matrix3d r = x.rotation.toRotationMatrix().cast<double>();
+  const V3 t = x.position.cast<double>();
+  const V3 hd = h.cast<double>();
+  for (int k = 0; k < 8; ++k) {
+    const V3 c((k & 1) ? hd.x() : -hd.x(), (k & 2) ? hd.y() : -hd.y(), (k & 4) ? hd.z() : -hd.z());
+    p.v.push_back(r * c + t);
+  }
+  // Each face: the axis, the side, and its corners in a loop (bit `axis` fixed).
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = 1 << ((axis + 1) % 3), w = 1 << ((axis + 2) % 3), a = 1 << axis;
+    for (int side = 0; side < 2; ++side) {
+      const int base = side ? a : 0;
+      const int loop[4] = {base, base | u, base | u | w, base | w};
+      p.tris.push_back({loop[0], loop[1], loop[2]});
+      p.tris.push_back({loop[0], loop[2], loop[3]});
+      p.normals.push_back(r.col(axis) * (side ? 1.0 : -1.0));
+    }
+    for (int k = 0; k < 8; ++k) {
+      if (!(k & a)) p.edges.push_back({k, k | a});
+    }
+  }
+  return p;
+}
+
 inline std::pair<double, double> project(const Poly& p, const V3& axis) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const V3& v : p.v) lo = std::min(lo, v.dot(axis)), hi = std::max(hi, v.dot(axis));

@@ -371,5 +371,50 @@ TEST(Sat, HullWithNearlyCoincidentCollinearPointsTouches) {
   EXPECT_LT(deepest, 0);
 }
 
+// A hull (11 points) and a box 0.65 m apart along an edge pair's axis (found by fuzz_narrowphase,
+// corpus/narrowphase/regression_hull_box_edge_gap). The edge query's best pair measured a gap of
+// 1.19 m from its two edges, which the supports along its axis contradict (the shapes overlap
+// 2.3 m along it); dropping it left the faces, whose best gap is -1 mm: a contact 1 mm deep
+// between shapes 0.65 m apart. Measured by the supports, the pairs give the true gap.
+TEST(Sat, EdgePairWithAWrongGapDoesNotHideTheSeparatingPair) {
+  ShapeDef da;
+  da.type = ShapeType::ConvexHull;
+  da.points = {
+      {0x1.8fb59p-1f, -0x1.9521ap-4f, 0x1.b921cp-4f},
+      {0x1.28ab28p+0f, 0x1.2b2b2cp+0f, 0x1.2b2b2cp+0f},
+      {0x1.2b2b2cp+0f, 0x1.2b2b2cp+0f, 0x1.2b2b2cp+0f},
+      {-0x1.376d38p-1f, -0x1.0adf0cp+0f, -2},
+      {-2, -2, -0x1.fffcp+0f},
+      {0x1.10871p+0f, -2, -2},
+      {-0x1.c8efc8p+0f, -0x1.5ac75cp+0f, -0x1.fdb3fep+0f},
+      {-2, -2, -2},
+      {-0x1.9ac79cp+0f, 0x1.fe3p+0f, 0x1.aff9bp-2f},
+      {2, 2, 2},
+      {2, 0x1.16891p-2f, 0x1.54316p-3f},
+  };
+  ShapeDef db;
+  db.type = ShapeType::Box;
+  db.half_extents = Vec3(0x1.bababcp-2f, 0x1.971256p+0f, 0x1.983ea6p+0f);
+  const Shape a = make_shape(da), b = make_shape(db);
+  const Transform xa = pose(Vec3(0x1.5a52dcp+1f, 0x1.1ab39cp+1f, 0x1.4df45p+0f),
+                            Quat(0x1.304012p-1f, -0x1.02d40cp-1f, 0x1.c4f43ap-2f, 0x1.c4f43ap-2f));
+  const Transform xb =
+      pose(Vec3(0x1.c0c0cp+0f, 0x1.c0c0cp+0f, -0x1.4702c8p+1f),
+           Quat(-0x1.f2e802p-3f, -0x1.1e5786p-1f, -0x1.1ee03cp-1f, -0x1.1ee03cp-1f));
+  const double distance =
+      oracle::polytope_distance(oracle::place_hull(a, xa), oracle::place_box(b.half_extents, xb));
+  ASSERT_NEAR(distance, 0.6468, 1e-3);
+
+  Manifold m;
+  EXPECT_FALSE(collide(a, xa, b, xb, 0, m));
+  EXPECT_FALSE(collide(a, xa, b, xb, Real(0.5), m));
+  // Within the speculative distance: one contact, at the gap (GJK's tolerance and float supports
+  // of coordinates near 4 m: well under 1e-3).
+  ASSERT_TRUE(collide(a, xa, b, xb, 1, m));
+  for (uint32_t k = 0; k < m.point_count; ++k) {
+    EXPECT_NEAR(m.points[k].separation, distance, 1e-3);
+  }
+}
+
 }  // namespace narrowphase_sat_test
 }  // namespace elan::detail
