@@ -3,6 +3,7 @@
 // the signed-volumes sub-algorithm of Montanari, Petrella, Mezzetti (2017) for the simplex.
 #include "narrowphase/gjk.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -18,6 +19,15 @@ constexpr Real kRelTol = sizeof(Real) == 4 ? Real(1e-5) : Real(1e-10);
 // Origin within this fraction of the simplex's size counts as on it: overlap (touching).
 constexpr Real kOnSimplex = 8 * kEps;
 constexpr int kMaxIterations = 64;
+// A search whose float solvers make no progress while the distance may still be off by more
+// than kStuckRelGap of itself plus kStuckAbsGap of the simplex's size (its longest vertex) is
+// solved again in double (run_gjk). The first is 10 times the convergence tolerance, and within
+// the fuzz oracle's band; the second is about 100 float roundings of a support. perf: below them
+// the rounding that stops the search is the float solvers' ordinary noise near convergence (two
+// bodies touching: v at a hundred micrometres, supports at metres), which most scenes meet every
+// step, and going on buys nothing.
+constexpr Real kStuckRelGap = sizeof(Real) == 4 ? Real(1e-4) : Real(1e-9);
+constexpr Real kStuckAbsGap = sizeof(Real) == 4 ? Real(1e-5) : Real(1e-14);
 
 bool same_sign(Real a, Real b) {
   return (a > 0 && b > 0) || (a < 0 && b < 0);
@@ -141,6 +151,107 @@ void solve_tetrahedron(const SimplexVertex* v, SubSimplex& r) {
   }
 }
 
+// The closest point of triangle (a, b, c) to the origin and its barycentric weights, in double
+// (Ericson, Real-Time Collision Detection 5.1.5, the query point at the origin): by Voronoi
+// regions, which stay right on a sliver where the signed areas of solve_triangle round wrong.
+Eigen::Vector3d closest_on_triangle_double(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                           const Eigen::Vector3d& c, double (&weight)[3]) {
+  const auto set = [&weight](double u, double v, double w) {
+    weight[0] = u, weight[1] = v, weight[2] = w;
+  };
+  const Eigen::Vector3d ab = b - a, ac = c - a;
+  const double d1 = -ab.dot(a), d2 = -ac.dot(a);
+  if (d1 <= 0 && d2 <= 0) return set(1, 0, 0), a;
+  const double d3 = -ab.dot(b), d4 = -ac.dot(b);
+  if (d3 >= 0 && d4 <= d3) return set(0, 1, 0), b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double t = d1 / (d1 - d3);
+    return set(1 - t, t, 0), a + t * ab;
+  }
+  const double d5 = -ab.dot(c), d6 = -ac.dot(c);
+  if (d6 >= 0 && d5 <= d6) return set(0, 0, 1), c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double t = d2 / (d2 - d6);
+    return set(1 - t, 0, t), a + t * ac;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return set(0, 1 - t, t), b + t * (c - b);
+  }
+  const double denom = 1 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return set(1 - v - w, v, w), a + v * ab + w * ac;
+}
+
+// The closest point of simplex `s` to the origin, in double: the segment's, the triangle's, or the
+// least over a tetrahedron's faces (the origin inside it: all four, count 4). The fallback of
+// run_gjk where the float solvers, on a sliver, round their way back to the old closest point or
+// leave it off its simplex. Vertices of zero weight are dropped, as the solvers drop them.
+SubSimplex closest_in_double(const Simplex& s, double& distance2) {
+  Eigen::Vector3d w[4];
+  for (int i = 0; i < s.count; ++i) w[i] = s.v[i].w.cast<double>();
+  SubSimplex best;
+  set_vertex(best, s.v, 0);
+  double best_d = std::numeric_limits<double>::infinity();
+  const auto keep = [&](const Eigen::Vector3d& p, const int* ids, const double* weight, int n) {
+    const double d = p.squaredNorm();
+    if (!(d < best_d)) return;
+    best_d = d;
+    best.count = 0;
+    for (int k = 0; k < n; ++k) {
+      if (!(weight[k] > 0)) continue;
+      best.index[best.count] = ids[k];
+      best.lambda[best.count] = Real(weight[k]);
+      ++best.count;
+    }
+    best.v = p.cast<Real>();
+    distance2 = d;
+  };
+  distance2 = std::numeric_limits<double>::infinity();
+  if (s.count == 1) {
+    const int ids[1] = {0};
+    const double weight[1] = {1};
+    keep(w[0], ids, weight, 1);
+    return best;
+  }
+  if (s.count == 2) {
+    const Eigen::Vector3d ab = w[1] - w[0];
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0 ? std::clamp(-w[0].dot(ab) / len2, 0.0, 1.0) : 0.0;
+    const int ids[2] = {0, 1};
+    const double weight[2] = {1 - t, t};
+    keep(w[0] + t * ab, ids, weight, 2);
+    return best;
+  }
+  if (s.count == 4) {
+    // Inside: the origin on the inner side of every face (signed volumes of one sign).
+    const double vol[4] = {w[1].dot(w[2].cross(w[3])), -w[0].dot(w[2].cross(w[3])),
+                           w[0].dot(w[1].cross(w[3])), -w[0].dot(w[1].cross(w[2]))};
+    const double total = vol[0] + vol[1] + vol[2] + vol[3];
+    if (total != 0 && vol[0] * total > 0 && vol[1] * total > 0 && vol[2] * total > 0 &&
+        vol[3] * total > 0) {
+      best.count = 4;
+      for (int j = 0; j < 4; ++j) best.index[j] = j, best.lambda[j] = Real(vol[j] / total);
+      best.v = Vec3::Zero();
+      distance2 = 0;
+      return best;
+    }
+  }
+  for (int i = 0; i < s.count; ++i) {
+    for (int j = i + 1; j < s.count; ++j) {
+      for (int k = j + 1; k < s.count; ++k) {
+        const int ids[3] = {i, j, k};
+        double weight[3];
+        keep(closest_on_triangle_double(w[i], w[j], w[k], weight), ids, weight, 3);
+      }
+    }
+  }
+  return best;
+}
+
 SubSimplex solve_simplex(const Simplex& s) {
   SubSimplex r;
   switch (s.count) {
@@ -229,6 +340,7 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
   // The last search: every point c of the Minkowski difference has v.c >= v.w, so the shapes
   // are at least v.w / |v| apart.
   Real searched_vw = 0, searched_vv = 0;
+  bool refined = false;  // the search has gone on once from a point solved in double
   for (int iter = 0; iter < kMaxIterations; ++iter) {
     result.iterations = iter + 1;
     Real max_ww = 0;
@@ -253,9 +365,34 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
     if (repeated) break;
     Simplex next = s;
     next.v[next.count++] = w;
-    const SubSimplex r = solve_simplex(next);
-    // Rounding can make the new closest point no closer; keep the previous simplex then.
-    if (r.count < 4 && !(r.v.squaredNorm() < vv)) break;
+    SubSimplex r = solve_simplex(next);
+    // Rounding can make the new closest point no closer, on a sliver simplex, where the old one
+    // may also lie off its simplex. Far from convergence, both simplices are then solved again
+    // in double: the new one goes on if it is closer than the old one, measured alike; else the
+    // previous simplex stands.
+    if (r.count < 4 && !(r.v.squaredNorm() < vv)) {
+      // The distance is off by at most (vv - v.w) / |v| (the search's bound).
+      const Real len = std::sqrt(vv);
+      if (!(vv - searched_vw > len * (kStuckRelGap * len + kStuckAbsGap * std::sqrt(max_ww))))
+        break;
+      double old_d = 0, new_d = 0;
+      const SubSimplex old_r = closest_in_double(s, old_d);
+      r = closest_in_double(next, new_d);
+      if (!(new_d < old_d)) {
+        // The old point off its simplex pointed the search wrong: once, the search goes on from
+        // the old simplex's own closest point.
+        if (refined) break;
+        refined = true;
+        Simplex old = s;
+        s.count = old_r.count;
+        for (int i = 0; i < old_r.count; ++i) {
+          s.v[i] = old.v[old_r.index[i]], s.lambda[i] = old_r.lambda[i];
+        }
+        v = old_r.v;
+        vv = v.squaredNorm();
+        continue;
+      }
+    }
     s.count = r.count;
     for (int i = 0; i < r.count; ++i) s.v[i] = next.v[r.index[i]], s.lambda[i] = r.lambda[i];
     v = r.v;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -320,6 +321,56 @@ TEST(Gjk, StopsEarlyOnlyWhereTheMotionStaysClear) {
   }
   EXPECT_GT(stopped, 500);
   EXPECT_GT(ran, 500);
+}
+
+// A hull whose points include a cluster near one corner (found by fuzz_narrowphase,
+// corpus/narrowphase/regression_gjk_sliver_1) against a sphere 4.6 mm away. GJK's float simplex
+// solver, given the new support point of a sliver tetrahedron, rounded back to the old closest
+// point, and GJK stopped there 0.34 mm (7 %) long, the new point far beyond the old point's
+// plane. The exact distance: the least over every triangle of the hull's vertices (each lies in
+// the hull, and the closest point of the hull lies in one), in double.
+TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
+  ShapeDef d;
+  d.type = ShapeType::ConvexHull;
+  d.points = {
+      {0x1.8fb59p-1f, -0x1.d521ep-4f, -0x1.f94bfap+0f},
+      {-0x1.0ba1p-4f, 0x1.b973b8p+0f, 0x1.31c93p-2f},
+      {0x1.47094p-2f, -0x1.90bd9p-1f, -0x1.561b56p+0f},
+      {-0x1.1ee12p-4f, -0x1.91ab92p+0f, -0x1.ff68p+0f},
+      {-2, -0x1.07ff08p+0f, -2},
+      {-2, -2, -2},
+      {-2, -2, -2},
+      {-2, -2, -0x1.fe8bfep+0f},
+      {-2, -2, -0x1.fffp+0f},
+      {-2, -2, -2},
+      {-2, -2, -2},
+  };
+  const Shape hull = make_shape(d);
+  const Transform xa{Vec3(-0x1.67ffe8p+1f, -0x1.2734a8p+1f, -0x1.2767a8p+1f),
+                     Quat(-0x1.962a14p-1f, 0x1.46a7f8p-2f, 0x1.aed7b6p-6f, 0x1.092c82p-1f)};
+  const Shape ball = sphere(0x1.99999ap-5f);
+  const Transform xb{Vec3(-3, -0x1.91ce92p+0f, -0x1.7d2cfep+1f), Quat(-0.5f, -0.5f, -0.5f, -0.5f)};
+
+  const oracle::Poly poly = oracle::place_hull(hull, xa);
+  const oracle::V3 centre = xb.position.cast<double>();
+  double exact = std::numeric_limits<double>::infinity();
+  const std::size_t n = poly.v.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i; j < n; ++j) {
+      for (std::size_t k = j; k < n; ++k) {
+        const oracle::V3 c = oracle::closest_on_triangle(centre, poly.v[i], poly.v[j], poly.v[k]);
+        exact = std::min(exact, (c - centre).norm());
+      }
+    }
+  }
+  exact -= double(ball.radius);
+  ASSERT_NEAR(exact, 0.0045677, 1e-6);
+
+  const GjkResult g = gjk_distance(hull, xa, ball, xb);
+  EXPECT_FALSE(g.overlap);
+  // GJK's relative gap (1e-5 of the 5 cm between the cores) and float supports of coordinates
+  // near 5 m (a few 1e-7 m each).
+  EXPECT_NEAR(g.distance, exact, 1e-5);
 }
 
 }  // namespace narrowphase_gjk_test
