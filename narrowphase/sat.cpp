@@ -258,10 +258,10 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
       return false;
     }
     // The best pair's gap was wrong, and so may its rank have been: another pair, whose gap the
-    // query measured smaller, may be the one that separates the shapes (a hull and a box 0.65 m
-    // apart were given a contact 1 mm deep, found by fuzz_narrowphase: docs/fuzzing.md). Every
-    // pair is measured again by the supports. A rejection on it reports no separation, which the
-    // separation cache could not re-check from the two edges.
+    // query measured smaller, may be the one that separates the shapes (found by
+    // fuzz_narrowphase: docs/fuzzing.md). Every pair is measured again by the supports. A
+    // rejection on it reports no separation, which the separation cache could not re-check from
+    // the two edges.
     ee = edge_query_by_supports(a, b);
     if (ee.separation > speculative_distance) return false;
   }
