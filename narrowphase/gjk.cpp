@@ -8,6 +8,7 @@
 #include <limits>
 #include <span>
 
+#include "narrowphase/closest_on_triangle.hpp"
 #include "narrowphase/minkowski.hpp"
 
 namespace elan::detail {
@@ -151,41 +152,6 @@ void solve_tetrahedron(const SimplexVertex* v, SubSimplex& r) {
   }
 }
 
-// The closest point of triangle (a, b, c) to the origin and its barycentric weights, in double
-// (Ericson, Real-Time Collision Detection 5.1.5, the query point at the origin): by Voronoi
-// regions, which stay right on a sliver where the signed areas of solve_triangle round wrong.
-Eigen::Vector3d closest_on_triangle_double(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                           const Eigen::Vector3d& c, double (&weight)[3]) {
-  const auto set = [&weight](double u, double v, double w) {
-    weight[0] = u, weight[1] = v, weight[2] = w;
-  };
-  const Eigen::Vector3d ab = b - a, ac = c - a;
-  const double d1 = -ab.dot(a), d2 = -ac.dot(a);
-  if (d1 <= 0 && d2 <= 0) return set(1, 0, 0), a;
-  const double d3 = -ab.dot(b), d4 = -ac.dot(b);
-  if (d3 >= 0 && d4 <= d3) return set(0, 1, 0), b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double t = d1 / (d1 - d3);
-    return set(1 - t, t, 0), a + t * ab;
-  }
-  const double d5 = -ab.dot(c), d6 = -ac.dot(c);
-  if (d6 >= 0 && d5 <= d6) return set(0, 0, 1), c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double t = d2 / (d2 - d6);
-    return set(1 - t, 0, t), a + t * ac;
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return set(0, 1 - t, t), b + t * (c - b);
-  }
-  const double denom = 1 / (va + vb + vc);
-  const double v = vb * denom, w = vc * denom;
-  return set(1 - v - w, v, w), a + v * ab + w * ac;
-}
-
 // The closest point of simplex `s` to the origin, in double: the segment's, the triangle's, or the
 // least over a tetrahedron's faces (the origin inside it: all four, count 4). The fallback of
 // run_gjk where the float solvers, on a sliver, round their way back to the old closest point or
@@ -244,8 +210,8 @@ SubSimplex closest_in_double(const Simplex& s, double& distance2) {
     for (int j = i + 1; j < s.count; ++j) {
       for (int k = j + 1; k < s.count; ++k) {
         const int ids[3] = {i, j, k};
-        double weight[3];
-        keep(closest_on_triangle_double(w[i], w[j], w[k], weight), ids, weight, 3);
+        const TriangleClosest<Eigen::Vector3d> c = closest_on_triangle_to_origin(w[i], w[j], w[k]);
+        keep(c.point, ids, c.weight, 3);
       }
     }
   }

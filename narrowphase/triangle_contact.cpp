@@ -21,6 +21,7 @@
 #include <limits>
 
 #include "core/base/heightfield.hpp"
+#include "narrowphase/closest_on_triangle.hpp"
 #include "narrowphase/manifold_reduce.hpp"
 #include "narrowphase/minkowski.hpp"
 #include "narrowphase/supporting_feature.hpp"
@@ -28,10 +29,6 @@
 namespace elan::detail {
 namespace {
 
-// The triangle's features: its face, vertex k, or edge k (v[k] to v[k + 1]).
-constexpr uint32_t kRegionFace = 0;
-constexpr uint32_t kRegionVertex = 1;  // + k
-constexpr uint32_t kRegionEdge = 4;    // + k
 // A closest point within this barycentric weight of an edge is on it: witnesses of GJK and EPA
 // sit on the edge to about the float epsilon times the triangle's size, far below this.
 constexpr Real kOnEdgeWeight = Real(1e-4);
@@ -39,37 +36,11 @@ constexpr Real kOnEdgeWeight = Real(1e-4);
 // outward direction is above this (about 0.06 degree): rounding of a face normal stays below.
 constexpr Real kLeanTolerance = Real(1e-3);
 
-// Closest point of the triangle to the origin, and its feature (Ericson, Real-Time Collision
-// Detection 5.1.5, with the query point at the origin).
+// Closest point of the triangle to the origin, and its feature.
 Vec3 closest_on_triangle(const Vec3 (&v)[3], uint32_t& region) {
-  const Vec3 &a = v[0], &b = v[1], &c = v[2];
-  const Vec3 ab = b - a, ac = c - a, ap = -a;
-  const Real d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return region = kRegionVertex + 0, a;
-  const Vec3 bp = -b;
-  const Real d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return region = kRegionVertex + 1, b;
-  const Real vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    region = kRegionEdge + 0;
-    return a + ab * (d1 / (d1 - d3));
-  }
-  const Vec3 cp = -c;
-  const Real d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return region = kRegionVertex + 2, c;
-  const Real vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    region = kRegionEdge + 2;  // c to a
-    return a + ac * (d2 / (d2 - d6));
-  }
-  const Real va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    region = kRegionEdge + 1;
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  }
-  const Real denom = Real(1) / (va + vb + vc);
-  region = kRegionFace;
-  return a + ab * (vb * denom) + ac * (vc * denom);
+  const TriangleClosest<Vec3> closest = closest_on_triangle_to_origin(v[0], v[1], v[2]);
+  region = closest.region;
+  return closest.point;
 }
 
 // The feature of the triangle a witness point p on it lies on, from its barycentric weights.
@@ -78,18 +49,18 @@ uint32_t region_of(const Vec3 (&v)[3], const Vec3& p) {
   const Real d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1);
   const Real d20 = e2.dot(e0), d21 = e2.dot(e1);
   const Real den = d00 * d11 - d01 * d01;
-  if (!(den > 0)) return kRegionFace;
+  if (!(den > 0)) return kTriangleFace;
   const Real w1 = (d11 * d20 - d01 * d21) / den;
   const Real w2 = (d00 * d21 - d01 * d20) / den;
   const Real w0 = 1 - w1 - w2;
   const bool z0 = w0 < kOnEdgeWeight, z1 = w1 < kOnEdgeWeight, z2 = w2 < kOnEdgeWeight;
-  if (z1 && z2) return kRegionVertex + 0;
-  if (z0 && z2) return kRegionVertex + 1;
-  if (z0 && z1) return kRegionVertex + 2;
-  if (z2) return kRegionEdge + 0;  // no weight on v2: edge v0 v1
-  if (z0) return kRegionEdge + 1;
-  if (z1) return kRegionEdge + 2;
-  return kRegionFace;
+  if (z1 && z2) return kTriangleVertex + 0;
+  if (z0 && z2) return kTriangleVertex + 1;
+  if (z0 && z1) return kTriangleVertex + 2;
+  if (z2) return kTriangleEdge + 0;  // no weight on v2: edge v0 v1
+  if (z0) return kTriangleEdge + 1;
+  if (z1) return kTriangleEdge + 2;
+  return kTriangleFace;
 }
 
 // A triangle's active edges, read on first use: a heightfield's triangles come without them
@@ -109,11 +80,11 @@ struct LazyEdges {
 // `out_normal`: from the triangle towards A; `face`: the face normal toward A's side.
 bool keeps_normal(uint32_t region, LazyEdges& lazy, const Vec3 (&v)[3], const Vec3& face,
                   const Vec3& out_normal) {
-  if (region == kRegionFace || out_normal.dot(face) < -kLeanTolerance) return false;
+  if (region == kTriangleFace || out_normal.dot(face) < -kLeanTolerance) return false;
   const uint8_t active_edges = lazy.get();
   const auto active = [&](uint32_t k) { return ((active_edges >> k) & 1u) != 0; };
-  if (region >= kRegionEdge) return active(region - kRegionEdge);
-  const uint32_t k = region - kRegionVertex;
+  if (region >= kTriangleEdge) return active(region - kTriangleEdge);
+  const uint32_t k = region - kTriangleVertex;
   const uint32_t edges[2] = {k, (k + 2) % 3};  // the edges leaving and reaching vertex k
   if (!active(edges[0]) && !active(edges[1])) return false;
   const Vec3 centroid = (v[0] + v[1] + v[2]) / 3;
@@ -137,7 +108,7 @@ void add(TriangleContact& out, const Vec3& p, Real s, uint32_t id) {
 // The sphere's closed form: its centre (the origin) against the closest point of the triangle.
 bool sphere_triangle(Real r, LazyEdges& edges, const Vec3 (&v)[3], const Vec3& face,
                      Real speculative, TriangleContact& out) {
-  uint32_t region = kRegionFace;
+  uint32_t region = kTriangleFace;
   const Vec3 q = closest_on_triangle(v, region);
   const Real dist = q.norm();
   if (dist - r > speculative) return false;
@@ -230,7 +201,7 @@ bool reach_triangle(const TriangleQuery& q, const Vec3& a, const Vec3& b, const 
   // gap and of the contact's own tests (as `lateral`'s). perf: a body resting on a smooth surface
   // is within the speculative distance of the planes of most triangles around it, which the tests
   // above keep, and a tilted body is above most of them by far more.
-  uint32_t region = kRegionFace;
+  uint32_t region = kTriangleFace;
   r.closest = closest_on_triangle(v, region);
   const Vec3& closest = r.closest;
   const Real dist2 = closest.squaredNorm();
@@ -313,7 +284,7 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
   const Real radius = q.radius;
   Vec3 n, on_a, on_b;  // A to the triangle; closest (or deepest) points
   Real sep;
-  uint32_t region = kRegionFace;
+  uint32_t region = kTriangleFace;
   // Two cases need no GJK. A whose lowest point is above the plane with its foot on the face:
   // that foot is the closest point of the triangle (nothing of it is nearer than its plane), so
   // the contact is the face's. And a triangle with no active edge (inside a smooth surface) gives
@@ -322,9 +293,9 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
   // body resting on a mesh or a heightfield are one or the other.
   const Vec3 foot = lowest - plane_gap_of_a * face;
   const Vec3 from_foot[3] = {v[0] - foot, v[1] - foot, v[2] - foot};
-  uint32_t foot_region = kRegionFace;
+  uint32_t foot_region = kTriangleFace;
   closest_on_triangle(from_foot, foot_region);
-  const bool foot_on_face = foot_region == kRegionFace;
+  const bool foot_on_face = foot_region == kTriangleFace;
   const bool done = (plane_gap_of_a >= 0 && foot_on_face) || edges.get() == 0;
   // Whether the contact takes the face's normal: then it is the face's contact, made only of A's
   // points over the face (see below).

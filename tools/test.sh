@@ -140,10 +140,9 @@ run_fuzz_targets() {
 # that the other core does not wait idle for them. Sharing a core with the compiler, a target
 # takes longer than alone (about 5 s for its 10,000 inputs), so each is allowed 20 s. Their
 # report is printed, and a failure stops the command, before the ThreadSanitizer tests.
-# One input may take 30 s before it counts as a hang. The scene target's inputs can ask for a
-# joint grid of 695,556 bodies and 1.4 million joints (the format allows up to 10 million
-# bodies): the target loads no scene past 40,000 bodies and joints, but parsing that one alone
-# takes 8 s under the sanitizers, and past 10 s beside a build.
+# One input may take 30 s before it counts as a hang: the scene target still parses the largest
+# scenes the format allows, which under the sanitizers beside a build can pass 10 s
+# (docs/fuzzing.md).
 fuzz_pid=""
 if [ "$fuzz_seconds" -gt 0 ]; then
   echo "== libFuzzer targets (the build above), at most ${fuzz_seconds} s each, beside the next build"

@@ -19,10 +19,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     return 0;
   }
   // Generators make thousands of bodies from a few bytes; their loading is what is fuzzed, a
-  // long run of a big pile is the benchmarks' business. Past the largest standard scene
-  // (joint_grid: 10,000 bodies and 19,794 joints) a load runs the same code for longer, and a
-  // joint grid of near a million bodies, which the format allows, outlasts libFuzzer's timeout
-  // under the sanitizers (docs/fuzzing.md).
+  // long run of a big pile is the benchmarks' business. Past the largest standard scene a load
+  // runs the same code for longer, and the largest the format allows outlast libFuzzer's
+  // timeout under the sanitizers (docs/fuzzing.md).
   constexpr std::size_t kMaxLoaded = 40000;
   if (scene.bodies.size() + scene.joints.size() > kMaxLoaded) return 0;
   WorldDef def = scene.world;
