@@ -22,7 +22,9 @@ struct TriangleClosest {
 };
 
 template <class V>
-TriangleClosest<V> closest_on_triangle_to_origin(const V& a, const V& b, const V& c) {
+[[gnu::always_inline]] inline TriangleClosest<V> closest_on_triangle_to_origin(const V& a,
+                                                                               const V& b,
+                                                                               const V& c) {
   using S = typename V::Scalar;
   const auto done = [](const V& p, S wa, S wb, S wc, uint32_t region) {
     return TriangleClosest<V>{p, {wa, wb, wc}, region};
