@@ -437,6 +437,29 @@ GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Sim
   return run_gjk(support_core, Vec3(Real(-0.5) * (core[0] + core[core.size() - 1])), s);
 }
 
+GjkResult gjk_point_sets(std::span<const Vec3> a, std::span<const Vec3> b, const Vec3& direction,
+                         Real reject_beyond) {
+  // determinism: the first point of the greatest projection wins ties.
+  auto farthest = [](std::span<const Vec3> points, const Vec3& d) {
+    std::size_t best = 0;
+    Real most = points[0].dot(d);
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      const Real p = points[i].dot(d);
+      if (p > most) most = p, best = i;
+    }
+    return points[best];
+  };
+  auto support = [&](const Vec3& d) {
+    SimplexVertex v;
+    v.a = farthest(a, d);
+    v.b = farthest(b, -d);
+    v.w = v.a - v.b;
+    return v;
+  };
+  Simplex s;
+  return run_gjk(support, direction, s, RejectBeyond{reject_beyond});
+}
+
 GjkResult gjk_distance(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                        bool include_radius, const Vec3* initial_direction) {
   Simplex s;

@@ -120,6 +120,12 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
 // the GJK work of the sphere and capsule pairs with hulls and boxes.
 GjkResult gjk_core_in_frame_of_b(std::span<const Vec3> core, const Shape& b, Simplex& s);
 
+// GJK between the convex hulls of two point sets in one frame, from `direction` (A towards B),
+// stopping once its lower bound passes `reject_beyond` (result.beyond). The SAT's check of a
+// separation that only bounds the distance from below (sat.cpp).
+GjkResult gjk_point_sets(std::span<const Vec3> a, std::span<const Vec3> b, const Vec3& direction,
+                         Real reject_beyond);
+
 // epa_penetration's answer from its GJK already run: `g` and `s` are gjk_placed(pa, pb,
 // pb.position - pa.position) on the cores (a shape with no core radius is its own core, whether
 // placed with its radius or not). perf: a caller whose own GJK was that search (collide_general

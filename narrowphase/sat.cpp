@@ -12,6 +12,7 @@
 #include "narrowphase/clip.hpp"
 #include "narrowphase/edge_query.hpp"
 #include "narrowphase/manifold_reduce.hpp"
+#include "narrowphase/minkowski.hpp"
 #include "narrowphase/sat_common.hpp"
 
 namespace elan::detail {
@@ -148,6 +149,20 @@ EdgeQuery edge_query_by_supports(const Polyhedron& a, const Polyhedron& b) {
   return best;
 }
 
+// Whether the polyhedra are farther apart than `distance`, by GJK over their vertices. For the
+// two separations the SAT measures along an axis where the shapes need not be closest, which
+// bound their distance only from below: an edge pair whose segments' nearest points are not
+// those of their lines, and the incident vertex off the reference face. Such a bound within the
+// speculative distance gave a contact to shapes beyond it (docs/fuzzing.md). perf: asked only
+// when no pair of points the SAT found lies within the distance, which would settle it: rare.
+bool farther_than(const Polyhedron& a, const Polyhedron& b, Real distance) {
+  const GjkResult g =
+      gjk_point_sets(std::span<const Vec3>(a.vertices.data(), std::size_t(a.vertex_count)),
+                     std::span<const Vec3>(b.vertices.data(), std::size_t(b.vertex_count)),
+                     b.centre - a.centre, distance);
+  return g.beyond || (!g.overlap && g.distance > distance);
+}
+
 // Clips the incident face of `inc` (the face most anti-parallel to the reference normal) against
 // the side planes of `ref`'s face `rf`. `ref_is_a` orients the normal and tags the ids.
 bool face_contact(const Polyhedron& ref, int rf, const Polyhedron& inc, bool ref_is_a,
@@ -220,6 +235,13 @@ bool face_contact(const Polyhedron& ref, int rf, const Polyhedron& inc, bool ref
     }
     const Real s = bs - offset;
     if (s > speculative_distance || (clipped.count > 0 && !(s < 0))) return false;
+    // A vertex whose foot is on the face is s from it; off the face, s only bounds the distance.
+    const Vec3& deepest = inc.vertices[best];
+    if (s > 0 && !foot_on_face(ref.vertices, ref.face_vertices + rfirst, rcnt, n, deepest) &&
+        (ref_is_a ? farther_than(ref, inc, speculative_distance)
+                  : farther_than(inc, ref, speculative_distance))) {
+      return false;
+    }
     points[0] = inc.vertices[best] - (Real(0.5) * s) * n;
     seps[0] = s;
     ids[0] = base | 0x3FFFu;
@@ -277,6 +299,14 @@ bool collide_polyhedra(const Polyhedron& a, const Polyhedron& b, Real speculativ
     Vec3 ca, cb;
     closest_points_segments(pa, a.vertices[a.edges[ee.edge_a][1]] - pa, pb,
                             b.vertices[b.edges[ee.edge_b][1]] - pb, ca, cb);
+    // The shapes are no farther apart than ca and cb. When those are beyond the speculative
+    // distance, the segments' nearest points are not their lines' and the separation, within
+    // it, only bounds the distance from below.
+    if (ee.separation > 0 &&
+        (cb - ca).squaredNorm() > speculative_distance * speculative_distance &&
+        farther_than(a, b, speculative_distance)) {
+      return false;
+    }
     out.normal = ee.normal;
     set_point(
         out, 0, Real(0.5) * (ca + cb), ee.separation,

@@ -416,5 +416,51 @@ TEST(Sat, EdgePairWithAWrongGapDoesNotHideTheSeparatingPair) {
   }
 }
 
+// Two tetrahedra 57 mm apart, closest tip to edge (found by fuzz_narrowphase,
+// corpus/narrowphase/regression_hull_hull_edge_bound). No SAT axis is the direction of a tip-to-
+// edge distance: the best, an edge pair's whose segments' nearest points are not their lines',
+// measured 53.4 mm, a bound from below. Within a speculative distance of 56 mm it made a contact
+// between shapes farther apart than that; GJK over the vertices now decides.
+TEST(Sat, EdgeAxisBelowTheDistanceMakesNoContactBeyondTheSpeculativeDistance) {
+  ShapeDef da;
+  da.type = ShapeType::ConvexHull;
+  da.points = {
+      {0x1.8fb59p-1f, -0x1.d521ep-4f, -0x1.f94bfap+0f},
+      {-0x1.0ba1p-4f, 0x1.31c93p-2f, -0x1.ff92p-3f},
+      {0x1.21032p+0f, 0x1.232324p+0f, 0x1.232324p+0f},
+      {0x1.232324p+0f, 0x1.232324p+0f, -0x1.128d14p-1f},
+  };
+  ShapeDef db;
+  db.type = ShapeType::ConvexHull;
+  db.points = {
+      {0x1.69697p-2f, -0x1.fd53fep+0f, -0x1p+1f},
+      {-0x1p+1f, -0x1p+1f, 0x1.40054p-1f},
+      {-0x1.d445d4p-1f, -0x1.ec3fecp+0f, -0x1.76bd78p-1f},
+      {-0x1.e1e7e2p+0f, 0x1.bde3bcp+0f, 0x1.6a1d68p-1f},
+      {-0x1.ea29e8p-2f, -0x1.738774p+0f, 0x1.178318p+0f},
+  };
+  const Shape a = make_shape(da), b = make_shape(db);
+  const Transform xa =
+      pose(Vec3(0x1.39f1b8p+1f, -0x1.407d4p-2f, -0x1.950a96p+0f),
+           Quat(-0x1.7b5d6p-1f, -0x1.aa0f8p-2f, -0x1.715532p-2f, 0x1.89a9f2p-2f).normalized());
+  const Transform xb =
+      pose(Vec3(0x1.1a0418p+0f, -0x1.1fb92p-3f, -0x1.662d6p-2f),
+           Quat(0x1.d32488p-2f, 0x1.d5f7bep-2f, -0x1.4ab2e8p-3f, -0x1.7d7dep-1f).normalized());
+  const double distance =
+      oracle::polytope_distance(oracle::place_hull(a, xa), oracle::place_hull(b, xb));
+  ASSERT_NEAR(distance, 0.05699, 1e-4);
+
+  Manifold m;
+  EXPECT_FALSE(collide(a, xa, b, xb, Real(0.056), m));
+  EXPECT_FALSE(collide(a, xa, b, xb, Real(0.0565), m));
+  // Within the speculative distance the contact stays, its gap no more than the distance (a gap
+  // below it only slows the approach).
+  ASSERT_TRUE(collide(a, xa, b, xb, Real(0.058), m));
+  for (uint32_t k = 0; k < m.point_count; ++k) {
+    EXPECT_LE(m.points[k].separation, distance + 1e-4);
+    EXPECT_GT(m.points[k].separation, 0);
+  }
+}
+
 }  // namespace narrowphase_sat_test
 }  // namespace elan::detail
