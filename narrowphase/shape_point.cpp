@@ -10,6 +10,7 @@
 #include "core/base/compound.hpp"
 #include "core/base/heightfield.hpp"
 #include "core/base/triangle_mesh.hpp"
+#include "narrowphase/closest_on_triangle.hpp"
 #include "narrowphase/minkowski.hpp"
 
 namespace elan::detail {
@@ -194,25 +195,7 @@ bool local_closest(const Shape& shape, const Vec3& q, Real max_distance, ShapePo
 }  // namespace
 
 Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const Real d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const Real d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const Real vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  const Vec3 cp = p - c;
-  const Real d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const Real vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  const Real va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  }
-  const Real denom = 1 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
+  return p + closest_on_triangle_to_origin<Vec3>(a - p, b - p, c - p).point;
 }
 
 bool closest_on_shape(const Shape& shape, const Transform& x, const Vec3& p, ShapePoint& out,

@@ -26,8 +26,8 @@ bool closest_on_shape(const Shape& shape, const Transform& x, const Vec3& p, Sha
 // Whether world point p is in the solid (touching counts); meshes and heightfields contain none.
 bool shape_contains(const Shape& shape, const Transform& x, const Vec3& p);
 
-// The closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5: the
-// Voronoi regions of the corners, then of the edges, then the face).
+// The closest point of triangle abc to p: closest_on_triangle_to_origin (closest_on_triangle.hpp,
+// Ericson's Voronoi regions) with the corners seen from p.
 Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 }  // namespace elan::detail
