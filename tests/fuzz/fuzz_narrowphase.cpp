@@ -125,7 +125,7 @@ std::optional<double> oracle_distance(const Piece& a, const Piece& b) {
     }
     if (inside) return -radii;
   }
-  return oracle::polytope_distance(*pa, *pb) - radii;
+  return oracle::point_set_distance(pa->v, pb->v) - radii;
 }
 
 std::string describe(const Piece& a, const Piece& b, double ref, const GjkResult& g) {
