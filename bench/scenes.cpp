@@ -594,13 +594,7 @@ void bm_calib_stream(benchmark::State& state, int threads, std::vector<float>* a
 
 // The shape type a `scene:kind` name selects (the scene format's type names).
 elan::ShapeType kind_of(const std::string& name, const std::string& kind) {
-  const std::pair<const char*, elan::ShapeType> kinds[] = {
-      {"sphere", elan::ShapeType::Sphere},          {"box", elan::ShapeType::Box},
-      {"capsule", elan::ShapeType::Capsule},        {"cylinder", elan::ShapeType::Cylinder},
-      {"convex_hull", elan::ShapeType::ConvexHull}, {"compound", elan::ShapeType::Compound}};
-  for (const auto& [text, type] : kinds) {
-    if (kind == text) return type;
-  }
+  if (const std::optional<elan::ShapeType> type = elan::shape_type_from_name(kind)) return *type;
   std::fprintf(stderr, "bench_scenes: %s: no such kind of body '%s'\n", name.c_str(), kind.c_str());
   std::exit(2);
 }

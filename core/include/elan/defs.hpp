@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "elan/ids.hpp"
@@ -27,6 +28,13 @@ enum class ShapeType : uint8_t {
   Heightfield,  ///< static only: a grid of heights, collided from above
   Compound,     ///< convex children, each at its own pose
 };
+
+/// The scene format's name of a shape type: "sphere", "box", "capsule", "cylinder",
+/// "convex_hull", "plane", "mesh", "heightfield" or "compound".
+const char* shape_type_name(ShapeType type);
+
+/// The shape type the scene format names `name`; none for any other text.
+std::optional<ShapeType> shape_type_from_name(std::string_view name);
 
 struct CompoundChild;
 

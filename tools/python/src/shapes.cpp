@@ -13,13 +13,8 @@
 namespace elan::py {
 namespace {
 
-constexpr const char* kTypeNames[] = {"sphere", "box",  "capsule",     "cylinder", "convex_hull",
-                                      "plane",  "mesh", "heightfield", "compound"};
-
 ShapeType shape_type(const std::string& name, const char* field) {
-  for (std::size_t i = 0; i < std::size(kTypeNames); ++i) {
-    if (name == kTypeNames[i]) return ShapeType(i);
-  }
+  if (const std::optional<ShapeType> type = shape_type_from_name(name)) return *type;
   raise(field,
         "expected sphere, box, capsule, cylinder, convex_hull, plane, mesh, heightfield or "
         "compound, got '" +
@@ -162,7 +157,7 @@ void bind_shapes(pybind11::class_<PyWorld>& c) {
   c.def(
       "shape_type",
       [](const PyWorld& w, uint32_t shape) {
-        return std::string(kTypeNames[std::size_t(w.get().shape_def(ShapeId{shape}).type)]);
+        return std::string(shape_type_name(w.get().shape_def(ShapeId{shape}).type));
       },
       arg("shape"), "The shape's type name ('sphere', 'box', ...).");
   c.def(
