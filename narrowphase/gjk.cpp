@@ -20,6 +20,10 @@ constexpr Real kRelTol = sizeof(Real) == 4 ? Real(1e-5) : Real(1e-10);
 // Origin within this fraction of the simplex's size counts as on it: overlap (touching).
 constexpr Real kOnSimplex = 8 * kEps;
 constexpr int kMaxIterations = 64;
+// Times a search may go on from its simplex's own closest point solved in double (run_gjk). A
+// sliver near a curved side (a sphere's) stalls the float solvers again after each: the
+// fuzz findings of docs/fuzzing.md needed up to 8.
+constexpr int kMaxRefines = 8;
 // A search whose float solvers make no progress while the distance may still be off by more
 // than kStuckRelGap of itself plus kStuckAbsGap of the simplex's size (its longest vertex) is
 // solved again in double (run_gjk). The first is 10 times the convergence tolerance, and within
@@ -306,7 +310,7 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
   // The last search: every point c of the Minkowski difference has v.c >= v.w, so the shapes
   // are at least v.w / |v| apart.
   Real searched_vw = 0, searched_vv = 0;
-  bool refined = false;  // the search has gone on once from a point solved in double
+  int refined = 0;  // times the search went on from a point solved in double
   for (int iter = 0; iter < kMaxIterations; ++iter) {
     result.iterations = iter + 1;
     Real max_ww = 0;
@@ -326,9 +330,30 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
       return result;
     }
     if (vv - searched_vw <= kRelTol * vv) break;
+    // The distance is off by at most (vv - v.w) / |v| (the search's bound): beyond the float
+    // solvers' rounding, a search that stops here would stop short.
+    const Real len = std::sqrt(vv);
+    const bool far =
+        vv - searched_vw > len * (kStuckRelGap * len + kStuckAbsGap * std::sqrt(max_ww));
+    // Up to kMaxRefines times, the search goes on from the simplex's own closest point, solved
+    // in double: the float one lay off its simplex (a sliver) and pointed the search wrong.
+    auto go_on_from_own_point = [&](const SubSimplex& own) {
+      ++refined;
+      const Simplex old = s;
+      s.count = own.count;
+      for (int i = 0; i < own.count; ++i) s.v[i] = old.v[own.index[i]], s.lambda[i] = own.lambda[i];
+      v = own.v;
+      vv = v.squaredNorm();
+    };
     bool repeated = false;
     for (int i = 0; i < s.count; ++i) repeated = repeated || s.v[i].w == w.w;
-    if (repeated) break;
+    if (repeated) {
+      // A vertex already held, far beyond v's plane: v is off the simplex.
+      if (!far || refined == kMaxRefines) break;
+      double own_d = 0;
+      go_on_from_own_point(closest_in_double(s, own_d));
+      continue;
+    }
     Simplex next = s;
     next.v[next.count++] = w;
     SubSimplex r = solve_simplex(next);
@@ -337,25 +362,13 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
     // in double: the new one goes on if it is closer than the old one, measured alike; else the
     // previous simplex stands.
     if (r.count < 4 && !(r.v.squaredNorm() < vv)) {
-      // The distance is off by at most (vv - v.w) / |v| (the search's bound).
-      const Real len = std::sqrt(vv);
-      if (!(vv - searched_vw > len * (kStuckRelGap * len + kStuckAbsGap * std::sqrt(max_ww))))
-        break;
+      if (!far) break;
       double old_d = 0, new_d = 0;
       const SubSimplex old_r = closest_in_double(s, old_d);
       r = closest_in_double(next, new_d);
       if (!(new_d < old_d)) {
-        // The old point off its simplex pointed the search wrong: once, the search goes on from
-        // the old simplex's own closest point.
-        if (refined) break;
-        refined = true;
-        Simplex old = s;
-        s.count = old_r.count;
-        for (int i = 0; i < old_r.count; ++i) {
-          s.v[i] = old.v[old_r.index[i]], s.lambda[i] = old_r.lambda[i];
-        }
-        v = old_r.v;
-        vv = v.squaredNorm();
+        if (refined == kMaxRefines) break;
+        go_on_from_own_point(old_r);
         continue;
       }
     }

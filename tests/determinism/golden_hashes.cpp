@@ -51,13 +51,13 @@ const std::map<std::string, uint64_t>& golden() {
       {"chains", 0xead3d4ee23b124fcull},         {"joint_grid", 0x8a30cbea3997a9f2ull},
       {"joints_demo", 0x54d757140060d1afull},    {"ragdolls", 0xe5a821fcc89e008full},
       {"jolt_pyramid", 0x35d54aad4f86aef8ull},   {"many_pyramids", 0x4ef28a35e9219de1ull},
-      {"pile10k", 0x360070d05ec53221ull},        {"pile1k", 0xda86c69fb3ac0246ull},
-      {"pile4k", 0x0c37424285c247fcull},         {"pyramid10", 0x3043830915c9b8b9ull},
-      {"pyramid20", 0x0a61641085aba68eull},      {"rain", 0x056553477e2e9821ull},
+      {"pile10k", 0xb2e1bca852c1ff01ull},        {"pile1k", 0xda86c69fb3ac0246ull},
+      {"pile4k", 0xf1c78fff22c83d08ull},         {"pyramid10", 0x3043830915c9b8b9ull},
+      {"pyramid20", 0x0a61641085aba68eull},      {"rain", 0xbb30c6181c7d1551ull},
       {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xec93d1076c99a160ull},
-      {"towers", 0xefd2e01bd19bcdcbull},         {"tumbler", 0x47bd1969f5ef5989ull},
-      {"compounds", 0x6ed3054f0c2fd320ull},      {"convex_vs_mesh", 0x81d813a7769a51dfull},
-      {"geometry_demo", 0xfe988b26a7ddd9e1ull},  {"heightfield_rain", 0xf58b55de38337d09ull},
+      {"towers", 0xefd2e01bd19bcdcbull},         {"tumbler", 0xa5bee2e448aff545ull},
+      {"compounds", 0x85b976512812ca5bull},      {"convex_vs_mesh", 0xd9229c33fca8d4cdull},
+      {"geometry_demo", 0x25ca5b70d07023a2ull},  {"heightfield_rain", 0xf2ff9a4ed7d1e485ull},
   };
   return table;
 }

@@ -373,5 +373,42 @@ TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
   EXPECT_NEAR(g.distance, exact, 1e-5);
 }
 
+// The hull above with one clustered point moved (found by fuzz_narrowphase,
+// corpus/narrowphase/regression_gjk_sliver_refined) and the sphere 0.17 mm from it. The search
+// went on once from its simplex's own closest point, solved in double, then stalled again on a
+// sliver and stopped 0.18 mm (twice the distance) long. Going on twice left it 50 um long, four
+// times 16 um; it may now go on up to eight times (kMaxRefines).
+TEST(Gjk, SliverSimplexTwiceStillReachesTheClosestPoint) {
+  ShapeDef d;
+  d.type = ShapeType::ConvexHull;
+  d.points = {
+      {0x1.8fb59p-1f, -0x1.d521ep-4f, -0x1.f94bfap+0f},
+      {-0x1.0ba1p-4f, 0x1.b973b8p+0f, 0x1.31c93p-2f},
+      {0x1.47094p-2f, -0x1.90bd9p-1f, -0x1.561b56p+0f},
+      {-0x1.1ee12p-4f, -0x1.91ab92p+0f, -0x1.ff68p+0f},
+      {-2, -0x1.07ff08p+0f, -2},
+      {-2, -2, -2},
+      {-2, -2, -2},
+      {-0x1.37ff38p+0f, -2, -0x1.fe8bfep+0f},
+      {-2, -2, -0x1.fffp+0f},
+      {-2, -2, -2},
+      {-2, -2, -2},
+  };
+  const Shape hull = make_shape(d);
+  const Transform xa{Vec3(-0x1.67ffe8p+1f, -0x1.2734a8p+1f, -0x1.2767a8p+1f),
+                     Quat(-0x1.962a14p-1f, 0x1.46a7f8p-2f, 0x1.aed7b6p-6f, 0x1.092c82p-1f)};
+  const Shape ball = sphere(0x1.99999ap-5f);
+  const Transform xb{Vec3(-3, -0x1.91ce92p+0f, -0x1.7d2cfep+1f), Quat(-0.5f, -0.5f, -0.5f, -0.5f)};
+
+  const oracle::Poly poly = oracle::place_hull(hull, xa);
+  const double exact =
+      oracle::point_set_distance(poly.v, {xb.position.cast<double>()}) - double(ball.radius);
+  ASSERT_NEAR(exact, 0.000167, 1e-6);
+
+  const GjkResult g = gjk_distance(hull, xa, ball, xb);
+  EXPECT_FALSE(g.overlap);
+  EXPECT_NEAR(g.distance, exact, 1e-5);
+}
+
 }  // namespace narrowphase_gjk_test
 }  // namespace elan::detail
