@@ -323,13 +323,9 @@ TEST(Gjk, StopsEarlyOnlyWhereTheMotionStaysClear) {
   EXPECT_GT(ran, 500);
 }
 
-// A hull whose points include a cluster near one corner (found by fuzz_narrowphase,
-// corpus/narrowphase/regression_gjk_sliver_1) against a sphere 4.6 mm away. GJK's float simplex
-// solver, given the new support point of a sliver tetrahedron, rounded back to the old closest
-// point, and GJK stopped there 0.34 mm (7 %) long, the new point far beyond the old point's
-// plane. The exact distance: the least over every triangle of the hull's vertices (each lies in
-// the hull, and the closest point of the hull lies in one), in double.
-TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
+// The hull of the sliver findings: 11 points, most of them clustered within 1 mm of one corner,
+// and its pose; the sphere's (5 cm) pose.
+ShapeDef clustered_hull() {
   ShapeDef d;
   d.type = ShapeType::ConvexHull;
   d.points = {
@@ -345,11 +341,25 @@ TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
       {-2, -2, -2},
       {-2, -2, -2},
   };
-  const Shape hull = make_shape(d);
-  const Transform xa{Vec3(-0x1.67ffe8p+1f, -0x1.2734a8p+1f, -0x1.2767a8p+1f),
-                     Quat(-0x1.962a14p-1f, 0x1.46a7f8p-2f, 0x1.aed7b6p-6f, 0x1.092c82p-1f)};
+  return d;
+}
+const Transform kClusteredHullPose{
+    Vec3(-0x1.67ffe8p+1f, -0x1.2734a8p+1f, -0x1.2767a8p+1f),
+    Quat(-0x1.962a14p-1f, 0x1.46a7f8p-2f, 0x1.aed7b6p-6f, 0x1.092c82p-1f)};
+const Transform kNearBallPose{Vec3(-3, -0x1.91ce92p+0f, -0x1.7d2cfep+1f),
+                              Quat(-0.5f, -0.5f, -0.5f, -0.5f)};
+
+// A hull whose points include a cluster near one corner (found by fuzz_narrowphase,
+// corpus/narrowphase/regression_gjk_sliver_1) against a sphere 4.6 mm away. GJK's float simplex
+// solver, given the new support point of a sliver tetrahedron, rounded back to the old closest
+// point, and GJK stopped there 0.34 mm (7 %) long, the new point far beyond the old point's
+// plane. The exact distance: the least over every triangle of the hull's vertices (each lies in
+// the hull, and the closest point of the hull lies in one), in double.
+TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
+  const Shape hull = make_shape(clustered_hull());
+  const Transform& xa = kClusteredHullPose;
   const Shape ball = sphere(0x1.99999ap-5f);
-  const Transform xb{Vec3(-3, -0x1.91ce92p+0f, -0x1.7d2cfep+1f), Quat(-0.5f, -0.5f, -0.5f, -0.5f)};
+  const Transform& xb = kNearBallPose;
 
   const oracle::Poly poly = oracle::place_hull(hull, xa);
   const oracle::V3 centre = xb.position.cast<double>();
@@ -379,26 +389,12 @@ TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
 // sliver and stopped 0.18 mm (twice the distance) long. Going on twice left it 50 um long, four
 // times 16 um; it may now go on up to eight times (kMaxRefines).
 TEST(Gjk, SliverSimplexTwiceStillReachesTheClosestPoint) {
-  ShapeDef d;
-  d.type = ShapeType::ConvexHull;
-  d.points = {
-      {0x1.8fb59p-1f, -0x1.d521ep-4f, -0x1.f94bfap+0f},
-      {-0x1.0ba1p-4f, 0x1.b973b8p+0f, 0x1.31c93p-2f},
-      {0x1.47094p-2f, -0x1.90bd9p-1f, -0x1.561b56p+0f},
-      {-0x1.1ee12p-4f, -0x1.91ab92p+0f, -0x1.ff68p+0f},
-      {-2, -0x1.07ff08p+0f, -2},
-      {-2, -2, -2},
-      {-2, -2, -2},
-      {-0x1.37ff38p+0f, -2, -0x1.fe8bfep+0f},
-      {-2, -2, -0x1.fffp+0f},
-      {-2, -2, -2},
-      {-2, -2, -2},
-  };
+  ShapeDef d = clustered_hull();
+  d.points[7] = Vec3(-0x1.37ff38p+0f, -2, -0x1.fe8bfep+0f);
   const Shape hull = make_shape(d);
-  const Transform xa{Vec3(-0x1.67ffe8p+1f, -0x1.2734a8p+1f, -0x1.2767a8p+1f),
-                     Quat(-0x1.962a14p-1f, 0x1.46a7f8p-2f, 0x1.aed7b6p-6f, 0x1.092c82p-1f)};
+  const Transform& xa = kClusteredHullPose;
   const Shape ball = sphere(0x1.99999ap-5f);
-  const Transform xb{Vec3(-3, -0x1.91ce92p+0f, -0x1.7d2cfep+1f), Quat(-0.5f, -0.5f, -0.5f, -0.5f)};
+  const Transform& xb = kNearBallPose;
 
   const oracle::Poly poly = oracle::place_hull(hull, xa);
   const double exact =
