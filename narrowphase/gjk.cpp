@@ -331,10 +331,12 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
     }
     if (vv - searched_vw <= kRelTol * vv) break;
     // The distance is off by at most (vv - v.w) / |v| (the search's bound): beyond the float
-    // solvers' rounding, a search that stops here would stop short.
-    const Real len = std::sqrt(vv);
-    const bool far =
-        vv - searched_vw > len * (kStuckRelGap * len + kStuckAbsGap * std::sqrt(max_ww));
+    // solvers' rounding, a search that stops here would stop short. perf: asked only where the
+    // search would stop, not every iteration.
+    auto far = [&] {
+      const Real len = std::sqrt(vv);
+      return vv - searched_vw > len * (kStuckRelGap * len + kStuckAbsGap * std::sqrt(max_ww));
+    };
     // Up to kMaxRefines times, the search goes on from the simplex's own closest point, solved
     // in double: the float one lay off its simplex (a sliver) and pointed the search wrong.
     auto go_on_from_own_point = [&](const SubSimplex& own) {
@@ -349,7 +351,7 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
     for (int i = 0; i < s.count; ++i) repeated = repeated || s.v[i].w == w.w;
     if (repeated) {
       // A vertex already held, far beyond v's plane: v is off the simplex.
-      if (!far || refined == kMaxRefines) break;
+      if (refined == kMaxRefines || !far()) break;
       double own_d = 0;
       go_on_from_own_point(closest_in_double(s, own_d));
       continue;
@@ -362,7 +364,7 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
     // in double: the new one goes on if it is closer than the old one, measured alike; else the
     // previous simplex stands.
     if (r.count < 4 && !(r.v.squaredNorm() < vv)) {
-      if (!far) break;
+      if (!far()) break;
       double old_d = 0, new_d = 0;
       const SubSimplex old_r = closest_in_double(s, old_d);
       r = closest_in_double(next, new_d);
