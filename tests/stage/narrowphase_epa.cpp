@@ -227,29 +227,33 @@ TEST(Epa, CylinderAgainstCapsuleGivesTheLeastOverlap) {
   EXPECT_NEAR(overlap_along(a, xa, b, xb, e.normal.cast<double>()), e.depth, tol);
 }
 
-// collide_general's path for two shapes with no radius: its own GJK (stopped early only past the
-// reject distance) handed to EPA gives epa_penetration's answer bit for bit, for overlapping,
-// touching and nearly touching pairs of boxes, cylinders and hulls.
+// collide_general's path: its own GJK on the cores (stopped early only past the reject distance
+// plus the radii) handed to EPA gives epa_penetration's answer bit for bit, for overlapping,
+// touching and nearly touching pairs of boxes, cylinders, hulls and capsules (a capsule's core:
+// its segment).
 TEST(Epa, AfterTheCallersGjkMatchesItsOwnSearch) {
   const Shape shapes[] = {box(Real(0.3), Real(0.2), Real(0.5)), cylinder(Real(0.35), Real(0.3)),
                           test::round_hull(20, Real(0.4)),
-                          test::box_hull(Real(0.3), Real(0.3), Real(0.2))};
+                          test::box_hull(Real(0.3), Real(0.3), Real(0.2)),
+                          capsule(Real(0.2), Real(0.3))};
   std::mt19937 rng(43);
   std::uniform_real_distribution<float> u(-1, 1);
-  int overlapping = 0;
-  for (int trial = 0; trial < 3000; ++trial) {
-    const Shape& sa = shapes[trial % 4];
-    const Shape& sb = shapes[(trial / 4) % 4];
+  int overlapping = 0, rounded = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    const Shape& sa = shapes[trial % 5];
+    const Shape& sb = shapes[(trial / 5) % 5];
     const Quat qa = test::random_turn(rng, u);
     const Quat qb = test::random_turn(rng, u);
     const Vec3 centre_a{Real(5) + u(rng), Real(0.5) * u(rng), 0};
     const Vec3 centre_b{Real(5) + u(rng), Real(0.5) * u(rng), Real(0.6) * u(rng)};
     const Transform xa = test::pose(centre_a, qa), xb = test::pose(centre_b, qb);
-    const PlacedShape pa = place(sa, xa, true), pb = place(sb, xb, true);
+    const PlacedShape pa = place(sa, xa, false), pb = place(sb, xb, false);
+    const Real radii = core_radius(sa) + core_radius(sb);
     Simplex s;
-    const GjkResult g = gjk_placed(pa, pb, Vec3::Zero(), s, Real(0.05));
-    if (g.beyond || !g.overlap) continue;
+    const GjkResult g = gjk_placed(pa, pb, Vec3::Zero(), s, Real(0.05) + radii);
+    if (g.beyond || (!g.overlap && g.distance >= radii)) continue;
     ++overlapping;
+    rounded += radii > 0;
     const EpaResult own = epa_penetration(sa, xa, sb, xb);
     const EpaResult after = epa_after_gjk(pa, pb, g, s);
     ASSERT_EQ(after.ok, own.ok) << trial;
@@ -258,6 +262,8 @@ TEST(Epa, AfterTheCallersGjkMatchesItsOwnSearch) {
     ASSERT_EQ(after.point_a, own.point_a) << trial;
     ASSERT_EQ(after.point_b, own.point_b) << trial;
   }
+  EXPECT_GT(overlapping, 500);
+  EXPECT_GT(rounded, 300);
   EXPECT_GT(overlapping, 500);
 }
 
