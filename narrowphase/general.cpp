@@ -32,8 +32,8 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
   const Real radii = radius_a + radius_b;
   Simplex simplex;
   const PlacedShape core_a = place(a, xa, false), core_b = place(b, xb, false);
-  const GjkResult g = gjk_placed(core_a, core_b, Vec3::Zero(), simplex,
-                                 speculative_distance + kEarlyReject + radii);
+  const GjkResult g = gjk_contact(core_a, core_b, Vec3::Zero(), simplex,
+                                  speculative_distance + kEarlyReject + radii);
   if (g.beyond) {
     report_separation(separation, Separation::Kind::Distance, g.lower_bound - radii);
     return false;
@@ -48,9 +48,11 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
     pa = g.point_a + radius_a * n;
     pb = g.point_b - radius_b * n;
   } else {
-    // perf: the search above, not stopped early, was epa_after_gjk's own GJK bit for bit (the
-    // cores, the same start b - a): its simplex goes straight to EPA.
-    const EpaResult e = epa_after_gjk(core_a, core_b, g, simplex);
+    // perf: the search above, ended in overlap, was epa_after_gjk's own GJK bit for bit (the
+    // cores, the same start b - a): its simplex goes straight to EPA. Cores touching within the
+    // contact's precision search again.
+    const EpaResult e =
+        g.overlap ? epa_after_gjk(core_a, core_b, g, simplex) : epa_penetration(a, xa, b, xb);
     n = e.normal;
     sep = -e.depth;
     pa = e.point_a;

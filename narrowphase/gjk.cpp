@@ -30,7 +30,7 @@ constexpr int kMaxRefines = 8;
 // the fuzz oracle's band; the second is about 100 float roundings of a support. perf: below them
 // the rounding that stops the search is the float solvers' ordinary noise near convergence (two
 // bodies touching: v at a hundred micrometres, supports at metres), which most scenes meet every
-// step, and going on buys nothing.
+// step, and going on buys nothing. The same band is a contact's precision (gjk_contact).
 constexpr Real kStuckRelGap = sizeof(Real) == 4 ? Real(1e-4) : Real(1e-9);
 constexpr Real kStuckAbsGap = sizeof(Real) == 4 ? Real(1e-5) : Real(1e-14);
 
@@ -298,8 +298,11 @@ struct SweepReject {
   }
 };
 
+// `contact`: the search may also stop once the distance is known to a contact's precision
+// (gjk_contact).
 template <class Support, class Reject = RejectBeyond>
-GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reject = {}) {
+GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reject = {},
+                  bool contact = false) {
   GjkResult result;
   if (!(d.squaredNorm() > 0) || !d.allFinite()) d = Vec3::UnitY();
   s.count = 1;
@@ -337,6 +340,7 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
       const Real len = std::sqrt(vv);
       return vv - searched_vw > len * (kStuckRelGap * len + kStuckAbsGap * std::sqrt(max_ww));
     };
+    if (contact && !far()) break;
     // Up to kMaxRefines times, the search goes on from the simplex's own closest point, solved
     // in double: the float one lay off its simplex (a sliver) and pointed the search wrong.
     auto go_on_from_own_point = [&](const SubSimplex& own) {
@@ -409,6 +413,14 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
   if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
   return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s,
                  RejectBeyond{reject_beyond});
+}
+
+GjkResult gjk_contact(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
+                      Simplex& s, Real reject_beyond) {
+  Vec3 d = initial_direction;
+  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
+  return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s,
+                 RejectBeyond{reject_beyond}, true);
 }
 
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,

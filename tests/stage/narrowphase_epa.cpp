@@ -227,10 +227,10 @@ TEST(Epa, CylinderAgainstCapsuleGivesTheLeastOverlap) {
   EXPECT_NEAR(overlap_along(a, xa, b, xb, e.normal.cast<double>()), e.depth, tol);
 }
 
-// collide_general's path: its own GJK on the cores (stopped early only past the reject distance
-// plus the radii) handed to EPA gives epa_penetration's answer bit for bit, for overlapping,
-// touching and nearly touching pairs of boxes, cylinders, hulls and capsules (a capsule's core:
-// its segment).
+// collide_general's path: its own GJK on the cores, to a contact's precision (stopped early only
+// past the reject distance plus the radii, or apart), ended in overlap and handed to EPA, gives
+// epa_penetration's answer bit for bit, for overlapping pairs of boxes, cylinders, hulls and
+// capsules (a capsule's core: its segment).
 TEST(Epa, AfterTheCallersGjkMatchesItsOwnSearch) {
   const Shape shapes[] = {box(Real(0.3), Real(0.2), Real(0.5)), cylinder(Real(0.35), Real(0.3)),
                           test::round_hull(20, Real(0.4)),
@@ -250,8 +250,8 @@ TEST(Epa, AfterTheCallersGjkMatchesItsOwnSearch) {
     const PlacedShape pa = place(sa, xa, false), pb = place(sb, xb, false);
     const Real radii = core_radius(sa) + core_radius(sb);
     Simplex s;
-    const GjkResult g = gjk_placed(pa, pb, Vec3::Zero(), s, Real(0.05) + radii);
-    if (g.beyond || (!g.overlap && g.distance >= radii)) continue;
+    const GjkResult g = gjk_contact(pa, pb, Vec3::Zero(), s, Real(0.05) + radii);
+    if (!g.overlap) continue;
     ++overlapping;
     rounded += radii > 0;
     const EpaResult own = epa_penetration(sa, xa, sb, xb);
@@ -263,7 +263,7 @@ TEST(Epa, AfterTheCallersGjkMatchesItsOwnSearch) {
     ASSERT_EQ(after.point_b, own.point_b) << trial;
   }
   EXPECT_GT(overlapping, 500);
-  EXPECT_GT(rounded, 300);
+  EXPECT_GT(rounded, 150);
   EXPECT_GT(overlapping, 500);
 }
 
