@@ -441,6 +441,16 @@ GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
                  RejectBeyond{reject_beyond});
 }
 
+GjkResult gjk_triangle_contact(const PlacedShape& a, const Vec3 (&triangle)[3],
+                               const Vec3& initial_direction, Simplex& s, Real reject_beyond) {
+  Vec3 d = initial_direction;
+  if (!(d.squaredNorm() > 0) || !d.allFinite()) {
+    d = (triangle[0] + triangle[1] + triangle[2]) / 3 - a.position;
+  }
+  return run_gjk([&](const Vec3& x) { return support_minkowski_triangle(a, triangle, x); }, d, s,
+                 RejectBeyond{reject_beyond}, true);
+}
+
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
                        const Vec3& initial_direction, Simplex& s, const SweepBound& bound) {
   Vec3 d = initial_direction;

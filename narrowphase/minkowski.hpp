@@ -155,6 +155,9 @@ EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& 
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
                        const Vec3& initial_direction, Simplex& s,
                        Real reject_beyond = std::numeric_limits<Real>::infinity());
+// gjk_triangle to a contact's precision (gjk_contact).
+GjkResult gjk_triangle_contact(const PlacedShape& a, const Vec3 (&triangle)[3],
+                               const Vec3& initial_direction, Simplex& s, Real reject_beyond);
 // gjk_triangle with gjk_placed's sweep bound.
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
                        const Vec3& initial_direction, Simplex& s, const SweepBound& bound);

@@ -56,8 +56,8 @@ const std::map<std::string, uint64_t>& golden() {
       {"pyramid20", 0x0a61641085aba68eull},      {"rain", 0x9ce5ebe2a01c3bb4ull},
       {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xec93d1076c99a160ull},
       {"towers", 0xefd2e01bd19bcdcbull},         {"tumbler", 0xb79ddbbcdfcf19eaull},
-      {"compounds", 0x85b976512812ca5bull},      {"convex_vs_mesh", 0x6908d8ea4ed3564full},
-      {"geometry_demo", 0xfe4c5fcb259a97a4ull},  {"heightfield_rain", 0xa94f73ecd9fd7ba3ull},
+      {"compounds", 0x85b976512812ca5bull},      {"convex_vs_mesh", 0x10fce9aa698ad439ull},
+      {"geometry_demo", 0xfe4c5fcb259a97a4ull},  {"heightfield_rain", 0x0c43405ad4ce366aull},
   };
   return table;
 }

@@ -332,6 +332,48 @@ TEST(Gjk, ContactPrecisionStopsWithinItsBand) {
   EXPECT_LT(contact_supports, full_supports * 9 / 10);  // 20 % fewer within 1 cm, here
 }
 
+// The same for a shape against a triangle (gjk_triangle_contact, the triangle contact's search): a
+// cylinder near a triangle of 1 m sides, in random poses.
+TEST(Gjk, TriangleContactPrecisionStopsWithinItsBand) {
+  const Shape c = cylinder(Real(0.3), Real(0.25));
+  const Vec3 triangle[3] = {Vec3(-0.5, 0, -0.3), Vec3(0.5, 0, -0.3), Vec3(0, 0.1, 0.6)};
+  std::mt19937 rng(59);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int near = 0, overlapping = 0;
+  long full_supports = 0, contact_supports = 0;
+  for (int trial = 0; trial < 6000; ++trial) {
+    const PlacedShape a =
+        place(c, test::pose(test::draw3(rng, u, Real(0.6)), test::random_turn(rng, u)), true);
+    Simplex s0, s1;
+    const GjkResult full = gjk_triangle(a, triangle, Vec3::Zero(), s0);
+    const GjkResult fast = gjk_triangle_contact(a, triangle, Vec3::Zero(), s1, Real(0.05));
+    const double size = a.position.norm() + 1 + c.bounding_radius;
+    if (full.overlap) {
+      if (fast.overlap) {
+        ++overlapping;
+        ASSERT_TRUE(same_search(fast, full)) << trial;
+      } else {
+        ASSERT_LE(fast.distance, 1e-5 * size) << trial;
+      }
+      continue;
+    }
+    if (fast.beyond) {
+      ASSERT_GE(full.distance, fast.lower_bound * (1 - Real(1e-5))) << trial;
+      continue;
+    }
+    const double d = full.distance;
+    const double band = 1e-4 * d + 1e-5 * size + 1e-5 * d;
+    ASSERT_NEAR(fast.distance, d, band) << trial;
+    if (d > 0.01) continue;
+    ++near;
+    full_supports += full.iterations;
+    contact_supports += fast.iterations;
+  }
+  EXPECT_GT(near, 100);
+  EXPECT_GT(overlapping, 300);
+  EXPECT_LT(contact_supports, full_supports * 9 / 10);  // 22 % fewer within 1 cm, here
+}
+
 // The sweep bound (conservative advancement's question): where GJK stops early, the shapes do stay
 // farther apart than the reach over the motion (sampled: B slides by -delta, no turn); elsewhere
 // the search is the plain one, bit for bit.
