@@ -97,10 +97,13 @@ EpaResult flat_result(const Simplex& s, int count, const Vec3& normal) {
 
 // EPA over any support of the Minkowski difference: minkowski(d) is the SimplexVertex of A's
 // support along d and B's along -d.
+// `extent`: a bound on the difference's distance from the origin (the centres' distance plus the
+// bounding radii), the scale of the rounding floors. perf: the bound costs no support; the
+// difference's own extent along the axes would cost six.
 template <class Support>
-EpaResult run_epa(const Support& minkowski, const Simplex& simplex) {
+EpaResult run_epa(const Support& minkowski, const Simplex& simplex, Real extent) {
   Polytope p;
-  Real scale = 0;
+  Real scale = extent;
   for (int i = 0; i < simplex.count; ++i) scale = std::max(scale, simplex.v[i].w.norm());
   // Blow GJK's simplex up to a tetrahedron: each new support point must leave the affine hull
   // of the current ones. The origin is in (or on) GJK's simplex, hence in the tetrahedron.
@@ -112,7 +115,6 @@ EpaResult run_epa(const Support& minkowski, const Simplex& simplex) {
   for (int i = 0; i < std::min(base.count, 4); ++i) p.vert[p.vertex_count++] = base.v[i];
   static const Vec3 kAxes[6] = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
                                 -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
-  for (const Vec3& d : kAxes) scale = std::max(scale, minkowski(d).w.norm());
   const Real tol_dim = Real(1e3) * kEpaEps * std::max(scale, std::numeric_limits<Real>::min());
   while (p.vertex_count < 4) {
     const Vec3 o = p.vert[0].w;
@@ -273,12 +275,16 @@ EpaResult run_epa(const Support& minkowski, const Simplex& simplex) {
 }  // namespace
 
 EpaResult epa_placed(const PlacedShape& a, const PlacedShape& b, const Simplex& simplex) {
-  return run_epa([&](const Vec3& d) { return support_minkowski(a, b, d); }, simplex);
+  const Real extent =
+      (b.position - a.position).norm() + a.shape->bounding_radius + b.shape->bounding_radius;
+  return run_epa([&](const Vec3& d) { return support_minkowski(a, b, d); }, simplex, extent);
 }
 
 EpaResult epa_triangle(const PlacedShape& a, const Vec3 (&triangle)[3], const Simplex& simplex) {
-  return run_epa([&](const Vec3& d) { return support_minkowski_triangle(a, triangle, d); },
-                 simplex);
+  Real corner = 0;
+  for (const Vec3& c : triangle) corner = std::max(corner, (c - a.position).norm());
+  return run_epa([&](const Vec3& d) { return support_minkowski_triangle(a, triangle, d); }, simplex,
+                 corner + a.shape->bounding_radius);
 }
 
 EpaResult epa_penetration(const Shape& a, const Transform& xa, const Shape& b,
