@@ -282,18 +282,58 @@ TEST(Gjk, StopsEarlyOnlyPastTheRejectDistance) {
   EXPECT_GT(ran, 500);
 }
 
-// A contact's search (gjk_contact) also stops once the distance is known to within 1e-4 of itself
-// plus 1e-5 of the simplex's size (here at most the centres' distance plus both bounding radii):
-// its distance is the full search's within that band plus the full search's own 1e-5, and its
-// normal within sqrt(2 band / R) of the full search's on the rims' radius R = 0.3 m. A search
-// that ends in overlap is the full one, bit for bit. On two cylinders within 1 cm, whose rims GJK
-// converges on linearly, it takes fewer supports.
+// What the contact precision tests count: the pairs that overlap, those within 1 cm, and the
+// supports the two searches took for the latter.
+struct ContactTally {
+  int overlapping = 0, near = 0;
+  long full_supports = 0, contact_supports = 0;
+};
+
+// A contact's search (`fast`, gjk_contact or gjk_triangle_contact) against the full search of
+// the same pair, `size` bounding the simplex's size: its distance is the full search's within the
+// band it stops in (1e-4 of the distance plus 1e-5 of the size) plus the full search's own 1e-5,
+// and within 1 cm its normal is within sqrt(2 band / R) of the full search's on the rims' radius
+// R = 0.3 m. A search that ends in overlap is the full one, bit for bit.
+::testing::AssertionResult within_contact_band(const GjkResult& full, const GjkResult& fast,
+                                               double size, ContactTally& tally) {
+  if (full.overlap) {
+    if (fast.overlap) {
+      ++tally.overlapping;
+      return same_search(fast, full);
+    }
+    if (fast.distance <= 1e-5 * size) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << "apart by " << fast.distance << " in overlap";
+  }
+  if (fast.beyond) {
+    if (full.distance >= fast.lower_bound * (1 - Real(1e-5))) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << "stopped past " << fast.lower_bound << " at a distance of " << full.distance;
+  }
+  const double d = full.distance;
+  const double band = 1e-4 * d + 1e-5 * size + 1e-5 * d;
+  if (std::abs(fast.distance - d) > band) {
+    return ::testing::AssertionFailure() << "distance " << fast.distance << " against " << d;
+  }
+  if (d > 0.01) return ::testing::AssertionSuccess();
+  ++tally.near;
+  tally.full_supports += full.iterations;
+  tally.contact_supports += fast.iterations;
+  const Eigen::Vector3d n_full = (full.point_b - full.point_a).cast<double>().normalized();
+  const Eigen::Vector3d n_fast = (fast.point_b - fast.point_a).cast<double>().normalized();
+  const double angle = std::acos(std::clamp(n_full.dot(n_fast), -1.0, 1.0));
+  if (angle > std::sqrt(2 * band / 0.3)) {
+    return ::testing::AssertionFailure() << "normals " << angle << " rad apart";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// Two cylinders in random poses. On those within 1 cm, whose rims GJK converges on linearly, the
+// contact's search takes fewer supports.
 TEST(Gjk, ContactPrecisionStopsWithinItsBand) {
   const Shape c = cylinder(Real(0.3), Real(0.25));
   std::mt19937 rng(53);
   std::uniform_real_distribution<float> u(-1, 1);
-  int near = 0, overlapping = 0;
-  long full_supports = 0, contact_supports = 0;
+  ContactTally tally;
   for (int trial = 0; trial < 6000; ++trial) {
     const Quat qa = test::random_turn(rng, u), qb = test::random_turn(rng, u);
     const PlacedShape a = place(c, at(0, 0, 0, qa), true);
@@ -302,45 +342,22 @@ TEST(Gjk, ContactPrecisionStopsWithinItsBand) {
     const GjkResult full = gjk_placed(a, b, Vec3::Zero(), s0);
     const GjkResult fast = gjk_contact(a, b, Vec3::Zero(), s1, Real(0.05));
     const double size = b.position.norm() + 2 * c.bounding_radius;
-    if (full.overlap) {
-      if (fast.overlap) {
-        ++overlapping;
-        ASSERT_TRUE(same_search(fast, full)) << trial;
-      } else {
-        ASSERT_LE(fast.distance, 1e-5 * size) << trial;
-      }
-      continue;
-    }
-    if (fast.beyond) {
-      ASSERT_GE(full.distance, fast.lower_bound * (1 - Real(1e-5))) << trial;
-      continue;
-    }
-    const double d = full.distance;
-    const double band = 1e-4 * d + 1e-5 * size + 1e-5 * d;
-    ASSERT_NEAR(fast.distance, d, band) << trial;
-    if (d > 0.01) continue;
-    ++near;
-    full_supports += full.iterations;
-    contact_supports += fast.iterations;
-    const Eigen::Vector3d n_full = (full.point_b - full.point_a).cast<double>().normalized();
-    const Eigen::Vector3d n_fast = (fast.point_b - fast.point_a).cast<double>().normalized();
-    const double angle = std::acos(std::clamp(n_full.dot(n_fast), -1.0, 1.0));
-    ASSERT_LE(angle, std::sqrt(2 * band / 0.3)) << trial;
+    ASSERT_TRUE(within_contact_band(full, fast, size, tally)) << trial;
   }
-  EXPECT_GT(near, 100);
-  EXPECT_GT(overlapping, 300);
-  EXPECT_LT(contact_supports, full_supports * 9 / 10);  // 20 % fewer within 1 cm, here
+  EXPECT_GT(tally.near, 100);
+  EXPECT_GT(tally.overlapping, 300);
+  // 20 % fewer, here.
+  EXPECT_LT(tally.contact_supports, tally.full_supports * 9 / 10);
 }
 
-// The same for a shape against a triangle (gjk_triangle_contact, the triangle contact's search): a
-// cylinder near a triangle of 1 m sides, in random poses.
+// The same for a cylinder near a triangle of 1 m sides (gjk_triangle_contact, the triangle
+// contact's search).
 TEST(Gjk, TriangleContactPrecisionStopsWithinItsBand) {
   const Shape c = cylinder(Real(0.3), Real(0.25));
   const Vec3 triangle[3] = {Vec3(-0.5, 0, -0.3), Vec3(0.5, 0, -0.3), Vec3(0, 0.1, 0.6)};
   std::mt19937 rng(59);
   std::uniform_real_distribution<float> u(-1, 1);
-  int near = 0, overlapping = 0;
-  long full_supports = 0, contact_supports = 0;
+  ContactTally tally;
   for (int trial = 0; trial < 6000; ++trial) {
     const PlacedShape a =
         place(c, test::pose(test::draw3(rng, u, Real(0.6)), test::random_turn(rng, u)), true);
@@ -348,30 +365,12 @@ TEST(Gjk, TriangleContactPrecisionStopsWithinItsBand) {
     const GjkResult full = gjk_triangle(a, triangle, Vec3::Zero(), s0);
     const GjkResult fast = gjk_triangle_contact(a, triangle, Vec3::Zero(), s1, Real(0.05));
     const double size = a.position.norm() + 1 + c.bounding_radius;
-    if (full.overlap) {
-      if (fast.overlap) {
-        ++overlapping;
-        ASSERT_TRUE(same_search(fast, full)) << trial;
-      } else {
-        ASSERT_LE(fast.distance, 1e-5 * size) << trial;
-      }
-      continue;
-    }
-    if (fast.beyond) {
-      ASSERT_GE(full.distance, fast.lower_bound * (1 - Real(1e-5))) << trial;
-      continue;
-    }
-    const double d = full.distance;
-    const double band = 1e-4 * d + 1e-5 * size + 1e-5 * d;
-    ASSERT_NEAR(fast.distance, d, band) << trial;
-    if (d > 0.01) continue;
-    ++near;
-    full_supports += full.iterations;
-    contact_supports += fast.iterations;
+    ASSERT_TRUE(within_contact_band(full, fast, size, tally)) << trial;
   }
-  EXPECT_GT(near, 100);
-  EXPECT_GT(overlapping, 300);
-  EXPECT_LT(contact_supports, full_supports * 9 / 10);  // 22 % fewer within 1 cm, here
+  EXPECT_GT(tally.near, 100);
+  EXPECT_GT(tally.overlapping, 300);
+  // 22 % fewer, here.
+  EXPECT_LT(tally.contact_supports, tally.full_supports * 9 / 10);
 }
 
 // The sweep bound (conservative advancement's question): where GJK stops early, the shapes do stay
