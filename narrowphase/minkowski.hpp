@@ -101,9 +101,11 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
 // oracle's. Only a search that ends apart can stop earlier: one that ends in overlap is
 // gjk_placed's, bit for bit. perf: on a cylinder's rim GJK converges linearly, about halving the
 // gap per support, and two cylinders touching took up to 35 supports to reach 1e-5 of their
-// distance. A contact's points come from the features along its normal; the normal is within
-// sqrt(2 gap / R) of the exact one on a rim of radius R (about 0.3 degree for shapes of half a
-// metre on a rim of 0.3 m).
+// distance. A contact's points come from the features along its normal. That normal is within
+// acos(d / (d + gap)) of the exact one at a distance d (every point of the difference lies
+// beyond the exact normal's plane at d), within sqrt(2 gap / R) on a smooth side of radius R:
+// about 0.3 degree on a rim of 0.3 m, for shapes of half a metre. Within a millimetre or so the
+// full search's float solvers often stall in the same band.
 GjkResult gjk_contact(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                       Simplex& out_simplex, Real reject_beyond);
 

@@ -291,9 +291,11 @@ struct ContactTally {
 
 // A contact's search (`fast`, gjk_contact or gjk_triangle_contact) against the full search of
 // the same pair, `size` bounding the simplex's size: its distance is the full search's within the
-// band it stops in (1e-4 of the distance plus 1e-5 of the size) plus the full search's own 1e-5,
-// and within 1 cm its normal is within sqrt(2 band / R) of the full search's on the rims' radius
-// R = 0.3 m. A search that ends in overlap is the full one, bit for bit.
+// band it stops in (1e-4 of the distance plus 1e-5 of the size) plus the full search's own 1e-5.
+// Within 1 cm, each search's closest point v lies beyond the exact normal's plane at the exact
+// distance and within the band of it, so within acos(d / (d + band)) of the exact normal: the two
+// normals are within twice that (d taken a band low). A search that ends in overlap is the full
+// one, bit for bit.
 ::testing::AssertionResult within_contact_band(const GjkResult& full, const GjkResult& fast,
                                                double size, ContactTally& tally) {
   if (full.overlap) {
@@ -321,8 +323,10 @@ struct ContactTally {
   const Eigen::Vector3d n_full = (full.point_b - full.point_a).cast<double>().normalized();
   const Eigen::Vector3d n_fast = (fast.point_b - fast.point_a).cast<double>().normalized();
   const double angle = std::acos(std::clamp(n_full.dot(n_fast), -1.0, 1.0));
-  if (angle > std::sqrt(2 * band / 0.3)) {
-    return ::testing::AssertionFailure() << "normals " << angle << " rad apart";
+  const double bound = 2 * std::acos(std::max(d - band, 0.0) / (d + band));
+  if (angle > bound) {
+    return ::testing::AssertionFailure()
+           << "normals " << angle << " rad apart (bound " << bound << ") at " << d;
   }
   return ::testing::AssertionSuccess();
 }
