@@ -48,9 +48,9 @@ bool collide_general(const Shape& a, const Transform& xa, const Shape& b, const 
     pa = g.point_a + radius_a * n;
     pb = g.point_b - radius_b * n;
   } else {
-    // perf: the search above, ended in overlap, was epa_after_gjk's own GJK bit for bit (the
-    // cores, the same start b - a): its simplex goes straight to EPA. Cores touching within the
-    // contact's precision search again.
+    // perf: the search above, when it ended in overlap, is epa_penetration's own GJK bit for bit
+    // (the cores, the same start b - a): its simplex goes straight to EPA. Cores touching within
+    // the contact's precision search again.
     const EpaResult e =
         g.overlap ? epa_after_gjk(core_a, core_b, g, simplex) : epa_penetration(a, xa, b, xb);
     n = e.normal;

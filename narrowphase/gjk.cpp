@@ -398,6 +398,12 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
   return result;
 }
 
+// A triangle search's first direction: the caller's, else from A's centre to the centroid.
+Vec3 triangle_start(const PlacedShape& a, const Vec3 (&triangle)[3], const Vec3& direction) {
+  if (direction.squaredNorm() > 0 && direction.allFinite()) return direction;
+  return (triangle[0] + triangle[1] + triangle[2]) / 3 - a.position;
+}
+
 }  // namespace
 
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
@@ -433,30 +439,21 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
 
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
                        const Vec3& initial_direction, Simplex& s, Real reject_beyond) {
-  Vec3 d = initial_direction;
-  if (!(d.squaredNorm() > 0) || !d.allFinite()) {
-    d = (triangle[0] + triangle[1] + triangle[2]) / 3 - a.position;
-  }
+  const Vec3 d = triangle_start(a, triangle, initial_direction);
   return run_gjk([&](const Vec3& x) { return support_minkowski_triangle(a, triangle, x); }, d, s,
                  RejectBeyond{reject_beyond});
 }
 
 GjkResult gjk_triangle_contact(const PlacedShape& a, const Vec3 (&triangle)[3],
                                const Vec3& initial_direction, Simplex& s, Real reject_beyond) {
-  Vec3 d = initial_direction;
-  if (!(d.squaredNorm() > 0) || !d.allFinite()) {
-    d = (triangle[0] + triangle[1] + triangle[2]) / 3 - a.position;
-  }
+  const Vec3 d = triangle_start(a, triangle, initial_direction);
   return run_gjk([&](const Vec3& x) { return support_minkowski_triangle(a, triangle, x); }, d, s,
                  RejectBeyond{reject_beyond}, true);
 }
 
 GjkResult gjk_triangle(const PlacedShape& a, const Vec3 (&triangle)[3],
                        const Vec3& initial_direction, Simplex& s, const SweepBound& bound) {
-  Vec3 d = initial_direction;
-  if (!(d.squaredNorm() > 0) || !d.allFinite()) {
-    d = (triangle[0] + triangle[1] + triangle[2]) / 3 - a.position;
-  }
+  const Vec3 d = triangle_start(a, triangle, initial_direction);
   return run_gjk([&](const Vec3& x) { return support_minkowski_triangle(a, triangle, x); }, d, s,
                  SweepReject{bound});
 }

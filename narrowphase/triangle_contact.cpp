@@ -320,8 +320,8 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
                       (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
     // GJK starts toward the triangle's closest point to A's centre (reach_triangle's), which
     // for a triangle beside A is nearer the closest features' direction than the face's normal:
-    // fewer iterations, the same result to GJK's tolerance. It searches to a contact's precision:
-    // one that ends in overlap is the full search, which EPA goes on from.
+    // fewer iterations, the same result to the search's precision, a contact's: one that ends in
+    // overlap is the full search, which EPA goes on from.
     const GjkResult g = gjk_triangle_contact(q.core, v, r.closest, simplex, reject);
     if (g.beyond) return false;
     if (!g.overlap && g.distance > Real(1e-6) * a.bounding_radius) {
