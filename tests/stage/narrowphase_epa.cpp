@@ -264,7 +264,6 @@ TEST(Epa, AfterTheCallersGjkMatchesItsOwnSearch) {
   }
   EXPECT_GT(overlapping, 500);
   EXPECT_GT(rounded, 150);
-  EXPECT_GT(overlapping, 500);
 }
 
 }  // namespace narrowphase_epa_test
