@@ -334,8 +334,8 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
     }
     if (vv - searched_vw <= kRelTol * vv) break;
     // The distance is off by at most (vv - v.w) / |v| (the search's bound): beyond the float
-    // solvers' rounding, a search that stops here would stop short. perf: asked only where the
-    // search would stop, not every iteration.
+    // solvers' rounding, a search that stops here would stop short. perf: a full search asks
+    // only where it would stop, not every iteration.
     auto far = [&] {
       const Real len = std::sqrt(vv);
       return vv - searched_vw > len * (kStuckRelGap * len + kStuckAbsGap * std::sqrt(max_ww));
@@ -398,6 +398,12 @@ GjkResult run_gjk(const Support& support, Vec3 d, Simplex& s, const Reject& reje
   return result;
 }
 
+// A search's first direction: the caller's, else from A's centre to B's.
+Vec3 placed_start(const PlacedShape& a, const PlacedShape& b, const Vec3& direction) {
+  if (direction.squaredNorm() > 0 && direction.allFinite()) return direction;
+  return b.position - a.position;
+}
+
 // A triangle search's first direction: the caller's, else from A's centre to the centroid.
 Vec3 triangle_start(const PlacedShape& a, const Vec3 (&triangle)[3], const Vec3& direction) {
   if (direction.squaredNorm() > 0 && direction.allFinite()) return direction;
@@ -408,31 +414,27 @@ Vec3 triangle_start(const PlacedShape& a, const Vec3 (&triangle)[3], const Vec3&
 
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                      Simplex& s) {
-  Vec3 d = initial_direction;
-  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
+  const Vec3 d = placed_start(a, b, initial_direction);
   return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s);
 }
 
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                      Simplex& s, Real reject_beyond) {
-  Vec3 d = initial_direction;
-  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
+  const Vec3 d = placed_start(a, b, initial_direction);
   return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s,
                  RejectBeyond{reject_beyond});
 }
 
 GjkResult gjk_contact(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                       Simplex& s, Real reject_beyond) {
-  Vec3 d = initial_direction;
-  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
+  const Vec3 d = placed_start(a, b, initial_direction);
   return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s,
                  RejectBeyond{reject_beyond}, true);
 }
 
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                      Simplex& s, const SweepBound& bound) {
-  Vec3 d = initial_direction;
-  if (!(d.squaredNorm() > 0) || !d.allFinite()) d = b.position - a.position;
+  const Vec3 d = placed_start(a, b, initial_direction);
   return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s,
                  SweepReject{bound});
 }

@@ -100,7 +100,7 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
 // longest vertex), the band a stalled search stops in anyway (gjk.cpp), inside the fuzz
 // oracle's. Only a search that ends apart can stop earlier: one that ends in overlap is
 // gjk_placed's, bit for bit. perf: on a cylinder's rim GJK converges linearly, about halving the
-// gap per support, and two cylinders touching took up to 35 supports to reach 1e-5 of their
+// gap per support, and two cylinders touching can take tens of supports to reach 1e-5 of their
 // distance. A contact's points come from the features along its normal. That normal is within
 // acos(d / (d + gap)) of the exact one at a distance d (every point of the difference lies
 // beyond the exact normal's plane at d), within sqrt(2 gap / R) on a smooth side of radius R:

@@ -446,14 +446,12 @@ const Transform kClusteredHullPose{
 const Transform kNearBallPose{Vec3(-3, -0x1.91ce92p+0f, -0x1.7d2cfep+1f),
                               Quat(-0.5f, -0.5f, -0.5f, -0.5f)};
 
-// A hull whose points include a cluster near one corner (found by fuzz_narrowphase,
-// corpus/narrowphase/regression_gjk_sliver_1) against a sphere 4.6 mm away. GJK's float simplex
-// solver, given the new support point of a sliver tetrahedron, rounded back to the old closest
-// point, and GJK stopped there 0.34 mm (7 %) long, the new point far beyond the old point's
-// plane. The exact distance: the least over every triangle of the hull's vertices, in double
-// (oracle::point_set_distance).
-TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
-  const Shape hull = make_shape(clustered_hull());
+// The sliver tests' check: the sphere's exact distance from the hull of `d` (the least over every
+// triangle of the hull's vertices, in double, less the radius) is `expected` (to 1e-6), and GJK
+// finds no overlap and that distance within 1e-5: its relative gap (1e-5 of the 5 cm between the
+// cores) and float supports of coordinates near 5 m (a few 1e-7 m each).
+void expect_gjk_reaches_the_ball(const ShapeDef& d, double expected) {
+  const Shape hull = make_shape(d);
   const Transform& xa = kClusteredHullPose;
   const Shape ball = sphere(0x1.99999ap-5f);
   const Transform& xb = kNearBallPose;
@@ -461,13 +459,20 @@ TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
   const oracle::Poly poly = oracle::place_hull(hull, xa);
   const double exact =
       oracle::point_set_distance(poly.v, {xb.position.cast<double>()}) - double(ball.radius);
-  ASSERT_NEAR(exact, 0.0045677, 1e-6);
+  ASSERT_NEAR(exact, expected, 1e-6);
 
   const GjkResult g = gjk_distance(hull, xa, ball, xb);
   EXPECT_FALSE(g.overlap);
-  // GJK's relative gap (1e-5 of the 5 cm between the cores) and float supports of coordinates
-  // near 5 m (a few 1e-7 m each).
   EXPECT_NEAR(g.distance, exact, 1e-5);
+}
+
+// A hull whose points include a cluster near one corner (found by fuzz_narrowphase,
+// corpus/narrowphase/regression_gjk_sliver_1) against a sphere 4.6 mm away. GJK's float simplex
+// solver, given the new support point of a sliver tetrahedron, rounded back to the old closest
+// point, and GJK stopped there 0.34 mm (7 %) long, the new point far beyond the old point's
+// plane.
+TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
+  expect_gjk_reaches_the_ball(clustered_hull(), 0.0045677);
 }
 
 // The hull above with one clustered point moved (found by fuzz_narrowphase,
@@ -478,19 +483,7 @@ TEST(Gjk, SliverSimplexStillReachesTheClosestPoint) {
 TEST(Gjk, SliverSimplexTwiceStillReachesTheClosestPoint) {
   ShapeDef d = clustered_hull();
   d.points[7] = Vec3(-0x1.37ff38p+0f, -2, -0x1.fe8bfep+0f);
-  const Shape hull = make_shape(d);
-  const Transform& xa = kClusteredHullPose;
-  const Shape ball = sphere(0x1.99999ap-5f);
-  const Transform& xb = kNearBallPose;
-
-  const oracle::Poly poly = oracle::place_hull(hull, xa);
-  const double exact =
-      oracle::point_set_distance(poly.v, {xb.position.cast<double>()}) - double(ball.radius);
-  ASSERT_NEAR(exact, 0.000167, 1e-6);
-
-  const GjkResult g = gjk_distance(hull, xa, ball, xb);
-  EXPECT_FALSE(g.overlap);
-  EXPECT_NEAR(g.distance, exact, 1e-5);
+  expect_gjk_reaches_the_ball(d, 0.000167);
 }
 
 }  // namespace narrowphase_gjk_test
