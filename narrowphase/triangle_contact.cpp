@@ -98,6 +98,29 @@ bool keeps_normal(uint32_t region, LazyEdges& lazy, const Vec3 (&v)[3], const Ve
   return true;
 }
 
+// Whether A, sunk to `depth` below the face's plane with its lowest point's foot on the face
+// (from_foot: the corners from that foot), is pushed out along the face's normal by less than
+// along any direction GJK/EPA could keep. Along u = cos t n + sin t w (n the face's normal toward
+// A, w in the plane), A must move by d(u) = max over the triangle of t.u - min over A of a.u, and
+// d(n) = depth. The triangle holds the foot F plus delta w (delta: the foot's distance to the
+// nearest edge line), and A its lowest point L = F - depth n, so d(u) >= depth cos t + delta
+// sin t, which is above depth for every t in (0, pi / 2] once delta > depth, and past it while
+// cos t > -kLeanTolerance. A direction leaning further down is one keeps_normal rejects. So the
+// least push is along n, at the foot: the face's contact, which EPA would only approximate.
+bool sunk_within_face(const Vec3 (&v)[3], const Vec3 (&from_foot)[3], Real depth,
+                      Real bounding_radius) {
+  // The margin covers the rounding of the foot's distances (as reach_triangle's margins).
+  const Real need = depth * (1 + 2 * kLeanTolerance) +
+                    Real(1e-4) * (bounding_radius + v[0].cwiseAbs().sum() +
+                                  (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = v[k < 2 ? k + 1 : 0] - v[k];
+    // |e x (v[k] - F)| is |e| times F's distance to the edge's line (both lie in the plane).
+    if (!(e.cross(from_foot[k]).squaredNorm() > need * need * e.squaredNorm())) return false;
+  }
+  return true;
+}
+
 void add(TriangleContact& out, const Vec3& p, Real s, uint32_t id) {
   out.points[out.count] = p;
   out.separation[out.count] = s;
@@ -285,18 +308,22 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
   Vec3 n, on_a, on_b;  // A to the triangle; closest (or deepest) points
   Real sep;
   uint32_t region = kTriangleFace;
-  // Two cases need no GJK. A whose lowest point is above the plane with its foot on the face:
+  // Three cases need no GJK. A whose lowest point is above the plane with its foot on the face:
   // that foot is the closest point of the triangle (nothing of it is nearer than its plane), so
-  // the contact is the face's. And a triangle with no active edge (inside a smooth surface) gives
-  // the face's normal wherever A touches it; A's points over it come from the clipping below,
-  // and when none is over it, its neighbour's triangle reports them. perf: most triangles under a
-  // body resting on a mesh or a heightfield are one or the other.
+  // the contact is the face's. A sunk into the face less deep than its foot is from the edges:
+  // the face's contact too (sunk_within_face). And a triangle with no active edge (inside a
+  // smooth surface) gives the face's normal wherever A touches it; A's points over it come from
+  // the clipping below, and when none is over it, its neighbour's triangle reports them. perf:
+  // most triangles under a body resting on a mesh or a heightfield are one of these.
   const Vec3 foot = lowest - plane_gap_of_a * face;
   const Vec3 from_foot[3] = {v[0] - foot, v[1] - foot, v[2] - foot};
   uint32_t foot_region = kTriangleFace;
   closest_on_triangle(from_foot, foot_region);
   const bool foot_on_face = foot_region == kTriangleFace;
-  const bool done = (plane_gap_of_a >= 0 && foot_on_face) || edges.get() == 0;
+  const bool done =
+      (foot_on_face && (plane_gap_of_a >= 0 ||
+                        sunk_within_face(v, from_foot, -plane_gap_of_a, a.bounding_radius))) ||
+      edges.get() == 0;
   // Whether the contact takes the face's normal: then it is the face's contact, made only of A's
   // points over the face (see below).
   bool face_normal = done;

@@ -56,7 +56,7 @@ const std::map<std::string, uint64_t>& golden() {
       {"pyramid20", 0x0a61641085aba68eull},      {"rain", 0x7ccac63d4961de94ull},
       {"spheres_in_box", 0x1cc6bdae62762ca1ull}, {"tower20", 0xec93d1076c99a160ull},
       {"towers", 0xefd2e01bd19bcdcbull},         {"tumbler", 0x711aed2ee56c4395ull},
-      {"compounds", 0x85b976512812ca5bull},      {"convex_vs_mesh", 0x68ca7afa223b3babull},
+      {"compounds", 0x85b976512812ca5bull},      {"convex_vs_mesh", 0xf81096dd303b973aull},
       {"geometry_demo", 0xfe4c5fcb259a97a4ull},  {"heightfield_rain", 0x1470e7c86eaa09a1ull},
   };
   return table;

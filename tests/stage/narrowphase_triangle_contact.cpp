@@ -178,6 +178,41 @@ TEST(TriangleContact, BoxBesideAnEdge) {
   for (int k = 0; k < c.count; ++k) EXPECT_NEAR(c.separation[k], Real(-0.3), kTol);
 }
 
+// A hull needle, tip down: a tetrahedron 1 m tall on a base of radius 0.05 m. Sunk by p, it is
+// only about p / 20 wide at the plane.
+Shape needle() {
+  ShapeDef d;
+  d.type = ShapeType::ConvexHull;
+  d.points.emplace_back(0, Real(-0.5), 0);
+  for (int k = 0; k < 3; ++k) {
+    const Real t = Real(2.0943951) * Real(k);
+    d.points.emplace_back(Real(0.05) * std::cos(t), Real(0.5), Real(0.05) * std::sin(t));
+  }
+  return make_shape(d);
+}
+
+// A body sunk into the face near an active edge: once its foot is farther from the edge than it
+// is deep, the least push is along the face's normal (sunk_within_face), and the contact is the
+// face's exactly; nearer the edge than it is deep, a narrow body is pushed out over the edge.
+TEST(TriangleContact, SunkNearAnActiveEdgeTakesTheFaceUntilTheEdgeIsNearer) {
+  const Shape s = needle();
+  const Real depth = Real(0.02);
+  const Vec3 tip = support(s, -Vec3::UnitY());
+  TriangleContact c;
+  // Foot 0.03 m from edge 0 (x = -5): the face's contact, its normal and depth exact.
+  Transform xa = at(Real(-4.97) - tip.x(), -depth - tip.y(), -tip.z());
+  ASSERT_TRUE(collide_triangle(s, xa, big_triangle(), kSpec, c));
+  EXPECT_EQ(c.normal, -Vec3::UnitY());
+  Real deepest = c.separation[0];
+  for (int k = 1; k < c.count; ++k) deepest = std::min(deepest, c.separation[k]);
+  EXPECT_NEAR(deepest, -depth, kTol);
+  // Foot 0.01 m from it: out over the edge (about 0.0125 m, less than the depth), along -x.
+  xa.position.x() = Real(-4.99) - tip.x();
+  ASSERT_TRUE(collide_triangle(s, xa, big_triangle(), kSpec, c));
+  EXPECT_GT(c.normal.x(), Real(0.9));
+  for (int k = 0; k < c.count; ++k) EXPECT_GT(c.separation[k], -depth + Real(0.005));
+}
+
 // The quad [-1, 1] x [-1, 1] at y = 0 as two triangles sharing the diagonal (-1, -1)-(1, 1),
 // which is inactive in both (coplanar neighbours); the outer edges are active.
 MeshTriangle quad_half(int which) {
@@ -293,6 +328,57 @@ void cell_box(const HeightField& field, uint32_t i, uint32_t j, Vec3& lo, Vec3& 
             Real(j) * field.spacing_z);
   hi = Vec3(Real(i + 1) * field.spacing_x, std::max({h[0], h[1], h[2], h[3]}),
             Real(j + 1) * field.spacing_z);
+}
+
+// The claim sunk_within_face rests on, over every convex shape at random turns: sunk by p with
+// its lowest point's foot farther than p from every edge, no direction separates A from the
+// triangle by less than p (EPA's least depth is p, to its tolerance), and the contact is the
+// face's.
+TEST(TriangleContact, SunkWithinTheFaceLeastDepthIsAlongTheNormal) {
+  const std::array<Shape, 6> shapes = every_shape();
+  const MeshTriangle t = big_triangle();
+  std::mt19937 rng(47);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int checked = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Shape& s = shapes[1 + trial % 5];  // the sphere has its closed form
+    const Quat q = test::random_turn(rng, u);
+    const Vec3 lowest = q * support(s, q.conjugate() * -Vec3::UnitY());
+    const Real depth = Real(0.001) + Real(0.02) * (u(rng) + 1);
+    // The foot between 1.01 p and 0.3 m from edge 0 (x = -5), near edge 2 (z = -5) as often.
+    const Real from_edge = depth * Real(1.01) + Real(0.15) * (u(rng) + 1);
+    // Under 5 mm from an edge, EPA's witness may lie within region_of's weight of it (the
+    // triangle is 20 m wide), and its own normal stand: only the depth is compared there.
+    const bool clear_of_edges = from_edge > depth * Real(1.01) + Real(0.005);
+    const Real along = Real(0.5) * (u(rng) + 1);
+    const Vec3 foot = trial % 2 == 0 ? Vec3(-5 + from_edge, 0, -5 + from_edge + along)
+                                     : Vec3(-5 + from_edge + along, 0, -5 + from_edge);
+    const Transform xa = test::pose(foot - depth * Vec3::UnitY() - lowest, q);
+    const TriangleQuery query = make_triangle_query(s, xa, kSpec);
+    TriangleReach r;
+    ASSERT_TRUE(reach_triangle(query, t, r)) << trial;
+    Simplex simplex;
+    const GjkResult g = gjk_triangle(query.full, r.v, Vec3(-r.face), simplex);
+    ASSERT_TRUE(g.overlap) << trial;
+    const EpaResult e = epa_triangle(query.full, r.v, simplex);
+    ASSERT_TRUE(e.ok) << trial;
+    EXPECT_NEAR(e.depth, depth, kTol) << trial;
+    if (!clear_of_edges) continue;
+    TriangleContact c;
+    ASSERT_TRUE(collide_reached_triangle(query, t, r, c)) << trial;
+    EXPECT_EQ(c.normal, -Vec3::UnitY()) << trial;
+    Real deepest = c.separation[0];
+    for (int k = 1; k < c.count; ++k) deepest = std::min(deepest, c.separation[k]);
+    // A cylinder's cap is an octagon in the contact, whose corners need not reach its lowest
+    // point on the rim; every other shape's supporting feature holds it.
+    if (s.type == ShapeType::Cylinder) {
+      EXPECT_GT(deepest, -depth - kTol) << trial;
+    } else {
+      EXPECT_NEAR(deepest, -depth, kTol) << trial;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 2900);
 }
 
 // Random shapes and poses about random triangles (slivers, shapes centred on the plane, touching
