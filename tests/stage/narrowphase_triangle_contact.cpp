@@ -185,10 +185,16 @@ Shape needle() {
   d.type = ShapeType::ConvexHull;
   d.points.emplace_back(0, Real(-0.5), 0);
   for (int k = 0; k < 3; ++k) {
-    const Real t = Real(2.0943951) * Real(k);
+    const Real t = Real(2 * std::numbers::pi / 3) * Real(k);
     d.points.emplace_back(Real(0.05) * std::cos(t), Real(0.5), Real(0.05) * std::sin(t));
   }
   return make_shape(d);
+}
+
+Real deepest_of(const TriangleContact& c) {
+  Real deepest = c.separation[0];
+  for (int k = 1; k < c.count; ++k) deepest = std::min(deepest, c.separation[k]);
+  return deepest;
 }
 
 // A body sunk into the face near an active edge: once its foot is farther from the edge than it
@@ -203,10 +209,8 @@ TEST(TriangleContact, SunkNearAnActiveEdgeTakesTheFaceUntilTheEdgeIsNearer) {
   Transform xa = at(Real(-4.97) - tip.x(), -depth - tip.y(), -tip.z());
   ASSERT_TRUE(collide_triangle(s, xa, big_triangle(), kSpec, c));
   EXPECT_EQ(c.normal, -Vec3::UnitY());
-  Real deepest = c.separation[0];
-  for (int k = 1; k < c.count; ++k) deepest = std::min(deepest, c.separation[k]);
-  EXPECT_NEAR(deepest, -depth, kTol);
-  // Foot 0.01 m from it: out over the edge (about 0.0125 m, less than the depth), along -x.
+  EXPECT_NEAR(deepest_of(c), -depth, kTol);
+  // Foot 0.01 m from it: out over the edge (about 0.011 m, less than the depth), along -x.
   xa.position.x() = Real(-4.99) - tip.x();
   ASSERT_TRUE(collide_triangle(s, xa, big_triangle(), kSpec, c));
   EXPECT_GT(c.normal.x(), Real(0.9));
@@ -367,8 +371,7 @@ TEST(TriangleContact, SunkWithinTheFaceLeastDepthIsAlongTheNormal) {
     TriangleContact c;
     ASSERT_TRUE(collide_reached_triangle(query, t, r, c)) << trial;
     EXPECT_EQ(c.normal, -Vec3::UnitY()) << trial;
-    Real deepest = c.separation[0];
-    for (int k = 1; k < c.count; ++k) deepest = std::min(deepest, c.separation[k]);
+    const Real deepest = deepest_of(c);
     // A cylinder's cap is an octagon in the contact, whose corners need not reach its lowest
     // point on the rim; every other shape's supporting feature holds it.
     if (s.type == ShapeType::Cylinder) {
