@@ -98,15 +98,15 @@ bool keeps_normal(uint32_t region, LazyEdges& lazy, const Vec3 (&v)[3], const Ve
   return true;
 }
 
-// Whether A, sunk to `depth` below the face's plane with its lowest point's foot on the face
-// (from_foot: the corners from that foot), is pushed out along the face's normal by less than
-// along any direction GJK/EPA could keep. Along u = cos t n + sin t w (n the face's normal toward
-// A, w in the plane), A must move by d(u) = max over the triangle of t.u - min over A of a.u, and
-// d(n) = depth. The triangle holds the foot F plus delta w (delta: the foot's distance to the
-// nearest edge line), and A its lowest point L = F - depth n, so d(u) >= depth cos t + delta
-// sin t, which is above depth for every t in (0, pi / 2] once delta > depth, and past it while
-// cos t > -kLeanTolerance. A direction leaning further down is one keeps_normal rejects. So the
-// least push is along n, at the foot: the face's contact, which EPA would only approximate.
+// Whether A, sunk to `depth` below the face's plane with its lowest point's foot F on the face
+// (from_foot: the corners from F), is pushed out along the face's normal n by less than along any
+// direction GJK/EPA could keep. Along u = cos(a) n + sin(a) w (w in the plane), A must move by
+// d(u) = max over the triangle of p.u - min over A of q.u to clear it, and d(n) = depth. The
+// triangle holds F + delta w (delta: F's distance to the nearest edge line) and A its lowest
+// point F - depth n, so d(u) >= depth cos(a) + delta sin(a): above depth for every a in
+// (0, pi / 2] once delta > depth, and on while cos(a) > -kLeanTolerance with the margin below.
+// A direction leaning further down is one keeps_normal rejects. So the least push is along n, at
+// the foot: the face's contact, which EPA would only approximate.
 bool sunk_within_face(const Vec3 (&v)[3], const Vec3 (&from_foot)[3], Real depth,
                       Real bounding_radius) {
   // The margin covers the rounding of the foot's distances (as reach_triangle's margins).
