@@ -418,13 +418,6 @@ GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& ini
   return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s);
 }
 
-GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
-                     Simplex& s, Real reject_beyond) {
-  const Vec3 d = placed_start(a, b, initial_direction);
-  return run_gjk([&](const Vec3& x) { return support_minkowski(a, b, x); }, d, s,
-                 RejectBeyond{reject_beyond});
-}
-
 GjkResult gjk_contact(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                       Simplex& s, Real reject_beyond) {
   const Vec3 d = placed_start(a, b, initial_direction);

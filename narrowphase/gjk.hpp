@@ -18,8 +18,8 @@ struct GjkResult {
   Real lower_bound = 0;
   int iterations = 0;
   // The search stopped early: the lower bound passed the distance the caller rejects beyond
-  // (gjk_triangle's and gjk_placed's `reject_beyond`); distance and points are not set, lower_bound
-  // is.
+  // (gjk_triangle's and gjk_contact's `reject_beyond`); distance and points are not set,
+  // lower_bound is.
   bool beyond = false;
 };
 

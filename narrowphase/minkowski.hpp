@@ -89,21 +89,16 @@ inline SimplexVertex support_minkowski_triangle(const PlacedShape& a, const Vec3
 // GJK on two placed shapes; leaves the terminating simplex in `out_simplex`.
 GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
                      Simplex& out_simplex);
-// The same, stopping as soon as its lower bound shows the shapes farther apart than
-// `reject_beyond` (result.beyond, with that bound in result.lower_bound); otherwise the same
-// search, bit for bit.
-GjkResult gjk_placed(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,
-                     Simplex& out_simplex, Real reject_beyond);
-
-// gjk_placed stopped past `reject_beyond`, searching only to a contact's precision: it also stops
-// once the distance is known to within 1e-4 of itself plus 1e-5 of the simplex's size (its
-// longest vertex), the band a stalled search stops in anyway (gjk.cpp), inside the fuzz
-// oracle's. Only a search that ends apart can stop earlier: one that ends in overlap is
-// gjk_placed's, bit for bit. perf: on a cylinder's rim GJK converges linearly, about halving the
-// gap per support, and two cylinders touching can take tens of supports to reach 1e-5 of their
-// distance. A contact's points come from the features along its normal. That normal is within
-// acos(d / (d + gap)) of the exact one at a distance d (every point of the difference lies
-// beyond the exact normal's plane at d), within sqrt(2 gap / R) on a smooth side of radius R:
+// gjk_placed for a contact: it stops as soon as its lower bound shows the shapes farther apart
+// than `reject_beyond` (result.beyond, with that bound in result.lower_bound), and searches only
+// to a contact's precision: it also stops once the distance is known to within 1e-4 of itself plus
+// 1e-5 of the simplex's size (its longest vertex), the band a stalled search stops in anyway
+// (gjk.cpp), inside the fuzz oracle's. Only a search that ends apart can stop earlier: one that
+// ends in overlap is gjk_placed's, bit for bit. perf: on a cylinder's rim GJK converges linearly,
+// about halving the gap per support, and two cylinders touching can take tens of supports to reach
+// 1e-5 of their distance. A contact's points come from the features along its normal. That normal
+// is within acos(d / (d + gap)) of the exact one at a distance d (every point of the difference
+// lies beyond the exact normal's plane at d), within sqrt(2 gap / R) on a smooth side of radius R:
 // about 0.3 degree on a rim of 0.3 m, for shapes of half a metre. Within a millimetre or so the
 // full search's float solvers often stall in the same band.
 GjkResult gjk_contact(const PlacedShape& a, const PlacedShape& b, const Vec3& initial_direction,

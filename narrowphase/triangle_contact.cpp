@@ -36,6 +36,14 @@ constexpr Real kOnEdgeWeight = Real(1e-4);
 // outward direction is above this (about 0.06 degree): rounding of a face normal stays below.
 constexpr Real kLeanTolerance = Real(1e-3);
 
+// `base` plus the size of the corners' coordinates (from A's centre) and of the triangle's edges,
+// added in that order: the scale of the rounding margins of the distances measured to the
+// triangle, each a part in 1e4 of it.
+Real with_corner_scale(Real base, const Vec3 (&v)[3]) {
+  return base + v[0].cwiseAbs().sum() + (v[1] - v[0]).cwiseAbs().sum() +
+         (v[2] - v[0]).cwiseAbs().sum();
+}
+
 // Closest point of the triangle to the origin, and its feature.
 Vec3 closest_on_triangle(const Vec3 (&v)[3], uint32_t& region) {
   const TriangleClosest<Vec3> closest = closest_on_triangle_to_origin(v[0], v[1], v[2]);
@@ -110,9 +118,8 @@ bool keeps_normal(uint32_t region, LazyEdges& lazy, const Vec3 (&v)[3], const Ve
 bool sunk_within_face(const Vec3 (&v)[3], const Vec3 (&from_foot)[3], Real depth,
                       Real bounding_radius) {
   // The margin covers the rounding of the foot's distances (as reach_triangle's margins).
-  const Real need = depth * (1 + 2 * kLeanTolerance) +
-                    Real(1e-4) * (bounding_radius + v[0].cwiseAbs().sum() +
-                                  (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
+  const Real need =
+      depth * (1 + 2 * kLeanTolerance) + Real(1e-4) * with_corner_scale(bounding_radius, v);
   for (int k = 0; k < 3; ++k) {
     const Vec3 e = v[k < 2 ? k + 1 : 0] - v[k];
     // |e x (v[k] - F)| is |e| times F's distance to the edge's line (both lie in the plane).
@@ -239,9 +246,7 @@ bool reach_triangle(const TriangleQuery& q, const Vec3& a, const Vec3& b, const 
     if (dist - std::max(u.dot(r.lowest), u.dot(q.recent)) <= r.speculative) return true;
     q.recent = support_world(q.full, u);
     const Real gap = dist - u.dot(q.recent);
-    const Real margin =
-        Real(1e-4) * (q.shape->bounding_radius + r.speculative + v[0].cwiseAbs().sum() +
-                      (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
+    const Real margin = Real(1e-4) * with_corner_scale(q.shape->bounding_radius + r.speculative, v);
     if (gap > r.speculative + margin) return false;
   }
   return true;
@@ -341,10 +346,8 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
     // GJK may stop once the core is shown farther than the speculative distance plus the radius
     // (the rejection below); the margin covers the distance's rounding, so that GJK run to the
     // end would reject those triangles too.
-    const Real reject =
-        speculative_distance + radius +
-        Real(1e-4) * (a.bounding_radius + speculative_distance + v[0].cwiseAbs().sum() +
-                      (v[1] - v[0]).cwiseAbs().sum() + (v[2] - v[0]).cwiseAbs().sum());
+    const Real reject = speculative_distance + radius +
+                        Real(1e-4) * with_corner_scale(a.bounding_radius + speculative_distance, v);
     // GJK starts toward the triangle's closest point to A's centre (reach_triangle's), which
     // for a triangle beside A is nearer the closest features' direction than the face's normal:
     // fewer iterations, the same result to the search's precision, a contact's: one that ends in
