@@ -36,27 +36,46 @@ const CapCorners& cap_corners() {
 }  // namespace
 
 void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const Vec3& origin,
-                        Feature& f) {
+                        Feature& f, FeatureMemo* memo) {
   const Vec3 dl = x.rotation.conjugate() * d;
   const Vec3 rel = x.position - origin;
   const auto put = [&](int k, const Vec3& local) { f.points[k] = x.rotation * local + rel; };
+  // Face `key` (from 1, one numbering per shape): the kept one, or made by `make` and kept.
+  const auto face = [&](uint32_t key, const auto& make) {
+    if (memo != nullptr && memo->face == key) {
+      f.count = memo->feature.count;
+      f.id = memo->feature.id;
+      std::copy_n(memo->feature.points, f.count, f.points);
+      return;
+    }
+    make();
+    if (memo != nullptr) {
+      memo->face = key;
+      memo->feature.count = f.count;
+      memo->feature.id = f.id;
+      std::copy_n(f.points, f.count, memo->feature.points);
+    }
+  };
   switch (s.type) {
     case ShapeType::Box: {
       int axis = 0;
       dl.cwiseAbs().maxCoeff(&axis);
       const Real sign = dl[axis] >= 0 ? Real(1) : Real(-1);
-      const Vec3& h = s.half_extents;
-      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-      const Real su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
-      for (int k = 0; k < 4; ++k) {
-        Vec3 p;
-        p[axis] = sign * h[axis];
-        p[u] = su[k] * h[u];
-        p[v] = sv[k] * h[v];
-        put(k, p);
-      }
-      f.count = 4;
-      f.id = uint32_t(2 * axis + (sign < 0 ? 1 : 0));
+      const uint32_t id = uint32_t(2 * axis + (sign < 0 ? 1 : 0));
+      face(1 + id, [&] {
+        const Vec3& h = s.half_extents;
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        const Real su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+        for (int k = 0; k < 4; ++k) {
+          Vec3 p;
+          p[axis] = sign * h[axis];
+          p[u] = su[k] * h[u];
+          p[v] = sv[k] * h[v];
+          put(k, p);
+        }
+        f.count = 4;
+        f.id = id;
+      });
       return;
     }
     case ShapeType::ConvexHull: {
@@ -70,24 +89,29 @@ void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const
           best = int(i);
         }
       }
-      const HullFace& face = h.faces[best];
-      if (bd < kFaceCos * dl.norm() || face.count > kMaxFeature) break;
-      for (uint32_t k = 0; k < face.count; ++k)
-        put(int(k), h.vertices[h.face_vertices[face.first + k]]);
-      f.count = int(face.count);
-      f.id = uint32_t(best) & 0x7F;
+      const HullFace& hull_face = h.faces[best];
+      if (bd < kFaceCos * dl.norm() || hull_face.count > kMaxFeature) break;
+      face(1 + uint32_t(best), [&] {
+        for (uint32_t k = 0; k < hull_face.count; ++k)
+          put(int(k), h.vertices[h.face_vertices[hull_face.first + k]]);
+        f.count = int(hull_face.count);
+        f.id = uint32_t(best) & 0x7F;
+      });
       return;
     }
     case ShapeType::Cylinder: {
       const Real radial = std::sqrt(dl.x() * dl.x() + dl.z() * dl.z());
       if (std::abs(dl.y()) >= radial) {
-        const Real y = dl.y() >= 0 ? s.half_height : -s.half_height;
-        const CapCorners& cap = cap_corners();
-        for (int k = 0; k < kCapSides; ++k) {
-          put(k, Vec3(s.radius * cap.cos[k], y, -s.radius * cap.sin[k]));
-        }
-        f.count = kCapSides;
-        f.id = dl.y() >= 0 ? 0u : 1u;
+        const uint32_t id = dl.y() >= 0 ? 0u : 1u;
+        face(1 + id, [&] {
+          const Real y = id == 0 ? s.half_height : -s.half_height;
+          const CapCorners& cap = cap_corners();
+          for (int k = 0; k < kCapSides; ++k) {
+            put(k, Vec3(s.radius * cap.cos[k], y, -s.radius * cap.sin[k]));
+          }
+          f.count = kCapSides;
+          f.id = id;
+        });
         return;
       }
       if (radial > kFaceCos * dl.norm()) {

@@ -24,10 +24,20 @@ struct Feature {
   uint32_t id = 0;  // which feature of the shape (7 bits)
 };
 
+// The face a caller made last for one shape at one pose and origin: a box's face, a hull's face
+// or a cylinder's cap depends on the direction only through which one it is, so a caller that
+// asks again for the same one (a body over the triangles of a surface, each with its own normal)
+// takes its points as they were made. `face` 0: none kept.
+struct FeatureMemo {
+  uint32_t face = 0;
+  Feature feature;
+};
+
 // Supporting feature of `s` (pose x) in world direction d (unit), points in world relative to
-// `origin`.
+// `origin`. With `memo` (every call with the same s, x and origin): the kept face when it is the
+// one d picks, the same bits as making it again; a face made is kept.
 void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const Vec3& origin,
-                        Feature& f);
+                        Feature& f, FeatureMemo* memo = nullptr);
 
 // A feature clipped against another: each side plane adds at most one vertex to the convex
 // polygon it cuts, so two features give at most 2 kMaxFeature (one more: clip_by stops short of

@@ -11,6 +11,7 @@
 #include "core/base/mesh_triangle.hpp"
 #include "core/base/shape.hpp"
 #include "narrowphase/minkowski.hpp"
+#include "narrowphase/supporting_feature.hpp"
 
 namespace elan::detail {
 
@@ -64,6 +65,9 @@ struct TriangleQuery {
   // centre before any), a point of A that the next gap is first measured to as well. perf: the
   // walk meets neighbouring triangles one after another, their gaps about along one direction.
   mutable Vec3 recent = Vec3::Zero();
+  // Scratch: A's face the last contact clipped (supporting_feature's memo). perf: a body resting
+  // over a surface meets its triangles with the same face down, made once instead of for each.
+  mutable FeatureMemo face;
 };
 TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real speculative_distance);
 

@@ -5,12 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <set>
 
 #include "narrowphase/collide.hpp"
 #include "narrowphase/gjk.hpp"
 #include "narrowphase/minkowski.hpp"
+#include "narrowphase/supporting_feature.hpp"
 #include "narrowphase_test_shapes.hpp"
 
 namespace elan::detail {
@@ -252,6 +254,43 @@ TEST(Collide, AnEdgeAxisRejectionIsFoundAgainBitForBit) {
   }
   EXPECT_GT(box_pairs, 40);
   EXPECT_GT(hull_pairs, 200);
+}
+
+// A face kept in the memo is the face made again, bit for bit: for directions that pick the same
+// face over and over (a body's normals over a surface) and ones that move between faces, caps,
+// sides and single points.
+TEST(SupportingFeature, KeptFaceIsTheFaceMadeAgain) {
+  const Shape shapes[] = {test::box(Real(0.35), Real(0.3), Real(0.4)),
+                          test::box_hull(Real(0.3), Real(0.5), Real(0.4)),
+                          test::round_hull(16, Real(0.45)),
+                          test::cylinder(Real(0.35), Real(0.3)),
+                          test::capsule(Real(0.25), Real(0.4)),
+                          test::sphere(Real(0.4))};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int same_face = 0, new_face = 0;
+  for (const Shape& s : shapes) {
+    const Transform x = pose(test::draw3(rng, u), test::random_turn(rng, u));
+    const Vec3 origin = test::draw3(rng, u);
+    FeatureMemo memo;
+    uint32_t last_id = ~0u;
+    for (int i = 0; i < 400; ++i) {
+      // Mostly about one direction (down), now and then anywhere.
+      const Vec3 d = (i % 7 == 0 ? test::draw3(rng, u)
+                                 : Vec3(Vec3(0, -1, 0) + Real(0.3) * test::draw3(rng, u)))
+                         .normalized();
+      Feature kept, made;
+      supporting_feature(s, x, d, origin, kept, &memo);
+      supporting_feature(s, x, d, origin, made);
+      ASSERT_EQ(kept.count, made.count) << "shape " << int(s.type) << ", direction " << i;
+      ASSERT_EQ(kept.id, made.id);
+      ASSERT_EQ(std::memcmp(kept.points, made.points, sizeof(Vec3) * std::size_t(made.count)), 0);
+      if (made.count >= 3) (made.id == last_id ? same_face : new_face) += 1;
+      last_id = made.count >= 3 ? made.id : ~0u;
+    }
+  }
+  EXPECT_GT(same_face, 500) << "faces met again, taken from the memo";
+  EXPECT_GT(new_face, 50) << "faces that changed, made and kept";
 }
 
 }  // namespace narrowphase_manifold_test
