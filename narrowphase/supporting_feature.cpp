@@ -42,7 +42,7 @@ void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const
   const auto put = [&](int k, const Vec3& local) { f.points[k] = x.rotation * local + rel; };
   // Face `key` (from 1, one numbering per shape): the kept one, or made by `make` and kept.
   const auto face = [&](uint32_t key, const auto& make) {
-    if (memo != nullptr && memo->face == key) {
+    if (memo != nullptr && memo->key == key) {
       f.count = memo->feature.count;
       f.id = memo->feature.id;
       std::copy_n(memo->feature.points, f.count, f.points);
@@ -50,7 +50,7 @@ void supporting_feature(const Shape& s, const Transform& x, const Vec3& d, const
     }
     make();
     if (memo != nullptr) {
-      memo->face = key;
+      memo->key = key;
       memo->feature.count = f.count;
       memo->feature.id = f.id;
       std::copy_n(f.points, f.count, memo->feature.points);

@@ -27,9 +27,10 @@ struct Feature {
 // The face a caller made last for one shape at one pose and origin: a box's face, a hull's face
 // or a cylinder's cap depends on the direction only through which one it is, so a caller that
 // asks again for the same one (a body over the triangles of a surface, each with its own normal)
-// takes its points as they were made. `face` 0: none kept.
+// takes its points as they were made. `key` names the face (supporting_feature's numbering per
+// shape, from 1); 0: none kept.
 struct FeatureMemo {
-  uint32_t face = 0;
+  uint32_t key = 0;
   Feature feature;
 };
 

@@ -389,7 +389,7 @@ bool collide_reached_triangle(const TriangleQuery& q, const MeshTriangle& t, con
   // The points: A's supporting feature along n against the triangle, the better aligned face the
   // reference (the triangle on a tie: its plane is the one the normal was measured to).
   Feature fa, fb;
-  supporting_feature(a, at_origin, n, Vec3::Zero(), fa, &q.face);
+  supporting_feature(a, at_origin, n, Vec3::Zero(), fa, &q.kept_face);
   fb.count = 3;
   for (int k = 0; k < 3; ++k) fb.points[k] = v[k];
   fb.id = 0;

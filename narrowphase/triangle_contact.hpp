@@ -67,7 +67,7 @@ struct TriangleQuery {
   mutable Vec3 recent = Vec3::Zero();
   // Scratch: A's face the last contact clipped (supporting_feature's memo). perf: a body resting
   // over a surface meets its triangles with the same face down, made once instead of for each.
-  mutable FeatureMemo face;
+  mutable FeatureMemo kept_face;
 };
 TriangleQuery make_triangle_query(const Shape& a, const Transform& xa, Real speculative_distance);
 
