@@ -144,17 +144,21 @@ void collide_pieces(const Shape& p, const Transform& xp, const Shape& q, const T
       // speculative distance can be (the base plus the whole motion) holds no contact, found for
       // one support instead of the two triangles' tests.
       const Real cell_speculative = w.base + motion.norm();
-      for_each_cell(field, lo, hi, [&](uint32_t i, uint32_t j, Real low, Real high) {
-        const Vec3 box_lo = Vec3(Real(i) * field.spacing_x, low, Real(j) * field.spacing_z);
-        const Vec3 box_hi =
-            Vec3(Real(i + 1) * field.spacing_x, high, Real(j + 1) * field.spacing_z);
-        MeshTriangle pair[2];
-        field.cell_corners(i, j, pair);
-        if (clear_of_box(query, box_lo, box_hi, cell_speculative, pair)) return;
-        for (const MeshTriangle& t : pair) {
-          if (reach_triangle(query, t, reach)) contact(t);
-        }
-      });
+      for_each_cell(
+          field, lo, hi, [&](uint32_t i, uint32_t j, Real low, Real high, uint32_t triangles) {
+            const Vec3 box_lo = Vec3(Real(i) * field.spacing_x, low, Real(j) * field.spacing_z);
+            const Vec3 box_hi =
+                Vec3(Real(i + 1) * field.spacing_x, high, Real(j + 1) * field.spacing_z);
+            MeshTriangle pair[2];
+            field.cell_corners(i, j, pair);
+            // The cell's triangles that are there (a hole takes one or both away).
+            const std::span<const MeshTriangle> there(pair + (triangles == 2u ? 1 : 0),
+                                                      triangles == 3u ? 2 : 1);
+            if (clear_of_box(query, box_lo, box_hi, cell_speculative, there)) return;
+            for (const MeshTriangle& t : there) {
+              if (reach_triangle(query, t, reach)) contact(t);
+            }
+          });
     }
     return;
   }

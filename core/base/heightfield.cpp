@@ -62,12 +62,16 @@ HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, R
   f.max_height = -f.min_height;
   for (std::size_t k = 0; k < n; ++k) {
     const double h = heights[k];
+    if (std::isnan(h)) {
+      f.heights[k] = std::numeric_limits<float>::quiet_NaN();  // a hole
+      continue;
+    }
     if (!std::isfinite(h) || !(std::fabs(h) <= limits::kMaxPosition)) {
       throw Error("shape.heights",
                   "height " + std::to_string(k) + " (row " + std::to_string(k / columns) +
                       ", column " + std::to_string(k % columns) + ") must be finite and in [" +
                       show_value(-limits::kMaxPosition) + ", " + show_value(limits::kMaxPosition) +
-                      "] m, got " + show_value(h));
+                      "] m (or NaN for a hole), got " + show_value(h));
     }
     f.heights[k] = float(heights[k]);
     // The stored (float) heights are the surface; the bounds are theirs.
@@ -75,6 +79,18 @@ HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, R
     f.max_height = std::max(f.max_height, Real(f.heights[k]));
   }
   set_active_edges(f);
+  if (f.has_holes) {
+    // A field the holes leave no triangle has no surface (and no bounds) to collide with.
+    bool any = false;
+    for (uint32_t j = 0; j + 1 < f.rows && !any; ++j) {
+      for (uint32_t i = 0; i + 1 < f.columns && !any; ++i) any = f.cell_triangles(i, j) != 0;
+    }
+    if (!any) {
+      throw Error("shape.heights",
+                  "the holes (NaN heights) leave no triangle: every cell has a hole at a corner of "
+                  "both its triangles");
+    }
+  }
   return f;
 }
 
@@ -117,17 +133,27 @@ void set_edge_bit(std::vector<uint8_t>& bits, std::size_t c, int k) {
 }  // namespace
 
 void set_active_edges(HeightField& f) {
+  f.has_holes =
+      std::any_of(f.heights.begin(), f.heights.end(), [](float h) { return std::isnan(h); });
   const uint32_t cells_x = f.columns - 1, cells_z = f.rows - 1;
   const std::size_t cells = std::size_t(cells_x) * cells_z;
   f.edge_bits.assign((3 * cells + 7) / 8 + 2, 0);
+  // An edge with a triangle on both sides is active where they meet at a convex angle; with one
+  // on one side only (a hole's on the other), it is a border.
+  const auto decide = [&f](std::size_t c, int k, bool one, bool other, const Vec3& n_one,
+                           const Vec3& n_other, const Vec3& edge) {
+    if (one != other || (one && edge_is_active(n_one, n_other, edge)))
+      set_edge_bit(f.edge_bits, c, k);
+  };
   for (uint32_t j = 0; j < cells_z; ++j) {
     for (uint32_t i = 0; i < cells_x; ++i) {
       const std::size_t c = std::size_t(j) * cells_x + i;
       MeshTriangle own[2];
       f.cell_corners(i, j, own);
+      const uint32_t here = f.cell_triangles(i, j);
       const Vec3 lower = own[0].normal(), upper = own[1].normal();
       // The diagonal, as the lower triangle walks it (its edge 0, p00 to p11).
-      if (edge_is_active(lower, upper, own[0].v[1] - own[0].v[0])) set_edge_bit(f.edge_bits, c, 0);
+      decide(c, 0, here & 1u, here & 2u, lower, upper, own[0].v[1] - own[0].v[0]);
       // Side z = j, as the lower triangle walks it (its edge 2, p10 to p00), against the upper
       // triangle of cell (i, j - 1).
       if (j == 0) {
@@ -135,9 +161,8 @@ void set_active_edges(HeightField& f) {
       } else {
         MeshTriangle below[2];
         f.cell_corners(i, j - 1, below);
-        if (edge_is_active(lower, below[1].normal(), own[0].v[0] - own[0].v[2])) {
-          set_edge_bit(f.edge_bits, c, 1);
-        }
+        decide(c, 1, here & 1u, f.cell_triangles(i, j - 1) & 2u, lower, below[1].normal(),
+               own[0].v[0] - own[0].v[2]);
       }
       // Side x = i, as the upper triangle walks it (its edge 0, p00 to p01), against the lower
       // triangle of cell (i - 1, j).
@@ -146,9 +171,8 @@ void set_active_edges(HeightField& f) {
       } else {
         MeshTriangle left[2];
         f.cell_corners(i - 1, j, left);
-        if (edge_is_active(upper, left[0].normal(), own[1].v[1] - own[1].v[0])) {
-          set_edge_bit(f.edge_bits, c, 2);
-        }
+        decide(c, 2, here & 2u, f.cell_triangles(i - 1, j) & 1u, upper, left[0].normal(),
+               own[1].v[1] - own[1].v[0]);
       }
     }
   }
@@ -237,7 +261,9 @@ bool ray_cast_heightfield(const HeightField& field, const Vec3& origin, const Ve
   const int64_t max_cells = int64_t(field.columns) + int64_t(field.rows);
   for (int64_t walked = 0; walked <= max_cells; ++walked) {
     const uint32_t c = uint32_t(j) * (field.columns - 1) + uint32_t(i);
+    const uint32_t there = field.cell_triangles(uint32_t(i), uint32_t(j));
     for (uint32_t t = 2 * c; t <= 2 * c + 1; ++t) {
+      if (!((there >> (t & 1)) & 1u)) continue;
       const MeshTriangle tri = field.triangle(t);
       Real th;
       if (!ray_triangle(origin, dir, tri.v[0], tri.v[1], tri.v[2], best, th)) continue;

@@ -18,11 +18,17 @@ namespace elan::detail {
 // triangle 2 c (the corner (i+1, j)) and 2 c + 1 (the corner (i, j+1)), c = j (columns - 1) + i;
 // both face up (+y). perf: 4 bytes a sample (float heights) and 3 bits a cell (the active edges
 // the cell owns, as Jolt's HeightFieldShape keeps them): 4.375 bytes a sample in all.
+//
+// A NaN sample is a hole (Jolt's cNoCollisionValue): a triangle with a hole at one of its corners
+// is not there, for contacts, casts and queries alike, and the edges of the triangles beside it
+// are a border (active).
 struct HeightField {
   uint32_t columns = 0, rows = 0;
   Real spacing_x = 1, spacing_z = 1;
   std::vector<float> heights;
-  Real min_height = 0, max_height = 0;
+  Real min_height = 0, max_height = 0;  // of the samples that are not holes
+  // Whether any sample is a hole. perf: a field without holes walks its cells without looking.
+  bool has_holes = false;
   // Cell c's three bits from bit 3 c on: its diagonal, its side z = j (p00 to p10) and its side
   // x = i (p00 to p01), 1 where active (see triangle()). The other two sides are the neighbours'
   // (the grid's last row and column: the border, always active). Two spare bytes at the end, so
@@ -44,21 +50,36 @@ struct HeightField {
   // cells reads the four samples once for both, and needs no division to find the cell.
   void cell_corners(uint32_t i, uint32_t j, MeshTriangle (&pair)[2]) const;
   uint8_t active_edges_of(const MeshTriangle& m) const;
+  // Which of cell (i, j)'s two triangles are there: bit 0 triangle 2 c, bit 1 triangle 2 c + 1
+  // (see above: a hole at a corner takes a triangle away).
+  uint32_t cell_triangles(uint32_t i, uint32_t j) const {
+    if (!has_holes) return 3;
+    const bool h00 = !std::isnan(height(i, j)), h11 = !std::isnan(height(i + 1, j + 1));
+    const bool diagonal = h00 && h11;
+    return uint32_t(diagonal && !std::isnan(height(i + 1, j))) |
+           uint32_t(diagonal && !std::isnan(height(i, j + 1))) << 1;
+  }
+  bool has_triangle(uint32_t t) const {
+    const uint32_t c = t / 2, cells_x = columns - 1;
+    return (cell_triangles(c % cells_x, c / cells_x) >> (t & 1)) & 1u;
+  }
 };
 
-// Derives field.edge_bits from its heights: each edge decided once, from the unit normals of the
-// two triangles that share it (edge_is_active), so both see it alike.
+// Derives field.has_holes and field.edge_bits from its heights: each edge decided once, from the
+// unit normals of the two triangles that share it (edge_is_active), so both see it alike; an edge
+// with a triangle on one side only (the grid's border, a hole's) is active.
 void set_active_edges(HeightField& field);
 
-// Checks and builds. Throws elan::Error: "shape.heights" (fewer than 2 x 2, a row of another
-// length, a height not finite or past the supported coordinates), "shape.spacing" (zero,
-// negative, not finite).
+// Checks and builds; a NaN height is a hole. Throws elan::Error: "shape.heights" (fewer than 2 x
+// 2, a row of another length, an infinite height or one past the supported coordinates, no
+// triangle left by the holes), "shape.spacing" (zero, negative, not finite).
 HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, Real spacing_x,
                               Real spacing_z);
 
-// Calls f(uint32_t i, uint32_t j, Real low, Real high) for each cell (i, j) under [lo, hi] (x and
-// z) whose heights (low to high: the least and greatest of its four) reach the box's y range, row
-// by row, cell by cell.
+// Calls f(uint32_t i, uint32_t j, Real low, Real high, uint32_t triangles) for each cell (i, j)
+// under [lo, hi] (x and z) with a triangle (`triangles`: cell_triangles) whose heights (low to
+// high: the least and greatest of its triangles' corners) reach the box's y range, row by row,
+// cell by cell.
 template <class F>
 void for_each_cell(const HeightField& field, const Vec3& lo, const Vec3& hi, F&& f) {
   if (lo.y() > field.max_height || hi.y() < field.min_height) return;
@@ -73,6 +94,28 @@ void for_each_cell(const HeightField& field, const Vec3& lo, const Vec3& hi, F&&
   uint32_t i0, i1, j0, j1;
   if (!cell_range(lo.x(), hi.x(), field.spacing_x, field.columns, i0, i1)) return;
   if (!cell_range(lo.z(), hi.z(), field.spacing_z, field.rows, j0, j1)) return;
+  if (field.has_holes) {
+    for (uint32_t j = j0; j <= j1; ++j) {
+      for (uint32_t i = i0; i <= i1; ++i) {
+        const uint32_t triangles = field.cell_triangles(i, j);
+        if (triangles == 0) continue;
+        // The corners of the triangles that are there (a hole's sample is NaN: left out).
+        const Real h00 = field.height(i, j), h11 = field.height(i + 1, j + 1);
+        Real low = std::min(h00, h11), high = std::max(h00, h11);
+        if (triangles & 1u) {
+          low = std::min(low, field.height(i + 1, j));
+          high = std::max(high, field.height(i + 1, j));
+        }
+        if (triangles & 2u) {
+          low = std::min(low, field.height(i, j + 1));
+          high = std::max(high, field.height(i, j + 1));
+        }
+        if (low > hi.y() || high < lo.y()) continue;
+        f(i, j, low, high, triangles);
+      }
+    }
+    return;
+  }
   for (uint32_t j = j0; j <= j1; ++j) {
     for (uint32_t i = i0; i <= i1; ++i) {
       const Real h00 = field.height(i, j), h10 = field.height(i + 1, j);
@@ -80,7 +123,7 @@ void for_each_cell(const HeightField& field, const Vec3& lo, const Vec3& hi, F&&
       const Real low = std::min(std::min(h00, h10), std::min(h01, h11));
       const Real high = std::max(std::max(h00, h10), std::max(h01, h11));
       if (low > hi.y() || high < lo.y()) continue;
-      f(i, j, low, high);
+      f(i, j, low, high, 3u);
     }
   }
 }
@@ -89,10 +132,10 @@ void for_each_cell(const HeightField& field, const Vec3& lo, const Vec3& hi, F&&
 // row, cell by cell, lower triangle first.
 template <class F>
 void for_each_triangle_index(const HeightField& field, const Vec3& lo, const Vec3& hi, F&& f) {
-  for_each_cell(field, lo, hi, [&](uint32_t i, uint32_t j, Real, Real) {
+  for_each_cell(field, lo, hi, [&](uint32_t i, uint32_t j, Real, Real, uint32_t triangles) {
     const uint32_t c = j * (field.columns - 1) + i;
-    f(2 * c);
-    f(2 * c + 1);
+    if (triangles & 1u) f(2 * c);
+    if (triangles & 2u) f(2 * c + 1);
   });
 }
 

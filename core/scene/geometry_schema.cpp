@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -156,7 +157,10 @@ void parse_heightfield(const Ctx& ctx, const Json& j, ShapeDef& s) {
   s.heights.reserve(rows.size() * columns);
   for (std::size_t r = 0; r < rows.size(); ++r) {
     for (std::size_t c = 0; c < columns; ++c) {
-      s.heights.push_back(to_real(ctx, rows[r][c], "shape.heights" + at(r) + at(c)));
+      // null: a hole (no triangle has the sample for a corner), NaN in the definition.
+      const Json& h = rows[r][c];
+      s.heights.push_back(h.is_null() ? std::numeric_limits<Real>::quiet_NaN()
+                                      : to_real(ctx, h, "shape.heights" + at(r) + at(c)));
     }
   }
   const Json& spacing =

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
-// A world with a mesh terrain, a heightfield beside it and bodies of every shape (compounds among
-// them) raining on both: the same state hash every step at 1 to 4 threads and with both
-// broadphases (geometry_determinism.cpp checks a denser pile at 1 and 2); a snapshot restored and
-// a rollback state rolled back to continue bit for bit, and a rollback frame holds no mesh.
+// A world with a mesh terrain, a heightfield beside it (with a hole) and bodies of every shape
+// (compounds among them) raining on both: the same state hash every step at 1 to 4 threads and with
+// both broadphases (geometry_determinism.cpp checks a denser pile at 1 and 2); a snapshot restored
+// and a rollback state rolled back to continue bit for bit, and a rollback frame holds no mesh.
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "elan/snapshot.hpp"
@@ -29,8 +30,15 @@ World geometry_world(int threads, BroadphaseType broadphase) {
                  at(Vec3(mesh_terrain.x0, 0, mesh_terrain.z0), MotionType::Static));
   test::Terrain field_terrain;  // beside it, x in [8, 24]
   field_terrain.x0 = 8;
-  test::add_body(world, test::heightfield_shape(field_terrain),
-                 at(Vec3(field_terrain.x0, 0, field_terrain.z0), MotionType::Static));
+  ShapeDef field = test::heightfield_shape(field_terrain);
+  // A hole in it under the rain, samples x in [14, 15] and z in [-1, 0]: some bodies fall through.
+  for (int j = 14; j <= 16; ++j) {
+    for (int i = 12; i <= 14; ++i) {
+      field.heights[std::size_t(j * (field_terrain.cells + 1) + i)] =
+          std::numeric_limits<Real>::quiet_NaN();
+    }
+  }
+  test::add_body(world, field, at(Vec3(field_terrain.x0, 0, field_terrain.z0), MotionType::Static));
   const ShapeId shapes[] = {
       world.create_shape(test::sphere_shape(Real(0.2))),
       world.create_shape(test::box_shape(Vec3(Real(0.25), Real(0.15), Real(0.2)))),
@@ -76,6 +84,11 @@ TEST(GeometryWorld, SameHashesForAnyThreadCountAndBroadphase) {
   const std::vector<uint64_t> reference = run(reference_world, kSteps);
   EXPECT_TRUE(test::all_finite(reference_world));
   EXPECT_GT(reference_world.last_step().contacts, 200u) << "the bodies landed and touch";
+  int fell = 0;  // through the heightfield's hole
+  for (std::size_t i = 2; i < reference_world.body_count(); ++i) {
+    fell += reference_world.position(reference_world.body_at(i)).y() < -5;
+  }
+  EXPECT_GT(fell, 0);
   for (BroadphaseType broadphase : {BroadphaseType::SweepAndPrune, BroadphaseType::AllPairs}) {
     for (int threads = 1; threads <= 4; ++threads) {
       // The sanitized runs check 2 threads (the code under 3 and 4 is the same, with other block

@@ -124,6 +124,13 @@ TEST(SceneGeometry, ReadsAHeightfieldRowByRow) {
   for (int k = 0; k < 6; ++k) EXPECT_EQ(h.heights[std::size_t(k)], Real(k));
   EXPECT_EQ(h.spacing_x, Real(0.5));
   EXPECT_EQ(h.spacing_z, Real(2));
+  // null is a hole: NaN in the definition, and the field loads with the triangles left.
+  const std::string holed = field_body("[[0, 1, null], [3, 4, 5]]");
+  const Scene t = one_body(holed);
+  ASSERT_EQ(t.bodies[0].shape.heights.size(), 6u);
+  EXPECT_TRUE(std::isnan(t.bodies[0].shape.heights[2]));
+  EXPECT_EQ(t.bodies[0].shape.heights[1], Real(1));
+  EXPECT_EQ(error_of(bodies(holed), true), "");
 }
 
 TEST(SceneGeometry, HeightfieldErrorsNameTheBodyFieldAndRow) {
@@ -143,6 +150,10 @@ TEST(SceneGeometry, HeightfieldErrorsNameTheBodyFieldAndRow) {
             std::string::npos);
   EXPECT_EQ(error_of(bodies(field_body("[[0, 1], [2, 3]]", "[1, 1]", "dynamic"))),
             "t.json: body 1 (\"h\"): motion: a heightfield must be static");
+  // Holes that leave no triangle: refused when the field is built.
+  EXPECT_EQ(error_of(bodies(field_body("[[0, 1], [2, null]]")), true),
+            "t.json: body 1 (\"h\"): shape.heights: the holes (NaN heights) leave no triangle: "
+            "every cell has a hole at a corner of both its triangles");
 }
 
 std::string compound_body(const std::string& children) {

@@ -4,7 +4,9 @@
 // bytes a sample.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -124,9 +126,16 @@ TEST(HeightField, Validation) {
   EXPECT_EQ(error_field(std::vector<Real>(7, 0), 3, 1, 1, m), "shape.heights");
   EXPECT_NE(m.find("heights.size() 7 is not a multiple of columns 3"), std::string::npos) << m;
   std::vector<Real> h(6, 0);
-  h[4] = NAN;
+  h[4] = INFINITY;
   EXPECT_EQ(error_field(h, 3, 1, 1, m), "shape.heights");
   EXPECT_NE(m.find("row 1, column 1"), std::string::npos) << m;
+  // A NaN is a hole: here it leaves cell (1, 0)'s lower triangle, so the field is accepted.
+  h[4] = NAN;
+  EXPECT_EQ(error_field(h, 3, 1, 1, m), "") << m;
+  // A hole on the diagonal of a field of one cell leaves no triangle.
+  EXPECT_EQ(error_field(std::vector<Real>{NAN, 0, 0, 0}, 2, 1, 1, m), "shape.heights");
+  EXPECT_NE(m.find("leave no triangle"), std::string::npos) << m;
+  EXPECT_EQ(error_field(std::vector<Real>{0, 0, NAN, 0}, 2, 1, 1, m), "");
   h[4] = 2e5f;
   EXPECT_EQ(error_field(h, 3, 1, 1, m), "shape.heights");
   h[4] = 0;
@@ -138,6 +147,139 @@ TEST(HeightField, Validation) {
   const HeightField f = build_heightfield(std::vector<Real>{1, -2, 3, 0.5f}, 2, 1, 1);
   EXPECT_EQ(f.min_height, -2);
   EXPECT_EQ(f.max_height, 3);
+  EXPECT_FALSE(f.has_holes);
+  // The bounds are those of the samples that are not holes.
+  const HeightField g = build_heightfield(std::vector<Real>{1, -2, NAN, 0.5f, 4, 2}, 2, 1, 1);
+  EXPECT_TRUE(g.has_holes);
+  EXPECT_EQ(g.min_height, -2);
+  EXPECT_EQ(g.max_height, 4);
+}
+
+// A flat 6 x 6 field (5 x 5 cells) with a hole at sample (2, 2) and one at (5, 0): the triangles
+// with a hole at a corner are gone, every other is there, and each query walks the ones there.
+HeightField holed() {
+  std::vector<Real> h(36, Real(0.5));
+  h[2 * 6 + 2] = NAN;
+  h[0 * 6 + 5] = NAN;
+  return build_heightfield(h, 6, 1, 1);
+}
+
+// Whether triangle t of `f` has a hole at a corner (its corners read as cell_corners makes them).
+bool touches_hole(const HeightField& f, uint32_t t) {
+  const MeshTriangle m = f.corners(t);
+  return std::isnan(m.v[0].y()) || std::isnan(m.v[1].y()) || std::isnan(m.v[2].y());
+}
+
+TEST(HeightField, HolesTakeAwayTheTrianglesAtTheirCorners) {
+  const HeightField f = holed();
+  EXPECT_TRUE(f.has_holes);
+  // Around (2, 2): cells (1, 1) and (2, 2) have it on their diagonal (both triangles gone), cell
+  // (2, 1) at its upper triangle's corner, cell (1, 2) at its lower's. (5, 0) is cell (4, 0)'s
+  // lower triangle's corner.
+  EXPECT_EQ(f.cell_triangles(1, 1), 0u);
+  EXPECT_EQ(f.cell_triangles(2, 2), 0u);
+  EXPECT_EQ(f.cell_triangles(2, 1), 1u);
+  EXPECT_EQ(f.cell_triangles(1, 2), 2u);
+  EXPECT_EQ(f.cell_triangles(4, 0), 2u);
+  EXPECT_EQ(f.cell_triangles(0, 0), 3u);
+  uint32_t there = 0;
+  for (uint32_t t = 0; t < 50; ++t) {
+    EXPECT_EQ(f.has_triangle(t), !touches_hole(f, t)) << t;
+    there += f.has_triangle(t);
+  }
+  EXPECT_EQ(there, 50u - 7u);
+  // Every walk visits exactly the triangles there, in its order.
+  std::vector<uint32_t> seen;
+  for_each_triangle(f, Vec3(-1, -1, -1), Vec3(9, 1, 9), [&](const MeshTriangle& t) {
+    EXPECT_FALSE(touches_hole(f, t.index)) << t.index;
+    seen.push_back(t.index);
+  });
+  EXPECT_EQ(seen.size(), std::size_t(there));
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  // A box about the hole meets four cells: two with no triangle left, one each in the others.
+  seen.clear();
+  for_each_triangle_index(f, Vec3(1.6f, 0, 1.6f), Vec3(2.4f, 1, 2.4f),
+                          [&](uint32_t t) { seen.push_back(t); });
+  EXPECT_EQ(seen, (std::vector<uint32_t>{2 * (1 * 5 + 2), 2 * (2 * 5 + 1) + 1}));
+  // Over cell (2, 1) alone, its lower triangle only.
+  seen.clear();
+  for_each_triangle_index(f, Vec3(2.2f, 0, 1.2f), Vec3(2.8f, 1, 1.8f),
+                          [&](uint32_t t) { seen.push_back(t); });
+  EXPECT_EQ(seen, std::vector<uint32_t>{2 * (1 * 5 + 2)});
+}
+
+// On a flat field an edge is active exactly where it is a border: of the grid, or of a hole (no
+// triangle there on its other side). Counted from the corners: an edge two triangles there share
+// is inside, one only one has is a border.
+TEST(HeightField, TheEdgesAroundAHoleAreActive) {
+  const HeightField f = holed();
+  const auto key = [](const Vec3& a, const Vec3& b) {
+    const auto id = [](const Vec3& p) {
+      return int(std::lround(p.x())) * 100 + int(std::lround(p.z()));
+    };
+    const int ia = id(a), ib = id(b);
+    return std::pair<int, int>(std::min(ia, ib), std::max(ia, ib));
+  };
+  std::map<std::pair<int, int>, int> sharing;
+  for (uint32_t t = 0; t < 50; ++t) {
+    if (!f.has_triangle(t)) continue;
+    const MeshTriangle m = f.corners(t);
+    for (int k = 0; k < 3; ++k) ++sharing[key(m.v[k], m.v[(k + 1) % 3])];
+  }
+  int borders = 0;
+  for (uint32_t t = 0; t < 50; ++t) {
+    if (!f.has_triangle(t)) continue;
+    const MeshTriangle m = f.triangle(t);
+    for (int k = 0; k < 3; ++k) {
+      const bool border = sharing[key(m.v[k], m.v[(k + 1) % 3])] == 1;
+      borders += border;
+      EXPECT_EQ(bool((m.active_edges >> k) & 1), border) << t << " " << k;
+    }
+  }
+  EXPECT_GT(borders, 20);  // the grid's 20 sides and the holes' rims
+}
+
+// Rays through the holes pass, as a brute force over the triangles there says.
+TEST(HeightField, RaysPassThroughHoles) {
+  std::vector<Real> h(std::size_t(30) * 25);
+  std::mt19937 holes(5);
+  for (uint32_t j = 0; j < 25; ++j) {
+    for (uint32_t i = 0; i < 30; ++i) {
+      h[j * 30 + i] =
+          holes() % 6 == 0 ? Real(NAN) : Real(1.5 * std::sin(0.7 * i) * std::cos(0.45 * j));
+    }
+  }
+  const HeightField f = build_heightfield(h, 30, 0.7f, 1.1f);
+  const uint32_t tris = 2 * (f.columns - 1) * (f.rows - 1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<Real> pos(-3, 30), unit(-1, 1);
+  int hits = 0, misses = 0;
+  for (int q = 0; q < 400; ++q) {
+    const Vec3 o{pos(rng), 4 * unit(rng), pos(rng)};
+    Vec3 d{unit(rng), unit(rng), unit(rng)};
+    if (q % 3 == 0) d = Vec3(0, -1, 0);  // straight down: into holes or onto triangles
+    Real best = -1;
+    for (uint32_t t = 0; t < tris; ++t) {
+      if (!f.has_triangle(t)) continue;
+      const MeshTriangle tri = f.triangle(t);
+      Real th;
+      if (ray_triangle(o, d, tri.v[0], tri.v[1], tri.v[2], 60, th) && (best < 0 || th < best)) {
+        best = th;
+      }
+    }
+    SurfaceHit hit;
+    const bool found = ray_cast_heightfield(f, o, d, 60, hit);
+    ASSERT_EQ(found, best >= 0) << "ray " << q;
+    if (!found) {
+      misses += q % 3 == 0 && o.x() > 0 && o.x() < 20 && o.z() > 0 && o.z() < 26 && o.y() > 2;
+      continue;
+    }
+    ++hits;
+    EXPECT_EQ(hit.t, best) << "ray " << q;
+    EXPECT_TRUE(f.has_triangle(hit.triangle));
+  }
+  EXPECT_GT(hits, 50);
+  EXPECT_GT(misses, 5);  // downward rays over the field that went through a hole
 }
 
 TEST(HeightField, RayNearestHitEqualsBruteForce) {

@@ -213,9 +213,12 @@ MeshData heightfield(const ShapeDef& def) {
   };
   for (uint32_t j = 0; j + 1 < rows; ++j) {
     for (uint32_t i = 0; i + 1 < cols; ++i) {
-      // Counter-clockwise seen from above (+Y).
-      flat_triangle(m, at(i, j), at(i, j + 1), at(i + 1, j + 1));
-      flat_triangle(m, at(i, j), at(i + 1, j + 1), at(i + 1, j));
+      // Counter-clockwise seen from above (+Y). A triangle with a hole (a NaN height) at a
+      // corner is not there.
+      const Eigen::Vector3f p00 = at(i, j), p01 = at(i, j + 1), p11 = at(i + 1, j + 1),
+                            p10 = at(i + 1, j);
+      if (!std::isnan(p00.y() + p01.y() + p11.y())) flat_triangle(m, p00, p01, p11);
+      if (!std::isnan(p00.y() + p11.y() + p10.y())) flat_triangle(m, p00, p11, p10);
     }
   }
   return m;

@@ -67,7 +67,8 @@ struct ShapeDef {
 
   /// Heightfield: `heights` row after row, `columns` samples a row (at least 2 rows of 2). The
   /// sample heights[j * columns + i] is the point (i spacing_x, heights[..], j spacing_z) of the
-  /// shape frame; each cell is two triangles; bodies collide with the surface from above.
+  /// shape frame; each cell is two triangles; bodies collide with the surface from above. A NaN
+  /// height is a hole: the triangles with that sample at a corner are not there.
   std::vector<Real> heights;  ///< m
   uint32_t columns = 0;
   Real spacing_x = 1;  ///< m, > 0

@@ -163,3 +163,23 @@ def test_setters_and_getters(floor_world):
     w.destroy_body(b)
     assert not w.is_valid(b)
     w.step(5)
+
+
+def test_heightfield_hole_lets_a_ball_fall_through():
+    # NaN heights are holes: the triangles at a hole's corners are gone. A ball over the hole
+    # falls freely (y0 - g t^2 / 2, 0.4 % more from the substeps' Euler); one beside it rests.
+    w = elan.World(threads=1)
+    heights = np.zeros((10, 10))
+    heights[4, 4] = np.nan
+    field = w.create_body(
+        w.create_shape("heightfield", heights=heights), motion="static", position=(0, 0, 0)
+    )
+    ball = w.create_shape("sphere", radius=0.1)
+    over = w.create_body(ball, position=(3.6, 1, 3.7))
+    beside = w.create_body(ball, position=(1.5, 1, 1.5))
+    w.step(60)
+    drop = 0.5 * 9.81 * (60 / 60) ** 2
+    assert 1 - w.position(over)[1] == pytest.approx(drop, rel=0.01)
+    assert w.position(beside)[1] == pytest.approx(0.1, abs=0.005)
+    assert w.cast_ray((3.6, 5, 3.7), (0, -1, 0), 5.5) is None
+    assert w.cast_ray((2.5, 5, 2.5), (0, -1, 0), 5.5)["body"] == field
