@@ -138,6 +138,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "body 0 (\"h\"): shape.heights: row 2 has 2 heights, row 0 has 3"},
         BadScene{"heightfield_too_small.json",
                  "body 0 (\"h\"): shape.heights: at least 2 rows of 2 heights"},
+        BadScene{"heightfield_all_holes.json",
+                 "body 0 (\"h\"): shape.heights: the holes (NaN heights) leave no triangle"},
         BadScene{"heightfield_zero_spacing.json",
                  "body 0 (\"h\"): shape.spacing[1]: must be positive"},
         BadScene{"dynamic_heightfield.json",
