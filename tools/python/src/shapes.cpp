@@ -144,9 +144,10 @@ void bind_shapes(pybind11::class_<PyWorld>& c) {
       "(radius m), 'box' (half_extents m), 'capsule' and 'cylinder' (radius, half_height m; "
       "axis local Y), 'convex_hull' (points: (n, 3) m), 'plane' (normal, offset m: the solid "
       "dot(normal, x) <= offset; static bodies only), 'mesh' (vertices (n, 3) m, triangles (m, "
-      "3) indices; static only), 'heightfield' (heights (rows, columns) m, spacing_x, spacing_z "
-      "m; static only), 'compound' (children: dicts with type, its parameters, position (m) "
-      "and orientation (w, x, y, z)). Raises elan.Error naming the field.");
+      "3) indices; static only), 'heightfield' (heights (rows, columns) m, NaN for a hole, "
+      "spacing_x, spacing_z m; static only), 'compound' (children: dicts with type, its "
+      "parameters, position (m) and orientation (w, x, y, z)). Raises elan.Error naming the "
+      "field.");
   c.def(
       "destroy_shape", [](PyWorld& w, uint32_t shape) { w.get().destroy_shape(ShapeId{shape}); },
       arg("shape"), "Destroys a shape no body uses (elan.Error 'shape' otherwise).");
