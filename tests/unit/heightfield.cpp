@@ -155,6 +155,20 @@ TEST(HeightField, Validation) {
   EXPECT_EQ(g.max_height, 4);
 }
 
+// The ray's nearest hit t over every triangle of the field there (holes skipped), or -1.
+Real nearest_hit_by_brute_force(const HeightField& f, const Vec3& o, const Vec3& d, Real max_t) {
+  Real best = -1;
+  for (uint32_t t = 0; t < 2 * (f.columns - 1) * (f.rows - 1); ++t) {
+    if (!f.has_triangle(t)) continue;
+    const MeshTriangle tri = f.triangle(t);
+    Real th;
+    if (ray_triangle(o, d, tri.v[0], tri.v[1], tri.v[2], max_t, th) && (best < 0 || th < best)) {
+      best = th;
+    }
+  }
+  return best;
+}
+
 // A flat 6 x 6 field (5 x 5 cells) with a hole at sample (2, 2) and one at (5, 0): the triangles
 // with a hole at a corner are gone, every other is there, and each query walks the ones there.
 HeightField holed() {
@@ -250,7 +264,6 @@ TEST(HeightField, RaysPassThroughHoles) {
     }
   }
   const HeightField f = build_heightfield(h, 30, 0.7f, 1.1f);
-  const uint32_t tris = 2 * (f.columns - 1) * (f.rows - 1);
   std::mt19937 rng(11);
   std::uniform_real_distribution<Real> pos(-3, 30), unit(-1, 1);
   int hits = 0, misses = 0;
@@ -258,15 +271,7 @@ TEST(HeightField, RaysPassThroughHoles) {
     const Vec3 o{pos(rng), 4 * unit(rng), pos(rng)};
     Vec3 d{unit(rng), unit(rng), unit(rng)};
     if (q % 3 == 0) d = Vec3(0, -1, 0);  // straight down: into holes or onto triangles
-    Real best = -1;
-    for (uint32_t t = 0; t < tris; ++t) {
-      if (!f.has_triangle(t)) continue;
-      const MeshTriangle tri = f.triangle(t);
-      Real th;
-      if (ray_triangle(o, d, tri.v[0], tri.v[1], tri.v[2], 60, th) && (best < 0 || th < best)) {
-        best = th;
-      }
-    }
+    const Real best = nearest_hit_by_brute_force(f, o, d, 60);
     SurfaceHit hit;
     const bool found = ray_cast_heightfield(f, o, d, 60, hit);
     ASSERT_EQ(found, best >= 0) << "ray " << q;
@@ -284,7 +289,6 @@ TEST(HeightField, RaysPassThroughHoles) {
 
 TEST(HeightField, RayNearestHitEqualsBruteForce) {
   const HeightField f = bumpy(30, 25, 0.7f, 1.1f);
-  const uint32_t tris = 2 * (f.columns - 1) * (f.rows - 1);
   std::mt19937 rng(11);
   std::uniform_real_distribution<Real> pos(-3, 30), unit(-1, 1);
   int hits = 0, below = 0;
@@ -293,14 +297,7 @@ TEST(HeightField, RayNearestHitEqualsBruteForce) {
     Vec3 d{unit(rng), unit(rng), unit(rng)};
     if (q % 7 == 0) d = Vec3(0, q % 14 == 0 ? -1 : 1, 0);  // vertical rays
     if (q % 11 == 0) d.x() = 0;                            // rays in a z column
-    Real best = -1;
-    for (uint32_t t = 0; t < tris; ++t) {
-      const MeshTriangle tri = f.triangle(t);
-      Real th;
-      if (ray_triangle(o, d, tri.v[0], tri.v[1], tri.v[2], 60, th) && (best < 0 || th < best)) {
-        best = th;
-      }
-    }
+    const Real best = nearest_hit_by_brute_force(f, o, d, 60);
     SurfaceHit hit;
     const bool found = ray_cast_heightfield(f, o, d, 60, hit);
     ASSERT_EQ(found, best >= 0) << "ray " << q;
