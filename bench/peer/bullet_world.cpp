@@ -413,6 +413,10 @@ BuiltShape BulletWorld::Impl::build(const ShapeDef& s) {
       // Bullet's heightfield puts its local origin at the centre of its bounds, so the body's
       // frame is that centre in the scene's shape frame; flipQuadEdges splits each cell along the
       // diagonal (i, j) - (i+1, j+1), as elan's heightfield does, so both are one surface.
+      // btHeightfieldTerrainShape has no holes: a scene with one is not a scene both can run.
+      if (std::any_of(s.heights.begin(), s.heights.end(), [](Real h) { return std::isnan(h); })) {
+        throw std::runtime_error("bullet peer: a heightfield with holes (Bullet's has none)");
+      }
       auto data = std::make_unique<std::vector<float>>(s.heights.begin(), s.heights.end());
       const auto [lo, hi] = std::minmax_element(data->begin(), data->end());
       const int columns = int(s.columns), rows = int(s.heights.size() / s.columns);

@@ -58,8 +58,6 @@ HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, R
   f.spacing_x = spacing_x;
   f.spacing_z = spacing_z;
   f.heights.resize(n);
-  f.min_height = std::numeric_limits<Real>::max();
-  f.max_height = -f.min_height;
   for (std::size_t k = 0; k < n; ++k) {
     const double h = heights[k];
     if (std::isnan(h)) {
@@ -74,24 +72,43 @@ HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, R
                       "] m (or NaN for a hole), got " + show_value(h));
     }
     f.heights[k] = float(heights[k]);
-    // The stored (float) heights are the surface; the bounds are theirs.
-    f.min_height = std::min(f.min_height, Real(f.heights[k]));
-    f.max_height = std::max(f.max_height, Real(f.heights[k]));
   }
   set_active_edges(f);
-  if (f.has_holes) {
-    // A field the holes leave no triangle has no surface (and no bounds) to collide with.
-    bool any = false;
-    for (uint32_t j = 0; j + 1 < f.rows && !any; ++j) {
-      for (uint32_t i = 0; i + 1 < f.columns && !any; ++i) any = f.cell_triangles(i, j) != 0;
+  set_bounds(f);
+  return f;
+}
+
+void set_bounds(HeightField& f) {
+  // The stored (float) heights are the surface; the bounds are theirs.
+  Real lo = std::numeric_limits<Real>::max(), hi = -lo;
+  if (!f.has_holes) {
+    for (const float h : f.heights) {
+      lo = std::min(lo, Real(h));
+      hi = std::max(hi, Real(h));
     }
-    if (!any) {
+  } else {
+    // The corners of the triangles there: a sample only holes surround bounds nothing.
+    for (uint32_t j = 0; j + 1 < f.rows; ++j) {
+      for (uint32_t i = 0; i + 1 < f.columns; ++i) {
+        const uint32_t there = f.cell_triangles(i, j);
+        if (there == 0) continue;
+        for (const Real h : {f.height(i, j), f.height(i + 1, j + 1),
+                             (there & 1u) ? f.height(i + 1, j) : f.height(i, j),
+                             (there & 2u) ? f.height(i, j + 1) : f.height(i, j)}) {
+          lo = std::min(lo, h);
+          hi = std::max(hi, h);
+        }
+      }
+    }
+    // A field the holes leave no triangle has no surface (and no bounds) to collide with.
+    if (!(lo <= hi)) {
       throw Error("shape.heights",
                   "the holes (NaN heights) leave no triangle: every cell has a hole at a corner of "
                   "both its triangles");
     }
   }
-  return f;
+  f.min_height = lo;
+  f.max_height = hi;
 }
 
 MeshTriangle HeightField::corners(uint32_t t) const {

@@ -26,7 +26,7 @@ struct HeightField {
   uint32_t columns = 0, rows = 0;
   Real spacing_x = 1, spacing_z = 1;
   std::vector<float> heights;
-  Real min_height = 0, max_height = 0;  // of the samples that are not holes
+  Real min_height = 0, max_height = 0;  // of the triangles' corners (holes left out)
   // Whether any sample is a hole. perf: a field without holes walks its cells without looking.
   bool has_holes = false;
   // Cell c's three bits from bit 3 c on: its diagonal, its side z = j (p00 to p10) and its side
@@ -69,6 +69,9 @@ struct HeightField {
 // unit normals of the two triangles that share it (edge_is_active), so both see it alike; an edge
 // with a triangle on one side only (the grid's border, a hole's) is active.
 void set_active_edges(HeightField& field);
+// Derives field.min_height and max_height from its heights (after set_active_edges): of the
+// corners of the triangles there. Throws elan::Error "shape.heights" when the holes leave none.
+void set_bounds(HeightField& field);
 
 // Checks and builds; a NaN height is a hole. Throws elan::Error: "shape.heights" (fewer than 2 x
 // 2, a row of another length, an infinite height or one past the supported coordinates, no

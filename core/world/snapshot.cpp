@@ -347,7 +347,22 @@ detail::HeightField read_heightfield(ByteReader& r) {
         f.spacing_z > 0)) {
     r.fail("heightfield spacing is not finite and positive");
   }
+  for (const float h : f.heights) {
+    if (!std::isnan(h) && !(std::fabs(h) <= limits::kMaxPosition)) {
+      r.fail("a heightfield sample is infinite or out of range");
+    }
+  }
+  // The derived parts as the builder derives them; the bounds saved must be those.
+  const Real saved_min = f.min_height, saved_max = f.max_height;
   detail::set_active_edges(f);
+  try {
+    detail::set_bounds(f);
+  } catch (const Error&) {
+    r.fail("a heightfield's holes leave no triangle");
+  }
+  if (f.min_height != saved_min || f.max_height != saved_max) {
+    r.fail("heightfield bounds do not match its samples");
+  }
   return f;
 }
 

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Snapshots of worlds with a mesh, a heightfield and a compound: saved and loaded exactly (the
 // built surfaces, trees and parts bit for bit), stepped identically after, and refused when a
-// resealed file carries an index or a tree that does not fit.
+// resealed file carries an index, a tree or heightfield samples that do not fit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -246,6 +248,39 @@ TEST(SnapshotSurfaces, ResealedBadIndicesAndTreesAreRefused) {
   error = restore_error(bytes);
   EXPECT_NE(error.find("tree node has no children"), std::string::npos) << error;
 
+  // The heightfield: its samples (f32, after its bounds and their count) found by the first
+  // five heights, 0.1 ((k 7) % 5): 0, 0.2, 0.4, 0.1, 0.3.
+  std::vector<uint8_t> first;
+  for (const float h : {0.0f, 0.2f, 0.4f, 0.1f, 0.3f}) {
+    detail::ByteWriter(first).u32(std::bit_cast<uint32_t>(float(Real(h))));
+  }
+  const auto samples = std::search(saved.begin(), saved.end(), first.begin(), first.end());
+  ASSERT_NE(samples, saved.end());
+  const std::size_t samples_at = std::size_t(samples - saved.begin());
+  const auto set_f32 = [](std::vector<uint8_t>& b, std::size_t at, float v) {
+    const uint32_t u = std::bit_cast<uint32_t>(v);
+    for (int k = 0; k < 4; ++k) b[at + std::size_t(k)] = uint8_t(u >> (8 * k));
+  };
+  bytes = saved;
+  set_f32(bytes, samples_at + 8, std::numeric_limits<float>::infinity());
+  reseal(bytes);
+  error = restore_error(bytes);
+  EXPECT_NE(error.find("heightfield sample is infinite"), std::string::npos) << error;
+  // Bounds that are not the samples' (the greatest, 0.4 m, saved as 0.5).
+  bytes = saved;
+  set_f32(bytes, samples_at - 8, 0.5f);
+  reseal(bytes);
+  error = restore_error(bytes);
+  EXPECT_NE(error.find("bounds do not match"), std::string::npos) << error;
+  // Every sample a hole.
+  bytes = saved;
+  for (std::size_t k = 0; k < 30; ++k) {
+    set_f32(bytes, samples_at + 4 * k, std::numeric_limits<float>::quiet_NaN());
+  }
+  reseal(bytes);
+  error = restore_error(bytes);
+  EXPECT_NE(error.find("holes leave no triangle"), std::string::npos) << error;
+
   // Any byte of the file changed and resealed is refused or loads a world that steps: never a
   // crash, a hang or an out-of-range read.
   int refused = 0;
@@ -270,7 +305,7 @@ TEST(SnapshotSurfaces, ResealedBadIndicesAndTreesAreRefused) {
 
 // Versions 9 and 10 carry a mesh's binary tree (32-byte nodes: 3 f32 min, u32 index, 3 f32 max,
 // u32 count). Loaded, it is collapsed into the 4-wide tree the mesh is built with: the world steps
-// as it would have, and saves as version 11 the bytes it would have saved.
+// as it would have, and saves as the current version the bytes it would have saved.
 TEST(SnapshotSurfaces, Version10MeshTreeLoadsAsTheTreeTheMeshIsBuiltWith) {
   World world = surfaces_world(3);
   const std::vector<uint8_t> saved = save_snapshot(world);

@@ -148,11 +148,12 @@ TEST(HeightField, Validation) {
   EXPECT_EQ(f.min_height, -2);
   EXPECT_EQ(f.max_height, 3);
   EXPECT_FALSE(f.has_holes);
-  // The bounds are those of the samples that are not holes.
+  // The bounds are those of the triangles' corners: with a hole at (0, 1), cell (0, 0) keeps
+  // its lower triangle (1, -2, 0.5) and cell (0, 1) has none, so (0, 2) = 4 bounds nothing.
   const HeightField g = build_heightfield(std::vector<Real>{1, -2, NAN, 0.5f, 4, 2}, 2, 1, 1);
   EXPECT_TRUE(g.has_holes);
   EXPECT_EQ(g.min_height, -2);
-  EXPECT_EQ(g.max_height, 4);
+  EXPECT_EQ(g.max_height, 1);
 }
 
 // The ray's nearest hit t over every triangle of the field there (holes skipped), or -1.

@@ -264,7 +264,9 @@ float bounding_radius(const ShapeDef& def) {
       return r;
     case ShapeType::Heightfield: {
       float h = 0;
-      for (Real v : def.heights) h = std::max(h, std::abs(float(v)));
+      for (Real v : def.heights) {
+        if (!std::isnan(v)) h = std::max(h, std::abs(float(v)));  // NaN: a hole
+      }
       const float rows = def.columns ? float(def.heights.size() / def.columns) : 0;
       return std::hypot(float(def.columns) * float(def.spacing_x), rows * float(def.spacing_z), h);
     }

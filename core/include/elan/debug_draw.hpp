@@ -49,7 +49,8 @@ class DebugDrawer {
  public:
   virtual ~DebugDrawer() = default;
   /// A body's whole shape (its definition, in the shape's own frame) at `pose` (shape frame to
-  /// world). `awake` is false for a sleeping body.
+  /// world). `awake` is false for a sleeping body. A heightfield's NaN heights are holes: the
+  /// triangles with one at a corner are not there.
   virtual void draw_shape(BodyId body, const ShapeDef& shape, const Transform& pose,
                           DebugColor color, bool awake) = 0;
   virtual void draw_line(const Vec3& a, const Vec3& b, DebugColor color) = 0;

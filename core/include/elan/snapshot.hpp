@@ -17,9 +17,11 @@ namespace elan {
 /// Format version written by save_snapshot and save_rollback. A snapshot of any version from
 /// kOldestSnapshotVersion on is read (version 9 has no user data, gravity scales, sensor flags or
 /// overlaps: they load as their defaults; versions 9 and 10 carry a mesh's binary tree, collapsed
-/// on load into the 4-wide tree the mesh is built with, so the world steps as it would have); a
-/// rollback state of another version is refused.
-inline constexpr uint32_t kSnapshotVersion = 11;
+/// on load into the 4-wide tree the mesh is built with, so the world steps as it would have;
+/// version 12 may carry heightfield holes, NaN samples, which no earlier version has, so a build
+/// that reads only up to 11 refuses them rather than taking a hole for ground); a rollback state
+/// of another version is refused.
+inline constexpr uint32_t kSnapshotVersion = 12;
 inline constexpr uint32_t kOldestSnapshotVersion = 9;
 
 /// Saves the whole state of `world`: settings (`WorldDef`, step count), every shape as built

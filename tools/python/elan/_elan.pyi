@@ -99,7 +99,7 @@ class World:
         offset: float = 0.0,
         vertices: Optional[ArrayLike] = None,
         triangles: Optional[ArrayLike] = None,
-        heights: Optional[ArrayLike] = None,
+        heights: Optional[ArrayLike] = None,  # (rows, columns) m; NaN is a hole
         spacing_x: float = 1.0,
         spacing_z: float = 1.0,
         children: Optional[Sequence[Dict[str, Any]]] = None,
