@@ -26,6 +26,41 @@ void check_spacing(Real s, const char* axis) {
   check_range(s, limits::kMinSize, limits::kMaxSize, "shape.spacing", "m");
 }
 
+// Derives field.has_holes and field.edge_bits from its heights (see build_heightfield).
+void set_active_edges(HeightField& field);
+
+// Derives field.min_height and max_height: of the corners of the triangles there. Throws
+// elan::Error "shape.heights" when the holes leave none.
+void set_bounds(HeightField& f) {
+  // The stored (float) heights are the surface; the bounds are theirs.
+  Real lo = std::numeric_limits<Real>::max(), hi = -lo;
+  if (!f.has_holes) {
+    for (const float h : f.heights) {
+      lo = std::min(lo, Real(h));
+      hi = std::max(hi, Real(h));
+    }
+  } else {
+    for (uint32_t j = 0; j + 1 < f.rows; ++j) {
+      for (uint32_t i = 0; i + 1 < f.columns; ++i) {
+        const uint32_t there = f.cell_triangles(i, j);
+        if (there == 0) continue;
+        Real low, high;
+        f.triangle_heights(i, j, there, low, high);
+        lo = std::min(lo, low);
+        hi = std::max(hi, high);
+      }
+    }
+    // A field the holes leave no triangle has no surface (and no bounds) to collide with.
+    if (!(lo <= hi)) {
+      throw Error("shape.heights",
+                  "the holes (NaN heights) leave no triangle: every cell has a hole at a corner of "
+                  "both its triangles");
+    }
+  }
+  f.min_height = lo;
+  f.max_height = hi;
+}
+
 }  // namespace
 
 HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, Real spacing_x,
@@ -78,39 +113,6 @@ HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, R
   return f;
 }
 
-void set_bounds(HeightField& f) {
-  // The stored (float) heights are the surface; the bounds are theirs.
-  Real lo = std::numeric_limits<Real>::max(), hi = -lo;
-  if (!f.has_holes) {
-    for (const float h : f.heights) {
-      lo = std::min(lo, Real(h));
-      hi = std::max(hi, Real(h));
-    }
-  } else {
-    // The corners of the triangles there: a sample only holes surround bounds nothing.
-    for (uint32_t j = 0; j + 1 < f.rows; ++j) {
-      for (uint32_t i = 0; i + 1 < f.columns; ++i) {
-        const uint32_t there = f.cell_triangles(i, j);
-        if (there == 0) continue;
-        for (const Real h : {f.height(i, j), f.height(i + 1, j + 1),
-                             (there & 1u) ? f.height(i + 1, j) : f.height(i, j),
-                             (there & 2u) ? f.height(i, j + 1) : f.height(i, j)}) {
-          lo = std::min(lo, h);
-          hi = std::max(hi, h);
-        }
-      }
-    }
-    // A field the holes leave no triangle has no surface (and no bounds) to collide with.
-    if (!(lo <= hi)) {
-      throw Error("shape.heights",
-                  "the holes (NaN heights) leave no triangle: every cell has a hole at a corner of "
-                  "both its triangles");
-    }
-  }
-  f.min_height = lo;
-  f.max_height = hi;
-}
-
 MeshTriangle HeightField::corners(uint32_t t) const {
   const uint32_t c = t / 2, cells_x = columns - 1;
   const uint32_t i = c % cells_x, j = c / cells_x;
@@ -146,8 +148,6 @@ void set_edge_bit(std::vector<uint8_t>& bits, std::size_t c, int k) {
   const std::size_t b = 3 * c + std::size_t(k);
   bits[b / 8] = uint8_t(bits[b / 8] | (1u << (b % 8)));
 }
-
-}  // namespace
 
 void set_active_edges(HeightField& f) {
   f.has_holes =
@@ -194,6 +194,8 @@ void set_active_edges(HeightField& f) {
     }
   }
 }
+
+}  // namespace
 
 uint8_t HeightField::active_edges_of(const MeshTriangle& m) const {
   const uint32_t t = m.index;

@@ -32,7 +32,7 @@ struct HeightField {
   // Cell c's three bits from bit 3 c on: its diagonal, its side z = j (p00 to p10) and its side
   // x = i (p00 to p01), 1 where active (see triangle()). The other two sides are the neighbours'
   // (the grid's last row and column: the border, always active). Two spare bytes at the end, so
-  // that a cell's bits are read with one 16-bit load. Derived from the heights: set_active_edges.
+  // that a cell's bits are read with one 16-bit load. Derived from the heights (build_heightfield).
   std::vector<uint8_t> edge_bits;
 
   Real height(uint32_t i, uint32_t j) const { return Real(heights[std::size_t(j) * columns + i]); }
@@ -63,19 +63,28 @@ struct HeightField {
     const uint32_t c = t / 2, cells_x = columns - 1;
     return (cell_triangles(c % cells_x, c / cells_x) >> (t & 1)) & 1u;
   }
+  // The least and greatest height of the corners of cell (i, j)'s triangles `triangles` (its
+  // cell_triangles, not 0): a hole's sample, a corner of neither, is left out.
+  void triangle_heights(uint32_t i, uint32_t j, uint32_t triangles, Real& low, Real& high) const {
+    const Real h00 = height(i, j), h11 = height(i + 1, j + 1);
+    low = std::min(h00, h11), high = std::max(h00, h11);
+    // The corner each triangle has alone: (i + 1, j) the lower's, (i, j + 1) the upper's.
+    for (const uint32_t k : {0u, 1u}) {
+      if (!((triangles >> k) & 1u)) continue;
+      const Real h = k == 0 ? height(i + 1, j) : height(i, j + 1);
+      low = std::min(low, h);
+      high = std::max(high, h);
+    }
+  }
 };
 
-// Derives field.has_holes and field.edge_bits from its heights: each edge decided once, from the
-// unit normals of the two triangles that share it (edge_is_active), so both see it alike; an edge
-// with a triangle on one side only (the grid's border, a hole's) is active.
-void set_active_edges(HeightField& field);
-// Derives field.min_height and max_height from its heights (after set_active_edges): of the
-// corners of the triangles there. Throws elan::Error "shape.heights" when the holes leave none.
-void set_bounds(HeightField& field);
-
-// Checks and builds; a NaN height is a hole. Throws elan::Error: "shape.heights" (fewer than 2 x
-// 2, a row of another length, an infinite height or one past the supported coordinates, no
-// triangle left by the holes), "shape.spacing" (zero, negative, not finite).
+// Checks and builds; a NaN height is a hole. What it derives from the heights: has_holes, each
+// edge's active flag, decided once from the unit normals of the two triangles that share it
+// (edge_is_active) so both see it alike, or set where only one triangle has it (the grid's
+// border, a hole's rim), and the bounds, of the corners of the triangles there. Throws elan::Error:
+// "shape.heights" (fewer than 2 x 2, a row of another length, an infinite height or one past the
+// supported coordinates, no triangle left by the holes), "shape.spacing" (zero, negative, not
+// finite).
 HeightField build_heightfield(std::span<const Real> heights, uint32_t columns, Real spacing_x,
                               Real spacing_z);
 
@@ -102,17 +111,8 @@ void for_each_cell(const HeightField& field, const Vec3& lo, const Vec3& hi, F&&
       for (uint32_t i = i0; i <= i1; ++i) {
         const uint32_t triangles = field.cell_triangles(i, j);
         if (triangles == 0) continue;
-        // The corners of the triangles that are there (a hole's sample is NaN: left out).
-        const Real h00 = field.height(i, j), h11 = field.height(i + 1, j + 1);
-        Real low = std::min(h00, h11), high = std::max(h00, h11);
-        if (triangles & 1u) {
-          low = std::min(low, field.height(i + 1, j));
-          high = std::max(high, field.height(i + 1, j));
-        }
-        if (triangles & 2u) {
-          low = std::min(low, field.height(i, j + 1));
-          high = std::max(high, field.height(i, j + 1));
-        }
+        Real low, high;
+        field.triangle_heights(i, j, triangles, low, high);
         if (low > hi.y() || high < lo.y()) continue;
         f(i, j, low, high, triangles);
       }

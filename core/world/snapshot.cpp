@@ -331,34 +331,21 @@ void write_heightfield(ByteWriter& w, const detail::HeightField& f) {
 }
 
 detail::HeightField read_heightfield(ByteReader& r) {
-  detail::HeightField f;
-  f.columns = r.u32();
-  f.rows = r.u32();
-  f.spacing_x = r.real();
-  f.spacing_z = r.real();
-  f.min_height = r.real();
-  f.max_height = r.real();
-  f.heights.resize(r.count(4, "heightfield sample"));
-  for (float& h : f.heights) h = read_f32(r);
-  if (f.columns < 2 || f.rows < 2 || uint64_t(f.columns) * f.rows != f.heights.size()) {
+  const uint32_t columns = r.u32(), rows = r.u32();
+  const Real spacing_x = r.real(), spacing_z = r.real();
+  const Real saved_min = r.real(), saved_max = r.real();
+  std::vector<Real> heights(r.count(4, "heightfield sample"));
+  for (Real& h : heights) h = Real(read_f32(r));
+  if (columns < 2 || rows < 2 || uint64_t(columns) * rows != heights.size()) {
     r.fail("heightfield grid size does not match its samples");
   }
-  if (!(std::isfinite(f.spacing_x) && f.spacing_x > 0 && std::isfinite(f.spacing_z) &&
-        f.spacing_z > 0)) {
-    r.fail("heightfield spacing is not finite and positive");
-  }
-  for (const float h : f.heights) {
-    if (!std::isnan(h) && !(std::fabs(h) <= limits::kMaxPosition)) {
-      r.fail("a heightfield sample is infinite or out of range");
-    }
-  }
-  // The derived parts as the builder derives them; the bounds saved must be those.
-  const Real saved_min = f.min_height, saved_max = f.max_height;
-  detail::set_active_edges(f);
+  // Built as the scene built it: the samples checked (finite or a hole, within range, a
+  // triangle left), the edges and bounds derived, and the bounds saved must be those.
+  detail::HeightField f;
   try {
-    detail::set_bounds(f);
-  } catch (const Error&) {
-    r.fail("a heightfield's holes leave no triangle");
+    f = detail::build_heightfield(heights, columns, spacing_x, spacing_z);
+  } catch (const Error& e) {
+    r.fail(std::string("heightfield: ") + e.what());
   }
   if (f.min_height != saved_min || f.max_height != saved_max) {
     r.fail("heightfield bounds do not match its samples");

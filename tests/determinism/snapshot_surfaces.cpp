@@ -265,7 +265,9 @@ TEST(SnapshotSurfaces, ResealedBadIndicesAndTreesAreRefused) {
   set_f32(bytes, samples_at + 8, std::numeric_limits<float>::infinity());
   reseal(bytes);
   error = restore_error(bytes);
-  EXPECT_NE(error.find("heightfield sample is infinite"), std::string::npos) << error;
+  EXPECT_NE(error.find("heightfield: shape.heights: height 2 (row 0, column 2) must be finite"),
+            std::string::npos)
+      << error;
   // Bounds that are not the samples' (the greatest, 0.4 m, saved as 0.5).
   bytes = saved;
   set_f32(bytes, samples_at - 8, 0.5f);
@@ -279,7 +281,9 @@ TEST(SnapshotSurfaces, ResealedBadIndicesAndTreesAreRefused) {
   }
   reseal(bytes);
   error = restore_error(bytes);
-  EXPECT_NE(error.find("holes leave no triangle"), std::string::npos) << error;
+  EXPECT_NE(error.find("heightfield: shape.heights: the holes (NaN heights) leave no triangle"),
+            std::string::npos)
+      << error;
 
   // Any byte of the file changed and resealed is refused or loads a world that steps: never a
   // crash, a hang or an out-of-range read.
